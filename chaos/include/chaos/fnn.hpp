@@ -1,0 +1,38 @@
+#pragma once
+// False nearest neighbours (Kennel, Brown & Abarbanel 1992, Phys. Rev. A 45, 3403). The nearest
+// neighbour n of X_i(m) (Theiler window excluded) is false in m + 1 dimensions if
+//   |x_{i+m tau} - x_{n+m tau}| / R_m(i) > Rtol          (criterion 1), or
+//   R_{m+1}(i) / R_A > Atol, R_A the standard deviation of the series (criterion 2).
+// Distances are Euclidean by default, as in Kennel et al.; ties at distance 0 are skipped as in Cao.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "chaos/norm.hpp"
+
+namespace chaos {
+
+struct FnnOptions {
+  std::size_t delay = 1;
+  std::size_t min_dimension = 1;
+  std::size_t max_dimension = 10;
+  std::size_t theiler = 0;
+  double rtol = 10.0;
+  double atol = 2.0;
+  Norm norm = Norm::euclidean;
+  // The embedding dimension is the smallest m whose false fraction is at most this.
+  double threshold = 0.01;
+  void validate() const;
+};
+
+struct FnnResult {
+  std::vector<std::size_t> dimension;
+  std::vector<double> false_fraction;
+  std::optional<std::size_t> embedding_dimension;  // nullopt: the fraction never fell to threshold
+};
+
+FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& options = {});
+
+}  // namespace chaos

@@ -1,0 +1,59 @@
+#pragma once
+// Nearest-neighbour search in a delay embedding, with a Theiler window: candidates j with
+// |i - j| <= theiler are excluded, so temporally correlated points of a flow do not pose as
+// neighbours (Theiler 1986). Two interchangeable searchers, tested equal to each other:
+//   KdTree      O(N log N) build, fast queries for any dimension and either norm;
+//   brute force O(N) per query, the definition, kept for tests and tiny inputs.
+// The kd-tree prunes with the distance from the query to a node's bounding box, which is a valid
+// lower bound for the maximum norm as well as the Euclidean one (nanoflann's additive bound is
+// valid only for Euclidean-type norms, hence our own tree).
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "chaos/embedding.hpp"
+#include "chaos/norm.hpp"
+
+namespace chaos {
+
+struct Neighbor {
+  std::size_t index;
+  double distance;
+};
+
+struct NeighborQuery {
+  std::size_t theiler = 0;     // exclude candidates with |i - j| <= theiler (always excludes j = i)
+  bool skip_zero_distance = false;  // ignore candidates at distance exactly 0 (ties in quantised
+                                    // data); the nearest candidate at a positive distance is returned
+};
+
+class KdTree {
+ public:
+  KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size = 8);
+  ~KdTree();
+  KdTree(KdTree&&) noexcept;
+  KdTree& operator=(KdTree&&) noexcept;
+
+  // The nearest admissible neighbour of point i of the embedding, or nullopt when none exists.
+  // Ties in distance are broken by the smaller index, so the answer is unique and equals brute force.
+  std::optional<Neighbor> nearest(std::size_t i, const NeighborQuery& query = {}) const;
+
+  // Number of admissible j with distance(i, j) < radius (strict, the correlation-sum convention).
+  std::size_t count_within(std::size_t i, double radius, const NeighborQuery& query = {}) const;
+
+  const DelayEmbedding& points() const noexcept;
+  Norm norm() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,
+                                            const NeighborQuery& query = {});
+std::size_t count_within_brute_force(const DelayEmbedding& points, std::size_t i, double radius,
+                                     Norm norm, const NeighborQuery& query = {});
+
+}  // namespace chaos

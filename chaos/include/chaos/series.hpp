@@ -1,0 +1,41 @@
+#pragma once
+// A scalar time series and the reader that gets one from a text file, with TISEAN's conventions:
+// whitespace- or comma-separated columns, '#' comments, a column to use (-c), rows to skip (-x)
+// and rows to use (-l). The sampling interval travels with the values so delays can be shown in
+// time units.
+
+#include <cstddef>
+#include <iosfwd>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace chaos {
+
+struct Series {
+  std::vector<double> values;
+  std::optional<double> dt;  // sampling interval in time units, when known
+};
+
+struct ReadOptions {
+  std::size_t column = 1;  // 1-based, as in TISEAN
+  std::size_t skip = 0;    // data rows skipped after comments and blank lines are dropped
+  std::size_t length = std::numeric_limits<std::size_t>::max();  // data rows used after the skip
+  std::optional<double> dt;
+  void validate() const;
+};
+
+// Reads the series from a file; "-" reads standard input. Every refusal names the source, the line
+// and the rule: missing file, empty input, non-numeric token, NaN or infinity, missing column.
+Series read_series(const std::string& path, const ReadOptions& options = {});
+Series read_series(std::istream& in, const std::string& source_name, const ReadOptions& options = {});
+
+// Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
+void require_finite(std::span<const double> x, const std::string& what);
+void require_not_constant(std::span<const double> x, const std::string& what);
+void require_length(std::span<const double> x, std::size_t minimum, const std::string& what,
+                    const std::string& reason);
+
+}  // namespace chaos

@@ -1,0 +1,125 @@
+#include "chaos/series.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string_view>
+
+#include "chaos/error.hpp"
+
+namespace chaos {
+
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+// Splits a data line into tokens at whitespace and commas; a '#' ends the line.
+std::vector<std::string_view> tokenize(std::string_view line) {
+  if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+  std::vector<std::string_view> tokens;
+  std::size_t pos = 0;
+  const auto is_separator = [](char c) { return c == ',' || c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  while (pos < line.size()) {
+    while (pos < line.size() && is_separator(line[pos])) ++pos;
+    const std::size_t start = pos;
+    while (pos < line.size() && !is_separator(line[pos])) ++pos;
+    if (pos > start) tokens.push_back(line.substr(start, pos - start));
+  }
+  return tokens;
+}
+
+bool parse_double(std::string_view token, double& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+}  // namespace
+
+void ReadOptions::validate() const {
+  if (column == 0)
+    throw InvalidInput(ErrorCode::invalid_parameter, "column numbers start at 1 (got column 0)");
+  if (length == 0)
+    throw InvalidInput(ErrorCode::invalid_parameter, "number of rows to use (-l) must be at least 1 (got 0)");
+  if (dt && !(std::isfinite(*dt) && *dt > 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "sampling interval dt must be finite and positive (got " + format_number(*dt) + ")");
+}
+
+Series read_series(std::istream& in, const std::string& source_name, const ReadOptions& options) {
+  options.validate();
+  Series series;
+  series.dt = options.dt;
+  std::string line;
+  std::size_t line_number = 0;
+  std::size_t data_rows = 0;
+  while (series.values.size() < options.length && std::getline(in, line)) {
+    ++line_number;
+    const auto tokens = tokenize(line);
+    if (tokens.empty()) continue;  // blank line or comment
+    if (data_rows++ < options.skip) continue;
+    if (tokens.size() < options.column)
+      throw InvalidInput(ErrorCode::parse, source_name + ":" + std::to_string(line_number) + ": column " +
+                                               std::to_string(options.column) + " requested but the line has only " +
+                                               std::to_string(tokens.size()) + " column(s)");
+    const std::string_view token = tokens[options.column - 1];
+    double value = 0.0;
+    if (!parse_double(token, value))
+      throw InvalidInput(ErrorCode::parse, source_name + ":" + std::to_string(line_number) + ": column " +
+                                               std::to_string(options.column) + ": '" + std::string(token) +
+                                               "' is not a number");
+    if (!std::isfinite(value))
+      throw InvalidInput(ErrorCode::non_finite, source_name + ":" + std::to_string(line_number) + ": column " +
+                                                    std::to_string(options.column) + ": '" + std::string(token) +
+                                                    "' is not finite; NaN and infinity are refused");
+    series.values.push_back(value);
+  }
+  if (in.bad()) throw InvalidInput(ErrorCode::io, source_name + ": read error");
+  if (series.values.empty())
+    throw InvalidInput(ErrorCode::empty, source_name + ": no data rows" +
+                                             (options.skip > 0 ? " after skipping " + std::to_string(options.skip) +
+                                                                     " row(s) (-x); the input has " +
+                                                                     std::to_string(data_rows) + " data row(s)"
+                                                               : std::string(" (only blank lines or # comments)")));
+  return series;
+}
+
+Series read_series(const std::string& path, const ReadOptions& options) {
+  if (path == "-") return read_series(std::cin, "<stdin>", options);
+  std::ifstream file(path);
+  if (!file) throw InvalidInput(ErrorCode::io, path + ": cannot open file (missing or unreadable)");
+  return read_series(file, path, options);
+}
+
+void require_finite(std::span<const double> x, const std::string& what) {
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i]))
+      throw InvalidInput(ErrorCode::non_finite,
+                         what + ": sample " + std::to_string(i) + " is " + format_number(x[i]) + "; values must be finite");
+}
+
+void require_not_constant(std::span<const double> x, const std::string& what) {
+  if (x.empty()) return;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  if (*lo == *hi)
+    throw InvalidInput(ErrorCode::constant, what + ": the series is constant (all " + std::to_string(x.size()) +
+                                                " samples equal " + format_number(*lo) + "); there are no dynamics to analyse");
+}
+
+void require_length(std::span<const double> x, std::size_t minimum, const std::string& what,
+                    const std::string& reason) {
+  if (x.size() < minimum)
+    throw InvalidInput(ErrorCode::too_short, what + ": series too short: N = " + std::to_string(x.size()) +
+                                                 " samples, but at least " + std::to_string(minimum) +
+                                                 " are needed (" + reason + ")");
+}
+
+}  // namespace chaos
