@@ -1,0 +1,69 @@
+// chaos cao: Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates.
+
+#include "chaos/cao.hpp"
+#include "common.hpp"
+
+namespace chaos::cli {
+
+namespace {
+
+struct CaoArgs {
+  InputOptions input;
+  OutputOptions output;
+  CaoOptions options;
+  std::string norm = "max";
+};
+
+void run(CaoArgs& args) {
+  const Series series = load_series(args.input);
+  args.options.norm = parse_norm(args.norm);
+  const CaoResult result = cao(series.values, args.options);
+
+  Report report("cao", args.output);
+  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+      .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
+      .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
+      .parameter("norm", args.norm).parameter("saturation_tolerance", args.options.saturation_tolerance);
+  if (series.dt) report.parameter("delay_time", static_cast<double>(args.options.delay) * *series.dt);
+  std::ostream& out = report.stream();
+  if (report.json_mode()) {
+    auto& j = report.json();
+    j["dimension"] = result.dimension;
+    j["E1"] = result.E1;
+    j["E2"] = result.E2;
+    j["E"] = std::vector<double>(result.E.begin(), result.E.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
+    j["E_star"] = std::vector<double>(result.E_star.begin(), result.E_star.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
+    j["embedding_dimension"] = optional_json(result.embedding_dimension);
+    j["max_E2_deviation"] = result.max_E2_deviation;
+    j["points_without_neighbor"] = result.points_without_neighbor;
+    report.write_json(out);
+    return;
+  }
+  report.write_header(out);
+  out << "# embedding_dimension = "
+      << (result.embedding_dimension ? std::to_string(*result.embedding_dimension) : "none (E1 not saturated)") << "\n";
+  out << "# max_E2_deviation = " << number(result.max_E2_deviation) << "  (near 0 suggests a stochastic series)\n";
+  out << "# dimension\tE1\tE2\tE\tE_star\n";
+  for (std::size_t k = 0; k < result.dimension.size(); ++k)
+    out << result.dimension[k] << "\t" << number(result.E1[k]) << "\t" << number(result.E2[k]) << "\t" << number(result.E[k])
+        << "\t" << number(result.E_star[k]) << "\n";
+}
+
+}  // namespace
+
+void register_cao(CLI::App& app) {
+  auto args = std::make_shared<CaoArgs>();
+  CLI::App* command = app.add_subcommand("cao", "Cao's method: E1(m), E2(m) and the minimum embedding dimension");
+  add_input_options(*command, args->input);
+  command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-m,--min-dimension", args->options.min_dimension, "smallest embedding dimension")->capture_default_str();
+  command->add_option("-M,--max-dimension", args->options.max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_option("-t,--theiler", args->options.theiler, "Theiler window in samples (|i-j| <= t excluded)")->capture_default_str();
+  command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
+  command->add_option("--tolerance", args->options.saturation_tolerance, "E1 saturated when E1 >= 1 - tolerance from m on")
+      ->capture_default_str();
+  add_output_options(*command, args->output);
+  command->callback([args] { run(*args); });
+}
+
+}  // namespace chaos::cli

@@ -1,0 +1,80 @@
+#include "common.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "chaos/error.hpp"
+#include "chaos/norm.hpp"
+
+namespace chaos::cli {
+
+void add_input_options(CLI::App& command, InputOptions& input) {
+  command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")
+      ->capture_default_str();
+  command.add_option("-c,--column", input.column, "column to read (1-based)")->capture_default_str();
+  command.add_option("-x,--skip", input.skip, "data rows to skip at the start")->capture_default_str();
+  command.add_option("-l,--length", input.length, "data rows to use after the skip (default: all)");
+  command.add_option("--dt", input.dt, "sampling interval, to report delays and times in time units too");
+}
+
+Series load_series(const InputOptions& input) {
+  ReadOptions options;
+  options.column = input.column;
+  options.skip = input.skip;
+  if (input.length) options.length = *input.length;
+  options.dt = input.dt;
+  Series series = read_series(input.file, options);
+  require_finite(series.values, input.file);
+  return series;
+}
+
+void add_output_options(CLI::App& command, OutputOptions& output) {
+  command.add_flag("--json", output.json, "write one JSON object instead of the table");
+  command.add_option("-o,--output", output.path, "write to this file instead of standard output");
+}
+
+std::string number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
+Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)), output_(output) {
+  json_["command"] = command_;
+  json_["parameters"] = nlohmann::ordered_json::object();
+  if (!output_.path.empty()) {
+    auto file = std::make_unique<std::ofstream>(output_.path);
+    if (!*file) throw InvalidInput(ErrorCode::io, output_.path + ": cannot open for writing");
+    file_ = std::move(file);
+  }
+}
+
+Report& Report::parameter(const std::string& name, const std::optional<double>& value) {
+  json_["parameters"][name] = optional_json(value);
+  header_.emplace_back(name, value ? number(*value) : "none");
+  return *this;
+}
+
+Report& Report::parameter(const std::string& name, const std::optional<std::size_t>& value) {
+  json_["parameters"][name] = optional_json(value);
+  header_.emplace_back(name, value ? std::to_string(*value) : "none");
+  return *this;
+}
+
+std::ostream& Report::stream() { return file_ ? *file_ : std::cout; }
+
+void Report::write_header(std::ostream& out) const {
+  out << "# chaos " << command_ << "\n";
+  for (const auto& [name, value] : header_) out << "# " << name << " = " << value << "\n";
+}
+
+void Report::write_json(std::ostream& out) const { out << json_.dump(2) << "\n"; }
+
+Norm parse_norm(const std::string& name) {
+  if (name == "max") return Norm::max;
+  if (name == "euclidean") return Norm::euclidean;
+  throw InvalidInput(ErrorCode::invalid_parameter, "norm must be 'max' or 'euclidean' (got '" + name + "')");
+}
+
+}  // namespace chaos::cli

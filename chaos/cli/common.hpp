@@ -1,0 +1,103 @@
+#pragma once
+// What every `chaos` command shares: reading the series (TISEAN's -c -x -l and --dt), and writing
+// the result either as a tab-separated table under a '#' header that records every parameter and
+// N, or as one JSON object for scripts.
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <type_traits>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "chaos/norm.hpp"
+#include "chaos/series.hpp"
+
+namespace chaos::cli {
+
+// Exit codes, documented in README.md.
+enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_input = 3, validation_failed = 4 };
+
+struct InputOptions {
+  std::string file = "-";
+  std::size_t column = 1;
+  std::size_t skip = 0;
+  std::optional<std::size_t> length;
+  std::optional<double> dt;
+};
+
+// Registers [file|-] -c -x -l --dt.
+void add_input_options(CLI::App& command, InputOptions& input);
+Series load_series(const InputOptions& input);
+
+struct OutputOptions {
+  bool json = false;
+  std::string path;  // -o; empty: standard output
+};
+void add_output_options(CLI::App& command, OutputOptions& output);
+
+// Formats a double with enough digits to round-trip the estimate's meaningful precision.
+std::string number(double value);
+
+// Collects the parameters of a run in the order they are added, then writes them as '#' lines or
+// as the "parameters" object of the JSON output.
+class Report {
+ public:
+  Report(std::string command, const OutputOptions& output);
+  template <class T>
+  Report& parameter(const std::string& name, const T& value) {
+    json_["parameters"][name] = value;
+    header_.emplace_back(name, to_text(value));
+    return *this;
+  }
+  Report& parameter(const std::string& name, const std::optional<double>& value);
+  Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
+  nlohmann::ordered_json& json() { return json_; }
+  bool json_mode() const { return output_.json; }
+  // Writes the header lines (text mode) or nothing (JSON mode) to `out`.
+  void write_header(std::ostream& out) const;
+  // Writes the JSON object (JSON mode) to `out`.
+  void write_json(std::ostream& out) const;
+  std::ostream& stream();
+
+ private:
+  template <class T>
+  static std::string to_text(const T& value) {
+    if constexpr (std::is_same_v<T, bool>) return value ? "true" : "false";
+    else if constexpr (std::is_floating_point_v<T>) return number(value);
+    else if constexpr (std::is_arithmetic_v<T>) return std::to_string(value);
+    else return std::string(value);
+  }
+  std::string command_;
+  OutputOptions output_;
+  nlohmann::ordered_json json_;
+  std::vector<std::pair<std::string, std::string>> header_;
+  std::unique_ptr<std::ostream> file_;
+};
+
+// JSON null for an empty optional.
+template <class T>
+nlohmann::ordered_json optional_json(const std::optional<T>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+// Thrown by `validate` after its report is written, to leave with exit code 4.
+struct ValidationFailed {};
+
+Norm parse_norm(const std::string& name);
+
+// Each command registers itself on the application.
+void register_generate(CLI::App& app);
+void register_mutual(CLI::App& app);
+void register_autocorrelation(CLI::App& app);
+void register_cao(CLI::App& app);
+void register_fnn(CLI::App& app);
+void register_analyze(CLI::App& app);
+void register_validate(CLI::App& app);
+
+}  // namespace chaos::cli

@@ -1,0 +1,65 @@
+// chaos fnn: the fraction of false nearest neighbours against m (Kennel et al. 1992).
+
+#include "chaos/fnn.hpp"
+#include "common.hpp"
+
+namespace chaos::cli {
+
+namespace {
+
+struct FnnArgs {
+  InputOptions input;
+  OutputOptions output;
+  FnnOptions options;
+  std::string norm = "euclidean";
+};
+
+void run(FnnArgs& args) {
+  const Series series = load_series(args.input);
+  args.options.norm = parse_norm(args.norm);
+  const FnnResult result = false_nearest_neighbors(series.values, args.options);
+
+  Report report("fnn", args.output);
+  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+      .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
+      .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
+      .parameter("rtol", args.options.rtol).parameter("atol", args.options.atol).parameter("norm", args.norm)
+      .parameter("threshold", args.options.threshold);
+  std::ostream& out = report.stream();
+  if (report.json_mode()) {
+    auto& j = report.json();
+    j["dimension"] = result.dimension;
+    j["false_fraction"] = result.false_fraction;
+    j["embedding_dimension"] = optional_json(result.embedding_dimension);
+    report.write_json(out);
+    return;
+  }
+  report.write_header(out);
+  out << "# embedding_dimension = "
+      << (result.embedding_dimension ? std::to_string(*result.embedding_dimension) : "none (fraction stays above threshold)")
+      << "\n# dimension\tfalse_fraction\n";
+  for (std::size_t k = 0; k < result.dimension.size(); ++k)
+    out << result.dimension[k] << "\t" << number(result.false_fraction[k]) << "\n";
+}
+
+}  // namespace
+
+void register_fnn(CLI::App& app) {
+  auto args = std::make_shared<FnnArgs>();
+  CLI::App* command = app.add_subcommand("fnn", "false nearest neighbours against the embedding dimension");
+  add_input_options(*command, args->input);
+  command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-m,--min-dimension", args->options.min_dimension, "smallest embedding dimension")->capture_default_str();
+  command->add_option("-M,--max-dimension", args->options.max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_option("-t,--theiler", args->options.theiler, "Theiler window in samples")->capture_default_str();
+  command->add_option("--rtol", args->options.rtol, "distance-ratio threshold (criterion 1)")->capture_default_str();
+  command->add_option("--atol", args->options.atol, "size threshold in units of the standard deviation (criterion 2)")
+      ->capture_default_str();
+  command->add_option("--norm", args->norm, "euclidean (Kennel et al.) or max")->capture_default_str();
+  command->add_option("--threshold", args->options.threshold, "dimension chosen where the false fraction <= this")
+      ->capture_default_str();
+  add_output_options(*command, args->output);
+  command->callback([args] { run(*args); });
+}
+
+}  // namespace chaos::cli

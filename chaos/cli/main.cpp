@@ -1,0 +1,43 @@
+// The `chaos` command: one subcommand per task, TISEAN's option letters, tab-separated output under
+// a '#' header or --json. Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid input,
+// 4 a reference case failed (`validate`).
+
+#include <iostream>
+
+#include "chaos/error.hpp"
+#include "common.hpp"
+
+int main(int argc, char** argv) {
+  using namespace chaos::cli;
+  CLI::App app{"chaos: time-series analysis for chaotic data (embedding, mutual information, Cao, FNN, validation)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "chaos 0.1.0");
+  register_generate(app);
+  register_mutual(app);
+  register_autocorrelation(app);
+  register_cao(app);
+  register_fnn(app);
+  register_analyze(app);
+  register_validate(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return usage_error;
+  } catch (const chaos::InvalidInput& e) {
+    std::cerr << "chaos: error [" << chaos::to_string(e.code()) << "]: " << e.what() << "\n";
+    return invalid_input;
+  } catch (const ValidationFailed&) {
+    return validation_failed;
+  } catch (const std::exception& e) {
+    std::cerr << "chaos: internal error: " << e.what() << "\n";
+    return internal_error;
+  }
+  return ok;
+}
