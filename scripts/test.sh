@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The whole test suite from a clean checkout: install dependencies, build in Release, run every
+# tier (unit, property, reference, slow, command line), then rebuild the unit and property tiers
+# with AddressSanitizer + UndefinedBehaviorSanitizer and run them again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc 2>/dev/null || echo 2)
+
+bash scripts/install-deps.sh
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCHAOS_BUILD_BENCHMARKS=ON
+cmake --build build -j"$jobs"
+ctest --test-dir build -j"$jobs" --output-on-failure
+
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCHAOS_SANITIZE=ON
+cmake --build build-sanitize -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --test-dir build-sanitize -j"$jobs" --output-on-failure -L 'unit|property'
