@@ -1,0 +1,103 @@
+// The series reader and the shared input checks. Expected values are the literal file contents;
+// each refusal is checked for its error code and for naming the line and the rule.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "chaos/error.hpp"
+#include "chaos/series.hpp"
+
+namespace {
+
+using chaos::ErrorCode;
+using chaos::InvalidInput;
+using chaos::ReadOptions;
+
+chaos::Series read(const std::string& text, ReadOptions options = {}) {
+  std::istringstream in(text);
+  return chaos::read_series(in, "input.dat", options);
+}
+
+// Runs `f`, expects InvalidInput with `code` and a message containing every fragment.
+template <class F>
+void expect_refusal(F f, ErrorCode code, std::initializer_list<const char*> fragments) {
+  try {
+    f();
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    for (const char* fragment : fragments) EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReadSeries, WhitespaceCommasCommentsAndColumns) {
+  const std::string text = "# header\n1, 10\t100\n\n2 20 200  # trailing comment\n3,30,300\n";
+  EXPECT_EQ(read(text).values, (std::vector<double>{1, 2, 3}));
+  ReadOptions second;
+  second.column = 3;
+  EXPECT_EQ(read(text, second).values, (std::vector<double>{100, 200, 300}));
+}
+
+TEST(ReadSeries, SkipAndLengthCountDataRowsOnly) {
+  ReadOptions options;
+  options.skip = 1;
+  options.length = 2;
+  EXPECT_EQ(read("# c\n1\n# c\n2\n3\n4\n", options).values, (std::vector<double>{2, 3}));
+}
+
+TEST(ReadSeries, NumberFormats) {
+  const auto values = read("+1.5\n-2e-3\n1E300\n4.9e-324\n").values;
+  ASSERT_EQ(values.size(), 4u);
+  EXPECT_EQ(values[0], 1.5);
+  EXPECT_EQ(values[1], -2e-3);
+  EXPECT_EQ(values[2], 1e300);
+  EXPECT_EQ(values[3], 4.9e-324);  // the smallest subnormal survives parsing
+}
+
+TEST(ReadSeries, DtTravelsWithTheSeries) {
+  ReadOptions options;
+  options.dt = 0.01;
+  EXPECT_EQ(read("1\n2\n", options).dt, 0.01);
+  EXPECT_FALSE(read("1\n2\n").dt.has_value());
+}
+
+TEST(ReadSeries, Refusals) {
+  expect_refusal([] { read("1\nx2\n3\n"); }, ErrorCode::parse, {"input.dat:2", "'x2' is not a number"});
+  expect_refusal([] { read("1\n2.5.3\n"); }, ErrorCode::parse, {"input.dat:2", "'2.5.3'"});
+  expect_refusal([] { read("1\nnan\n"); }, ErrorCode::non_finite, {"input.dat:2", "not finite"});
+  expect_refusal([] { read("1\n-inf\n"); }, ErrorCode::non_finite, {"input.dat:2"});
+  expect_refusal([] { read("1e999\n"); }, ErrorCode::parse, {"input.dat:1"});  // overflow is not a number we accept
+  expect_refusal([] { read("# nothing\n\n"); }, ErrorCode::empty, {"input.dat", "no data rows"});
+  expect_refusal([] { read(""); }, ErrorCode::empty, {"no data rows"});
+  ReadOptions column3;
+  column3.column = 3;
+  expect_refusal([&] { read("1 2 3\n4 5\n", column3); }, ErrorCode::parse, {"input.dat:2", "column 3", "only 2"});
+  ReadOptions skip_all;
+  skip_all.skip = 5;
+  expect_refusal([&] { read("1\n2\n", skip_all); }, ErrorCode::empty, {"skipping 5", "2 data row"});
+  ReadOptions column0;
+  column0.column = 0;
+  expect_refusal([&] { read("1\n", column0); }, ErrorCode::invalid_parameter, {"column 0"});
+  ReadOptions bad_dt;
+  bad_dt.dt = -1.0;
+  expect_refusal([&] { read("1\n", bad_dt); }, ErrorCode::invalid_parameter, {"dt", "-1"});
+}
+
+TEST(ReadSeries, MissingFile) {
+  expect_refusal([] { chaos::read_series("/nonexistent/dir/x.dat"); }, ErrorCode::io, {"/nonexistent/dir/x.dat", "cannot open"});
+}
+
+TEST(Checks, ConstantFiniteLength) {
+  const std::vector<double> constant(50, 2.0);
+  expect_refusal([&] { chaos::require_not_constant(constant, "s"); }, ErrorCode::constant, {"50 samples", "2"});
+  const std::vector<double> with_nan{1.0, std::nan(""), 2.0};
+  expect_refusal([&] { chaos::require_finite(with_nan, "s"); }, ErrorCode::non_finite, {"sample 1"});
+  expect_refusal([&] { chaos::require_length(constant, 100, "s", "m = 3, tau = 40"); }, ErrorCode::too_short,
+                 {"N = 50", "at least 100", "m = 3, tau = 40"});
+  const std::vector<double> tiny{1e-300, 2e-300};
+  EXPECT_NO_THROW(chaos::require_not_constant(tiny, "s"));  // tiny but distinct values are dynamics
+}
+
+}  // namespace
