@@ -329,6 +329,7 @@ TEST(Systems, InvalidParametersAreRefusedWithTheRuleAndTheNumbers) {
   expect_refused([] { chaos::lorenz(10, {}, FlowSampling{-0.01, 0.001, 0.0}); }, {"dt", "-0.01"});
   expect_refused([] { chaos::lorenz(10, {}, FlowSampling{0.01, NAN, 0.0}); }, {"step", "nan"});
   expect_refused([] { chaos::rossler(10, {}, FlowSampling{0.1, 0.01, -1.0}); }, {"transient", "-1"});
+  expect_refused([] { chaos::lorenz(10, {}, FlowSampling{0.01, 0.001, 1e300}); }, {"transient", "1e+300", "1e15"});
   expect_refused([] { chaos::lorenz(10, {NAN, 28.0, 1.0}); }, {"sigma"});
   expect_refused([] { chaos::henon(0); }, {"n must be at least 1"});
   expect_refused([] { chaos::henon(10, {2.0, 0.3}); }, {"henon", "bounded"});  // a = 2 escapes

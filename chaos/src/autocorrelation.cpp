@@ -1,0 +1,135 @@
+#include "chaos/autocorrelation.hpp"
+
+#include <fftw3.h>
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <string>
+
+#include "chaos/error.hpp"
+#include "chaos/series.hpp"
+
+namespace chaos {
+
+namespace {
+
+// FFTW's planner is not thread-safe (only fftw_execute is), so planning and destroying plans are
+// serialised; the transforms themselves run concurrently.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+struct FftwFree {
+  void operator()(void* p) const noexcept { fftw_free(p); }
+};
+template <class T>
+using FftwBuffer = std::unique_ptr<T[], FftwFree>;
+
+template <class T>
+FftwBuffer<T> fftw_buffer(std::size_t count) {
+  auto* p = static_cast<T*>(fftw_malloc(sizeof(T) * count));
+  if (p == nullptr) throw std::bad_alloc();
+  return FftwBuffer<T>(p);
+}
+
+class Plan {
+ public:
+  explicit Plan(fftw_plan p) : p_(p) {
+    if (p_ == nullptr) throw std::bad_alloc();
+  }
+  ~Plan() {
+    std::lock_guard lock(planner_mutex());
+    fftw_destroy_plan(p_);
+  }
+  Plan(const Plan&) = delete;
+  Plan& operator=(const Plan&) = delete;
+  void execute() const noexcept { fftw_execute(p_); }
+
+ private:
+  fftw_plan p_;
+};
+
+// Smallest 2^a 3^b 5^c >= n: FFTW is fast on such sizes, and they are at most 25% above n
+// where a power of two can be almost 100% above.
+std::size_t smooth_size(std::size_t n) {
+  for (std::size_t m = n;; ++m) {
+    std::size_t r = m;
+    for (const std::size_t f : {2u, 3u, 5u})
+      while (r % f == 0) r /= f;
+    if (r == 1) return m;
+  }
+}
+
+}  // namespace
+
+AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max_lag) {
+  const std::string what = "autocorrelation";
+  require_length(x, max_lag + 1, what,
+                 "max_lag = " + std::to_string(max_lag) + " needs N > max_lag (the largest lag must leave a pair)");
+  require_finite(x, what);
+  require_not_constant(x, what);
+  const std::size_t n = x.size();
+  double mean = 0.0;
+  for (const double v : x) mean += v;
+  mean /= static_cast<double>(n);
+
+  // Zero padding to L >= N + max_lag: the circular correlation of the padded series equals the
+  // linear one for every lag up to max_lag, because no product wraps onto a nonzero sample.
+  const std::size_t l = smooth_size(n + max_lag);
+  const std::size_t bins = l / 2 + 1;
+  auto real = fftw_buffer<double>(l);
+  auto spectrum = fftw_buffer<fftw_complex>(bins);
+  const int size = static_cast<int>(l);
+  if (static_cast<std::size_t>(size) != l)
+    throw InvalidInput(ErrorCode::invalid_parameter, what + ": series too long for one FFT (N = " +
+                                                         std::to_string(n) + ")");
+  std::unique_ptr<Plan> forward, backward;
+  {
+    std::lock_guard lock(planner_mutex());
+    forward = std::make_unique<Plan>(fftw_plan_dft_r2c_1d(size, real.get(), spectrum.get(), FFTW_ESTIMATE));
+    backward = std::make_unique<Plan>(fftw_plan_dft_c2r_1d(size, spectrum.get(), real.get(), FFTW_ESTIMATE));
+  }
+  for (std::size_t t = 0; t < n; ++t) real[t] = x[t] - mean;
+  for (std::size_t t = n; t < l; ++t) real[t] = 0.0;
+  forward->execute();
+  // Wiener-Khinchin: the inverse transform of |X|^2 is the autocovariance sum (times L, FFTW's
+  // transforms being unnormalised).
+  for (std::size_t k = 0; k < bins; ++k) {
+    spectrum[k][0] = spectrum[k][0] * spectrum[k][0] + spectrum[k][1] * spectrum[k][1];
+    spectrum[k][1] = 0.0;
+  }
+  backward->execute();
+
+  // r(k) = c(k) / c(0): the common factors 1/N and 1/L cancel.
+  AutocorrelationResult result;
+  result.correlation.resize(max_lag + 1);
+  const double c0 = real[0];
+  result.correlation[0] = 1.0;
+  for (std::size_t k = 1; k <= max_lag; ++k) result.correlation[k] = real[k] / c0;
+  return result;
+}
+
+std::optional<std::size_t> first_zero_crossing(const AutocorrelationResult& result) {
+  const auto& r = result.correlation;
+  for (std::size_t k = 1; k < r.size(); ++k)
+    if (r[k] <= 0.0) return k;
+  return std::nullopt;
+}
+
+std::optional<double> decorrelation_time(const AutocorrelationResult& result) {
+  const auto& r = result.correlation;
+  const double level = std::exp(-1.0);
+  if (r.empty()) return std::nullopt;
+  if (r[0] <= level) return 0.0;  // only for a hand-made result: autocorrelation() gives r(0) = 1
+  for (std::size_t k = 1; k < r.size(); ++k)
+    if (r[k] <= level) {
+      // r[k-1] > 1/e >= r[k]: the straight line between them crosses 1/e inside [k-1, k].
+      return static_cast<double>(k - 1) + (r[k - 1] - level) / (r[k - 1] - r[k]);
+    }
+  return std::nullopt;
+}
+
+}  // namespace chaos
