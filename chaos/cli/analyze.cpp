@@ -109,6 +109,7 @@ void run(AnalyzeArgs& args) {
   j["embedding_dimension"] = optional_json(cao_result.embedding_dimension);
   j["fnn_embedding_dimension"] = optional_json(fnn.embedding_dimension);
   j["max_E2_deviation"] = cao_result.max_E2_deviation;
+  j["stochastic"] = cao_result.stochastic;
   j["autocorrelation"] = {{"first_zero_crossing", optional_json(zero)}, {"decorrelation_time", optional_json(decay)}};
   j["mutual_information"] = {{"delay", mi.delay}, {"information", mi.information}, {"first_minimum", optional_json(minimum)}};
   j["cao"] = {{"dimension", cao_result.dimension}, {"E1", cao_result.E1}, {"E2", cao_result.E2}};
@@ -123,15 +124,15 @@ void run(AnalyzeArgs& args) {
   };
   out << "delay\t" << delay << " samples" << in_time(delay) << "\t[" << delay_source << "]\n";
   out << "theiler_window\t" << theiler << " samples" << in_time(theiler) << "\t[" << theiler_source << "]\n";
-  out << "embedding_dimension\t"
-      << (cao_result.embedding_dimension ? std::to_string(*cao_result.embedding_dimension) : "none (E1 not saturated)")
-      << "\t[Cao E1 >= " << number(1.0 - cao_options.saturation_tolerance) << " from there on]\n";
+  out << "embedding_dimension\t" << describe_dimension(cao_result) << "\t[Cao: E1 >= "
+      << number(cao_options.saturation_level) << " and steps <= " << number(cao_options.saturation_change)
+      << " from there on]\n";
   out << "fnn_embedding_dimension\t"
       << (fnn.embedding_dimension ? std::to_string(*fnn.embedding_dimension) : "none")
       << "\t[false fraction <= " << number(fnn_options.threshold) << "]\n";
   out << "determinism\tmax|E2-1| = " << number(cao_result.max_E2_deviation)
-      << (cao_result.max_E2_deviation > 0.1 ? "\t[E2 departs from 1: deterministic structure]\n"
-                                            : "\t[E2 stays near 1: indistinguishable from noise]\n");
+      << (cao_result.stochastic ? "\t[E2 within its sampling error of 1: indistinguishable from noise]\n"
+                                : "\t[E2 departs from 1 beyond its sampling error: deterministic structure]\n");
   out << "#\n# evidence: mutual information (nats) around the chosen delay\n# delay\tI\n";
   const std::size_t from = delay > 3 ? delay - 3 : 0;
   for (std::size_t k = from; k <= std::min(delay + 3, mi.delay.back()); ++k)

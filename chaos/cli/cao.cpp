@@ -5,6 +5,7 @@
 
 namespace chaos::cli {
 
+
 namespace {
 
 struct CaoArgs {
@@ -23,7 +24,9 @@ void run(CaoArgs& args) {
   report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
       .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
-      .parameter("norm", args.norm).parameter("saturation_tolerance", args.options.saturation_tolerance);
+      .parameter("norm", args.norm).parameter("saturation_level", args.options.saturation_level)
+      .parameter("saturation_change", args.options.saturation_change)
+      .parameter("stochastic_sigmas", args.options.stochastic_sigmas);
   if (series.dt) report.parameter("delay_time", static_cast<double>(args.options.delay) * *series.dt);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
@@ -33,20 +36,22 @@ void run(CaoArgs& args) {
     j["E2"] = result.E2;
     j["E"] = std::vector<double>(result.E.begin(), result.E.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
     j["E_star"] = std::vector<double>(result.E_star.begin(), result.E_star.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
+    j["E2_standard_error"] = result.E2_standard_error;
     j["embedding_dimension"] = optional_json(result.embedding_dimension);
+    j["e1_saturation"] = optional_json(result.e1_saturation);
+    j["stochastic"] = result.stochastic;
     j["max_E2_deviation"] = result.max_E2_deviation;
     j["points_without_neighbor"] = result.points_without_neighbor;
     report.write_json(out);
     return;
   }
   report.write_header(out);
-  out << "# embedding_dimension = "
-      << (result.embedding_dimension ? std::to_string(*result.embedding_dimension) : "none (E1 not saturated)") << "\n";
-  out << "# max_E2_deviation = " << number(result.max_E2_deviation) << "  (near 0 suggests a stochastic series)\n";
-  out << "# dimension\tE1\tE2\tE\tE_star\n";
+  out << "# embedding_dimension = " << describe_dimension(result) << "\n";
+  out << "# max_E2_deviation = " << number(result.max_E2_deviation) << "\n";
+  out << "# dimension\tE1\tE2\tE2_standard_error\tE\tE_star\n";
   for (std::size_t k = 0; k < result.dimension.size(); ++k)
-    out << result.dimension[k] << "\t" << number(result.E1[k]) << "\t" << number(result.E2[k]) << "\t" << number(result.E[k])
-        << "\t" << number(result.E_star[k]) << "\n";
+    out << result.dimension[k] << "\t" << number(result.E1[k]) << "\t" << number(result.E2[k]) << "\t"
+        << number(result.E2_standard_error[k]) << "\t" << number(result.E[k]) << "\t" << number(result.E_star[k]) << "\n";
 }
 
 }  // namespace
@@ -60,7 +65,12 @@ void register_cao(CLI::App& app) {
   command->add_option("-M,--max-dimension", args->options.max_dimension, "largest embedding dimension")->capture_default_str();
   command->add_option("-t,--theiler", args->options.theiler, "Theiler window in samples (|i-j| <= t excluded)")->capture_default_str();
   command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
-  command->add_option("--tolerance", args->options.saturation_tolerance, "E1 saturated when E1 >= 1 - tolerance from m on")
+  command->add_option("--level", args->options.saturation_level, "E1 must reach this level to count as saturated")
+      ->capture_default_str();
+  command->add_option("--change", args->options.saturation_change, "and change by at most this per dimension from there on")
+      ->capture_default_str();
+  command->add_option("--sigmas", args->options.stochastic_sigmas,
+                      "stochastic when every |E2 - 1| is within this many standard errors")
       ->capture_default_str();
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -77,4 +77,12 @@ Norm parse_norm(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "norm must be 'max' or 'euclidean' (got '" + name + "')");
 }
 
+std::string describe_dimension(const CaoResult& result) {
+  if (result.embedding_dimension) return std::to_string(*result.embedding_dimension);
+  if (result.stochastic)
+    return std::string("none: E2 stays within its sampling error of 1 (stochastic series)") +
+           (result.e1_saturation ? "; E1 alone would settle at m = " + std::to_string(*result.e1_saturation) : "");
+  return "none: E1 does not settle within the range (not saturated)";
+}
+
 }  // namespace chaos::cli

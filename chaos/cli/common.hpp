@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "chaos/cao.hpp"
 #include "chaos/norm.hpp"
 #include "chaos/series.hpp"
 
@@ -90,6 +91,9 @@ nlohmann::ordered_json optional_json(const std::optional<T>& v) {
 struct ValidationFailed {};
 
 Norm parse_norm(const std::string& name);
+
+// "3", or why there is no embedding dimension (stochastic, not saturated).
+std::string describe_dimension(const CaoResult& result);
 
 // Each command registers itself on the application.
 void register_generate(CLI::App& app);

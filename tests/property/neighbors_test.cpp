@@ -130,4 +130,24 @@ TEST(KdTreeProperty, CountGrowsWithRadiusAndShrinksWithWindow) {
   }
 }
 
+TEST(KdTreeProperty, NearestDistanceGrowsWithWindow) {
+  // A larger Theiler window only removes candidates, so the nearest admissible distance never
+  // decreases (and once no candidate is left, none comes back).
+  const auto x = chaos::lorenz(4000).components[0];
+  const DelayEmbedding e(x, 3, 17);
+  const KdTree tree(e, Norm::euclidean);
+  for (std::size_t i = 0; i < e.size(); i += 13) {
+    double previous = 0.0;
+    for (const std::size_t w : {0u, 1u, 10u, 50u, 100u, 1000u, 3000u, 4000u}) {
+      const auto n = tree.nearest(i, {w, false});
+      if (!n) {
+        previous = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      EXPECT_GE(n->distance, previous) << "i=" << i << " w=" << w;
+      previous = n->distance;
+    }
+  }
+}
+
 }  // namespace

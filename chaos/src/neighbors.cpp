@@ -1,0 +1,511 @@
+#include "chaos/neighbors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "chaos/error.hpp"
+
+// Layout of the kd-tree. The embedding itself is only a view (x[i + k tau]), so reading a point
+// touches `dimension` cache lines far apart. The tree therefore keeps, besides its nodes:
+//   index_    the embedded point indices permuted into leaf order (N entries),
+//   coords_   a copy of the coordinates in that same order, point after point (N * m doubles), so a
+//             leaf's points are contiguous in memory, and
+//   leaf_of_  the leaf holding each point (N entries), where a query for that point starts.
+// Node boxes take 2 m doubles per node and there are fewer than N nodes, so memory is O(N m):
+// linear in N.
+//
+// Splits are by position: at the median (std::nth_element on the coordinate of widest spread),
+// moved to the nearer end of the block of points equal to the median value when both children
+// still get at least a quarter of the points. So the tree stays balanced (depth <= log_{4/3} N + 1)
+// whatever the data, equal coordinates cannot produce an empty side, and in quantised data the
+// points sharing a value end up in the same subtree. A node whose points are all identical is not split:
+// it becomes a "uniform" leaf with its indices sorted, so all its points share one distance to the
+// query and the Theiler window and tie rule reduce to binary searches. This keeps quantised
+// series (thousands of equal points) from turning queries quadratic.
+//
+// Pruning uses the distance from the query to a node's bounding box, a lower bound of the distance
+// to every point in it for the maximum norm and for the Euclidean norm alike. All distances are
+// accumulated coordinate by coordinate in the order DelayEmbedding::distance uses, so the values
+// (and hence the tie rule) equal brute force bit for bit; box bounds are computed with the same
+// operations and are exact lower bounds in floating point because rounding is monotone.
+
+namespace chaos {
+
+namespace {
+
+constexpr std::size_t no_child = 0;  // the root is never a child, so 0 marks a leaf
+
+bool within_window(std::size_t i, std::size_t j, std::size_t theiler) noexcept {
+  return (i > j ? i - j : j - i) <= theiler;
+}
+
+void check_index(std::size_t i, std::size_t size) {
+  if (i >= size)
+    throw InvalidInput(ErrorCode::invalid_parameter, "neighbour query for point " + std::to_string(i) +
+                                                         " but the embedding has only " + std::to_string(size) +
+                                                         " points");
+}
+
+void check_radius(double radius) {
+  if (std::isnan(radius))
+    throw InvalidInput(ErrorCode::invalid_parameter, "neighbour count radius is NaN");
+}
+
+// The two norms as small policies so the inner loops are specialised at compile time. `add`
+// accumulates one coordinate difference in the order DelayEmbedding::distance uses, `finish` turns
+// the accumulator into the distance. For the maximum norm the accumulator is already a lower bound
+// of the distance after any prefix of coordinates, so a loop may stop as soon as it exceeds the
+// best distance; for the Euclidean norm that would need the square root, so it runs to the end.
+struct MaxMetric {
+  static constexpr bool early_exit = true;
+  static double add(double acc, double d) noexcept { return std::max(acc, d); }
+  static double finish(double acc) noexcept { return acc; }
+};
+struct EuclideanMetric {
+  static constexpr bool early_exit = false;
+  static double add(double acc, double d) noexcept { return acc + d * d; }
+  static double finish(double acc) noexcept { return std::sqrt(acc); }
+};
+
+constexpr std::size_t not_found = std::numeric_limits<std::size_t>::max();
+
+std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > not_found - b ? not_found : a + b; }
+
+}  // namespace
+
+struct KdTree::Impl {
+  struct Node {
+    std::size_t begin = 0, end = 0;            // range of positions in index_ / coords_
+    std::size_t min_index = 0, max_index = 0;  // smallest and largest embedded index inside
+    std::size_t left = no_child;               // children are left and left + 1; no_child: a leaf
+    std::size_t parent = 0;                    // the root's parent is itself
+    std::size_t split_dim = 0;                 // children: left has coordinate <= split_value,
+    double split_value = 0.0;                  //           right has coordinate >= split_value
+    bool uniform = false;  // every point identical; index_[begin, end) sorted ascending
+  };
+
+  DelayEmbedding points;
+  Norm norm;
+  std::size_t dim;
+  std::vector<std::size_t> index_;
+  std::vector<double> coords_;
+  std::vector<Node> nodes_;
+  std::vector<double> box_;  // node box: lo at box_[2 * (node * dim + k)], hi right after it
+  std::vector<std::size_t> leaf_of_;  // the leaf holding each embedded point
+
+  Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size);
+
+  // A query: its point, coordinates, options and the best candidate so far.
+  struct Search {
+    const double* q;
+    std::size_t i;
+    const NeighborQuery& query;
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t best_index = not_found;
+    bool improved_by(double d, std::size_t j) const noexcept { return d < best || (d == best && j < best_index); }
+  };
+
+  // D is the dimension when known at compile time (0: use `dim`), so the short loops over
+  // coordinates unroll; see dispatch().
+  template <std::size_t D>
+  std::size_t dims() const noexcept {
+    return D != 0 ? D : dim;
+  }
+
+  // Distance from q to the point at position pos; with early exit, any value > limit means "> limit".
+  template <class Metric, std::size_t D>
+  double point_distance(const double* q, std::size_t pos, double limit) const noexcept {
+    const std::size_t m = dims<D>();
+    const double* c = &coords_[pos * m];
+    double acc = 0.0;
+    for (std::size_t k = 0; k < m; ++k) {
+      acc = Metric::add(acc, std::abs(q[k] - c[k]));
+      if constexpr (Metric::early_exit)
+        if (acc > limit) return acc;
+    }
+    return Metric::finish(acc);
+  }
+
+  // Lower bound of the distance from q to any point of the node's box (0 inside it); with early
+  // exit, any value > limit means "> limit".
+  template <class Metric, std::size_t D>
+  double box_distance(const double* q, std::size_t node, double limit) const noexcept {
+    const std::size_t m = dims<D>();
+    const double* box = &box_[2 * node * m];
+    double acc = 0.0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const double lo = box[2 * k], hi = box[2 * k + 1];
+      const double d = q[k] < lo ? lo - q[k] : (q[k] > hi ? q[k] - hi : 0.0);
+      acc = Metric::add(acc, d);
+      if constexpr (Metric::early_exit)
+        if (acc > limit) return acc;
+    }
+    return Metric::finish(acc);
+  }
+
+  // True when the box is the single point q: every point in it is at distance exactly 0.
+  template <class Metric, std::size_t D>
+  bool box_is_query(const double* q, std::size_t node) const noexcept {
+    const std::size_t m = dims<D>();
+    const double* box = &box_[2 * node * m];
+    for (std::size_t k = 0; k < m; ++k)
+      if (box[2 * k] != q[k] || box[2 * k + 1] != q[k]) return false;
+    return true;
+  }
+
+  // Upper bound of the distance from q to any point of the box (its farthest corner).
+  template <class Metric, std::size_t D>
+  double box_far_distance(const double* q, std::size_t node) const noexcept {
+    const std::size_t m = dims<D>();
+    const double* box = &box_[2 * node * m];
+    double acc = 0.0;
+    for (std::size_t k = 0; k < m; ++k)
+      acc = Metric::add(acc, std::max(std::abs(q[k] - box[2 * k]), std::abs(q[k] - box[2 * k + 1])));
+    return Metric::finish(acc);
+  }
+
+  // True when every point of the node lies inside the Theiler window of i (nothing admissible).
+  static bool all_excluded(const Node& node, std::size_t i, std::size_t theiler) noexcept {
+    return within_window(i, node.min_index, theiler) && within_window(i, node.max_index, theiler);
+  }
+  // True when some index of the node may lie inside the window (the ranges overlap).
+  static bool window_touches(const Node& node, std::size_t i, std::size_t theiler) noexcept {
+    return node.min_index <= add_sat(i, theiler) && i <= add_sat(node.max_index, theiler);
+  }
+
+  // Smallest index of a sorted (uniform) leaf outside the Theiler window of i, or not_found.
+  std::size_t first_admissible(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
+    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    if (!within_window(i, *first, theiler)) return *first;
+    // The smallest index is inside the window, so none lies below it: the answer is past i + theiler.
+    const auto it = std::upper_bound(first, last, add_sat(i, theiler));
+    return it == last ? not_found : *it;
+  }
+
+  // Number of indices of a sorted (uniform) leaf inside the Theiler window of i.
+  std::size_t count_excluded(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
+    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    const std::size_t lower = i > theiler ? i - theiler : 0;
+    return static_cast<std::size_t>(std::upper_bound(first, last, add_sat(i, theiler)) -
+                                    std::lower_bound(first, last, lower));
+  }
+
+  template <class Metric, std::size_t D>
+  void scan_leaf(const Node& node, Search& s) const {
+    if (node.uniform) {
+      // One distance for all; the tie rule wants the smallest admissible index.
+      const double d = point_distance<Metric, D>(s.q, node.begin, s.best);
+      if (d > s.best || (s.query.skip_zero_distance && d == 0.0)) return;
+      const std::size_t j = first_admissible(node, s.i, s.query.theiler);
+      if (j != not_found && s.improved_by(d, j)) {
+        s.best = d;
+        s.best_index = j;
+      }
+      return;
+    }
+    for (std::size_t pos = node.begin; pos < node.end; ++pos) {
+      const std::size_t j = index_[pos];
+      if (within_window(s.i, j, s.query.theiler)) continue;
+      const double d = point_distance<Metric, D>(s.q, pos, s.best);
+      if (s.query.skip_zero_distance && d == 0.0) continue;
+      if (s.improved_by(d, j)) {
+        s.best = d;
+        s.best_index = j;
+      }
+    }
+  }
+
+  // A node can be skipped when it cannot hold a better candidate: all its points are in the
+  // Theiler window, its box is farther than the best (or as far, with only larger indices), or,
+  // with skip_zero_distance, all its points coincide with the query.
+  template <class Metric, std::size_t D>
+  bool prunable(std::size_t node_id, const Search& s) const noexcept {
+    const Node& node = nodes_[node_id];
+    if (all_excluded(node, s.i, s.query.theiler)) return true;
+    const double d = box_distance<Metric, D>(s.q, node_id, s.best);
+    if (d > s.best || (d == s.best && node.min_index > s.best_index)) return true;
+    return s.query.skip_zero_distance && d == 0.0 && box_is_query<Metric, D>(s.q, node_id);
+  }
+
+  // Depth-first search of a subtree, nearer child (by the split plane) first. Recursion depth is
+  // the tree depth, at most log_{4/3}(N) + 1 because every child holds at least a quarter.
+  template <class Metric, std::size_t D>
+  void nearest_in(std::size_t node_id, Search& s) const {
+    const Node& node = nodes_[node_id];
+    if (node.left == no_child) {
+      scan_leaf<Metric, D>(node, s);
+      return;
+    }
+    const bool left_first = s.q[node.split_dim] <= node.split_value;
+    const std::size_t first = left_first ? node.left : node.left + 1;
+    const std::size_t second = left_first ? node.left + 1 : node.left;
+    if (!prunable<Metric, D>(first, s)) nearest_in<Metric, D>(first, s);
+    if (!prunable<Metric, D>(second, s)) nearest_in<Metric, D>(second, s);
+  }
+
+  // The query is a point of the tree, so the search starts in its own leaf and climbs: at each
+  // level the sibling subtree is searched unless it can be pruned. Every leaf lies in one of those
+  // siblings, so this is exhaustive, and it skips the root-to-leaf descent, where most of the time
+  // of a top-down search goes (the boxes on the path contain the query and cannot prune).
+  template <class Metric, std::size_t D>
+  void nearest_from_leaf(Search& s) const {
+    std::size_t node_id = leaf_of_[s.i];
+    scan_leaf<Metric, D>(nodes_[node_id], s);
+    while (node_id != 0) {
+      const std::size_t parent = nodes_[node_id].parent;
+      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      if (!prunable<Metric, D>(sibling, s)) nearest_in<Metric, D>(sibling, s);
+      node_id = parent;
+    }
+  }
+
+  template <class Metric, std::size_t D>
+  std::size_t count_in(std::size_t node_id, const double* q, std::size_t i, double radius,
+                       const NeighborQuery& query) const {
+    const Node& node = nodes_[node_id];
+    if (all_excluded(node, i, query.theiler)) return 0;
+    const double near = box_distance<Metric, D>(q, node_id, radius);
+    if (!(near < radius)) return 0;
+    if (query.skip_zero_distance && near == 0.0 && box_is_query<Metric, D>(q, node_id)) return 0;
+    const bool touches = window_touches(node, i, query.theiler);
+    if (node.uniform)  // all points at one distance, inside the radius (the box is the point)
+      return (node.end - node.begin) - (touches ? count_excluded(node, i, query.theiler) : 0);
+    // Whole node inside the radius, clear of the window and of distance 0: count it at once.
+    if (!touches && (!query.skip_zero_distance || near > 0.0) && box_far_distance<Metric, D>(q, node_id) < radius)
+      return node.end - node.begin;
+    if (node.left == no_child) {
+      std::size_t count = 0;
+      for (std::size_t pos = node.begin; pos < node.end; ++pos) {
+        if (within_window(i, index_[pos], query.theiler)) continue;
+        const double d = point_distance<Metric, D>(q, pos, radius);
+        if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++count;
+      }
+      return count;
+    }
+    return count_in<Metric, D>(node.left, q, i, radius, query) + count_in<Metric, D>(node.left + 1, q, i, radius, query);
+  }
+
+  // Runs f.template operator()<Metric, D>() with the norm and, for common dimensions, D = dim.
+  template <class F>
+  auto dispatch(F&& f) const {
+    if (norm == Norm::max) return dispatch_dim<MaxMetric>(f);
+    return dispatch_dim<EuclideanMetric>(f);
+  }
+  template <class Metric, class F>
+  auto dispatch_dim(F& f) const {
+    switch (dim) {
+      case 1: return f.template operator()<Metric, 1>();
+      case 2: return f.template operator()<Metric, 2>();
+      case 3: return f.template operator()<Metric, 3>();
+      case 4: return f.template operator()<Metric, 4>();
+      case 5: return f.template operator()<Metric, 5>();
+      case 6: return f.template operator()<Metric, 6>();
+      case 7: return f.template operator()<Metric, 7>();
+      case 8: return f.template operator()<Metric, 8>();
+      case 9: return f.template operator()<Metric, 9>();
+      case 10: return f.template operator()<Metric, 10>();
+      case 11: return f.template operator()<Metric, 11>();
+      case 12: return f.template operator()<Metric, 12>();
+      default: return f.template operator()<Metric, 0>();
+    }
+  }
+
+  // The query point's coordinates, read once from the view; on the stack for usual dimensions.
+  template <class F>
+  auto with_query(std::size_t i, F&& f) const {
+    constexpr std::size_t stack_dim = 32;
+    double stack[stack_dim];
+    std::vector<double> heap;
+    double* q = stack;
+    if (dim > stack_dim) {
+      heap.resize(dim);
+      q = heap.data();
+    }
+    for (std::size_t k = 0; k < dim; ++k) q[k] = points(i, k);
+    return f(static_cast<const double*>(q));
+  }
+};
+
+KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size)
+    : points(p), norm(n), dim(p.dimension()) {
+  const std::size_t count = points.size();
+  if (leaf_size == 0) leaf_size = 1;
+  index_.resize(count);
+  std::iota(index_.begin(), index_.end(), std::size_t{0});
+  if (count == 0) return;
+
+  // Iterative build (an explicit work list), so no recursion however the data look. Coordinates
+  // are read from the view here: the series (N doubles) is more cache-friendly than any N x m copy.
+  // The split coordinate is the one of widest spread among at most `sample` evenly spaced points of
+  // the node (all of them in small nodes): that choice only shapes the tree, while the boxes used for
+  // pruning are computed exactly afterwards, bottom-up, in O(N m) instead of O(N m log N).
+  constexpr std::size_t sample = 64;
+  std::vector<double> lo(dim), hi(dim);
+  const auto widest = [&](std::size_t begin, std::size_t end, std::size_t stride, std::size_t& split) {
+    std::fill(lo.begin(), lo.end(), std::numeric_limits<double>::infinity());
+    std::fill(hi.begin(), hi.end(), -std::numeric_limits<double>::infinity());
+    for (std::size_t pos = begin; pos < end; pos += stride)
+      for (std::size_t k = 0; k < dim; ++k) {
+        const double v = points(index_[pos], k);
+        lo[k] = std::min(lo[k], v);
+        hi[k] = std::max(hi[k], v);
+      }
+    double spread = 0.0;
+    for (std::size_t k = 0; k < dim; ++k)
+      if (hi[k] - lo[k] > spread) {
+        spread = hi[k] - lo[k];
+        split = k;
+      }
+    return spread;
+  };
+  leaf_of_.resize(count);
+  nodes_.push_back(Node{0, count});
+  std::vector<std::size_t> work{0};
+  while (!work.empty()) {
+    const std::size_t id = work.back();
+    work.pop_back();
+    const std::size_t begin = nodes_[id].begin, end = nodes_[id].end, size = end - begin;
+    const std::size_t stride = size > sample ? size / sample : 1;
+    std::size_t split = 0;
+    double spread = widest(begin, end, stride, split);
+    if (spread == 0.0 && stride > 1) spread = widest(begin, end, 1, split);  // are they really all equal?
+    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(begin);
+    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(end);
+    if (spread == 0.0 || size <= leaf_size) {
+      nodes_[id].uniform = spread == 0.0;
+      if (nodes_[id].uniform) std::sort(first, last);
+      for (auto it = first; it != last; ++it) leaf_of_[*it] = id;
+      continue;
+    }
+    auto middle = index_.begin() + static_cast<std::ptrdiff_t>(begin + size / 2);
+    std::nth_element(first, middle, last,
+                     [&](std::size_t a, std::size_t b) { return points(a, split) < points(b, split); });
+    // Points equal to the median coordinate v may lie on both sides. Quantised data have thousands
+    // of them, and smearing them over both children leaves many mixed nodes that a query must open.
+    // So gather the block of v's and cut at the nearer end of it, unless that would leave either
+    // child with less than a quarter of the points (depth stays below log_{4/3} N + 1).
+    const double v = points(*middle, split);
+    const auto block_begin = std::partition(first, middle, [&](std::size_t a) { return points(a, split) < v; });
+    const auto block_end = std::partition(middle, last, [&](std::size_t a) { return points(a, split) == v; });
+    const auto quarter = static_cast<std::ptrdiff_t>(std::max<std::size_t>(size / 4, 1));
+    const auto lower_cut = block_begin, upper_cut = block_end;
+    if (middle - lower_cut <= upper_cut - middle) {
+      if (lower_cut - first >= quarter) middle = lower_cut;
+      else if (last - upper_cut >= quarter) middle = upper_cut;
+    } else {
+      if (last - upper_cut >= quarter) middle = upper_cut;
+      else if (lower_cut - first >= quarter) middle = lower_cut;
+    }
+    const std::size_t mid = static_cast<std::size_t>(middle - index_.begin());
+    nodes_[id].left = nodes_.size();
+    nodes_[id].split_dim = split;
+    nodes_[id].split_value = v;
+    nodes_.push_back(Node{begin, mid});
+    nodes_.push_back(Node{mid, end});
+    nodes_[nodes_.size() - 2].parent = id;
+    nodes_[nodes_.size() - 1].parent = id;
+    work.push_back(nodes_[id].left + 1);
+    work.push_back(nodes_[id].left);
+  }
+  coords_.resize(count * dim);
+  for (std::size_t pos = 0; pos < count; ++pos)
+    for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(index_[pos], k);
+
+  // Tight boxes and index ranges, children before parents (children are numbered after them).
+  box_.resize(2 * nodes_.size() * dim);
+  for (std::size_t id = nodes_.size(); id-- > 0;) {
+    Node& node = nodes_[id];
+    double* box = &box_[2 * id * dim];
+    if (node.left == no_child) {
+      for (std::size_t k = 0; k < dim; ++k) {
+        box[2 * k] = std::numeric_limits<double>::infinity();
+        box[2 * k + 1] = -std::numeric_limits<double>::infinity();
+      }
+      node.min_index = not_found;
+      node.max_index = 0;
+      for (std::size_t pos = node.begin; pos < node.end; ++pos) {
+        node.min_index = std::min(node.min_index, index_[pos]);
+        node.max_index = std::max(node.max_index, index_[pos]);
+        const double* c = &coords_[pos * dim];
+        for (std::size_t k = 0; k < dim; ++k) {
+          box[2 * k] = std::min(box[2 * k], c[k]);
+          box[2 * k + 1] = std::max(box[2 * k + 1], c[k]);
+        }
+      }
+      continue;
+    }
+    const double* a = &box_[2 * node.left * dim];
+    const double* b = &box_[2 * (node.left + 1) * dim];
+    for (std::size_t k = 0; k < dim; ++k) {
+      box[2 * k] = std::min(a[2 * k], b[2 * k]);
+      box[2 * k + 1] = std::max(a[2 * k + 1], b[2 * k + 1]);
+    }
+    node.min_index = std::min(nodes_[node.left].min_index, nodes_[node.left + 1].min_index);
+    node.max_index = std::max(nodes_[node.left].max_index, nodes_[node.left + 1].max_index);
+  }
+}
+
+KdTree::KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size)
+    : impl_(std::make_unique<Impl>(points, norm, leaf_size)) {}
+KdTree::~KdTree() = default;
+KdTree::KdTree(KdTree&&) noexcept = default;
+KdTree& KdTree::operator=(KdTree&&) noexcept = default;
+
+const DelayEmbedding& KdTree::points() const noexcept { return impl_->points; }
+Norm KdTree::norm() const noexcept { return impl_->norm; }
+
+std::optional<Neighbor> KdTree::nearest(std::size_t i, const NeighborQuery& query) const {
+  const Impl& t = *impl_;
+  check_index(i, t.points.size());
+  return t.with_query(i, [&](const double* q) -> std::optional<Neighbor> {
+    Impl::Search s{q, i, query};
+    t.dispatch([&]<class Metric, std::size_t D>() {
+      t.nearest_from_leaf<Metric, D>(s);
+      return 0;
+    });
+    if (s.best_index == not_found) return std::nullopt;
+    return Neighbor{s.best_index, s.best};
+  });
+}
+
+std::size_t KdTree::count_within(std::size_t i, double radius, const NeighborQuery& query) const {
+  const Impl& t = *impl_;
+  check_index(i, t.points.size());
+  check_radius(radius);
+  return t.with_query(i, [&](const double* q) {
+    return t.dispatch([&]<class Metric, std::size_t D>() { return t.count_in<Metric, D>(0, q, i, radius, query); });
+  });
+}
+
+std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,
+                                            const NeighborQuery& query) {
+  check_index(i, points.size());
+  std::optional<Neighbor> best;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (within_window(i, j, query.theiler)) continue;
+    const double d = points.distance(i, j, norm);
+    if (query.skip_zero_distance && d == 0.0) continue;
+    if (!best || d < best->distance) best = Neighbor{j, d};  // ascending j: the first of equals wins
+  }
+  return best;
+}
+
+std::size_t count_within_brute_force(const DelayEmbedding& points, std::size_t i, double radius, Norm norm,
+                                     const NeighborQuery& query) {
+  check_index(i, points.size());
+  check_radius(radius);
+  std::size_t count = 0;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (within_window(i, j, query.theiler)) continue;
+    const double d = points.distance(i, j, norm);
+    if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++count;
+  }
+  return count;
+}
+
+}  // namespace chaos
