@@ -193,6 +193,10 @@ ValidationResult validate(const Reference& ref) {
       result.measured = cao_result.max_E2_deviation;
       detail << "max |E2(m) - 1| over m = " << options.min_dimension << ".." << options.max_dimension << ": "
              << cao_result.max_E2_deviation;
+    } else if (ref.quantity == "cao.stochastic") {
+      result.measured = cao_result.stochastic ? 1.0 : 0.0;
+      detail << (cao_result.stochastic ? "every |E2(m) - 1| within " : "some |E2(m) - 1| beyond ") << options.stochastic_sigmas
+             << " standard errors";
     } else if (ref.quantity == "cao.all_finite") {
       bool finite = true;
       for (std::size_t k = 0; k < cao_result.E1.size(); ++k)

@@ -19,7 +19,9 @@ TEST(ReferenceTable, ShippedTableIsWellFormed) {
   for (const auto& r : table) {
     EXPECT_TRUE(chaos::system_from_name(r.system).has_value()) << r.id;
     EXPECT_LE(r.low, r.high) << r.id;
-    if (r.value) EXPECT_TRUE(*r.value >= r.low && *r.value <= r.high) << r.id << ": the source's own value lies outside the band";
+    if (r.value) {
+      EXPECT_TRUE(*r.value >= r.low && *r.value <= r.high) << r.id << ": the source's own value lies outside the band";
+    }
     EXPECT_FALSE(r.source.empty()) << r.id;
     EXPECT_TRUE(r.conditions.count("N")) << r.id << ": every estimate states its N";
   }
