@@ -9,18 +9,13 @@
 #include <string>
 
 #include "chaos/error.hpp"
+#include "fftw_planner.hpp"
 #include "chaos/series.hpp"
 
 namespace chaos {
 
 namespace {
 
-// FFTW's planner is not thread-safe (only fftw_execute is), so planning and destroying plans are
-// serialised; the transforms themselves run concurrently.
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 struct FftwFree {
   void operator()(void* p) const noexcept { fftw_free(p); }
@@ -41,7 +36,7 @@ class Plan {
     if (p_ == nullptr) throw std::bad_alloc();
   }
   ~Plan() {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(detail::fftw_planner_mutex());
     fftw_destroy_plan(p_);
   }
   Plan(const Plan&) = delete;
@@ -88,7 +83,7 @@ AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max
                                                          std::to_string(n) + ")");
   std::unique_ptr<Plan> forward, backward;
   {
-    std::lock_guard lock(planner_mutex());
+    std::lock_guard lock(detail::fftw_planner_mutex());
     forward = std::make_unique<Plan>(fftw_plan_dft_r2c_1d(size, real.get(), spectrum.get(), FFTW_ESTIMATE));
     backward = std::make_unique<Plan>(fftw_plan_dft_c2r_1d(size, spectrum.get(), real.get(), FFTW_ESTIMATE));
   }

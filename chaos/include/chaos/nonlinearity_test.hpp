@@ -1,0 +1,101 @@
+#pragma once
+// A rank-order surrogate test for nonlinearity (Theiler, Eubank, Longtin, Galdrikian & Farmer 1992,
+// Physica D 58:77; Schreiber & Schmitz 2000, Physica D 142:346). Null hypothesis: the data are a
+// linear Gaussian process observed through a static monotone function. K surrogates realising the
+// null (IAAFT by default, surrogates.hpp) are made; a discriminating statistic is computed on the
+// data and on each surrogate; the null is rejected when the data's value is more extreme than every
+// surrogate's. One-sided, the probability of that under the null is 1/(K + 1); two-sided, 2/(K + 1).
+// So K = 19 gives a one-sided test at 5%, K = 39 a two-sided test at 5%.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "chaos/norm.hpp"
+#include "chaos/surrogates.hpp"
+
+namespace chaos {
+
+enum class NonlinearityStatistic {
+  // Q(tau) = <(x_{t+tau} - x_t)^3> / <(x_{t+tau} - x_t)^2>^{3/2}, averages over t = 0 .. N - tau - 1:
+  // the skewness of the increments (Schreiber & Schmitz 2000; TISEAN `timerev` prints the ratio of
+  // the plain sums, which has the units of x). Zero in expectation for any time-reversible process,
+  // which every linear Gaussian process (and a static transform of one) is.
+  time_reversal_asymmetry,
+  // In-sample zeroth-order prediction (locally constant predictor, Farmer & Sidorowich 1987;
+  // TISEAN `zeroth`): in a delay embedding, the future `horizon` steps ahead of each point is
+  // predicted as the mean future of its k nearest neighbours (Theiler window excluded); the
+  // statistic is the RMS prediction error divided by the standard deviation of the series.
+  prediction_error,
+};
+
+enum class Alternative {
+  two_sided,  // reject if the data's value is below or above every surrogate's: alpha = 2/(K+1)
+  smaller,    // reject if below every surrogate's (prediction error: the data are more predictable)
+  larger,     // reject if above every surrogate's
+};
+
+const char* to_string(NonlinearityStatistic statistic) noexcept;
+const char* to_string(Alternative alternative) noexcept;
+
+struct PredictionErrorOptions {
+  std::size_t dimension = 3;   // embedding dimension m
+  std::size_t delay = 1;       // tau, samples
+  std::size_t horizon = 1;     // prediction steps ahead, samples
+  std::size_t neighbours = 5;  // k
+  std::size_t theiler = 0;     // neighbours j of i need |i - j| > theiler (j = i always excluded)
+  Norm norm = Norm::max;
+  void validate() const;
+};
+
+// RMS error of the locally constant predictor divided by the standard deviation of x (population,
+// 1/N). Point i (i = 0 .. P - 1, P = N - (m - 1) tau - horizon) is (x_i, x_{i+tau}, ...,
+// x_{i+(m-1)tau}), its future x_{i+(m-1)tau+horizon}; neighbours are searched among the same P
+// points, nearest first, ties in distance broken by the smaller index. Needs P > 2 theiler + k + 1
+// so every point has k admissible neighbours.
+double prediction_error(std::span<const double> x, const PredictionErrorOptions& options = {});
+
+// Q(tau) as defined above; 0 when every difference x_{t+tau} - x_t is zero (a series that repeats
+// itself after tau samples is symmetric at that lag). Needs N > tau.
+double time_reversal_asymmetry(std::span<const double> x, std::size_t delay = 1);
+
+struct NonlinearityTestOptions {
+  NonlinearityStatistic statistic = NonlinearityStatistic::prediction_error;
+  Alternative alternative = Alternative::two_sided;
+  std::size_t surrogates = 39;  // K: two-sided 5% (39), one-sided 5% (19)
+  std::uint64_t seed = 1;       // surrogate k uses the k-th draw of chaos::Random(seed) (surrogates.hpp)
+  SurrogateOptions surrogate;   // method (IAAFT by default) and its iteration limits
+  std::size_t time_reversal_delay = 1;
+  PredictionErrorOptions prediction;
+  void validate() const;
+};
+
+// The rank logic on its own, for statistics computed elsewhere.
+struct RankTest {
+  std::size_t rank = 0;      // 1 + number of surrogate values strictly below the data's (1 = lowest)
+  std::size_t below = 0;     // surrogate values strictly below the data's
+  std::size_t above = 0;     // surrogate values strictly above the data's (ties are neither)
+  double significance = 0.0; // the test's size: 1/(K+1) one-sided, 2/(K+1) two-sided
+  bool rejected = false;     // the data's value is strictly beyond every surrogate's on the tested side
+};
+
+// Ties with a surrogate's value never count as extreme, so they cannot cause a rejection.
+RankTest rank_test(double data_statistic, std::span<const double> surrogate_statistics, Alternative alternative);
+
+struct NonlinearityTestResult {
+  double data_statistic = 0.0;
+  std::vector<double> surrogate_statistics;  // in the order the surrogates were made
+  RankTest test;
+  // Diagnostics of the surrogates (IAAFT: how they converged).
+  std::vector<std::size_t> surrogate_iterations;
+  std::vector<double> surrogate_spectral_deviations;
+  std::size_t surrogates_not_converged = 0;  // IAAFT surrogates stopped by max_iterations
+  NonlinearityTestOptions options;           // the settings used
+};
+
+// Refuses what the surrogates refuse (N < 4, non-finite, constant) and series too short for the
+// statistic.
+NonlinearityTestResult nonlinearity_test(std::span<const double> x, const NonlinearityTestOptions& options = {});
+
+}  // namespace chaos

@@ -1,0 +1,10 @@
+#include "fftw_planner.hpp"
+
+namespace chaos::detail {
+
+std::mutex& fftw_planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+}  // namespace chaos::detail
