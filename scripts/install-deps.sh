@@ -6,7 +6,7 @@ packages=(
   libeigen3-dev libfftw3-dev libboost-dev
   libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
-  jq
+  jq gnuplot-nox
 )
 missing=()
 for p in "${packages[@]}"; do

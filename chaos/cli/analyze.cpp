@@ -7,6 +7,8 @@
 
 #include "chaos/autocorrelation.hpp"
 #include "chaos/cao.hpp"
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
@@ -92,6 +94,17 @@ void run(AnalyzeArgs& args) {
   fnn_options.max_dimension = args.max_dimension;
   const FnnResult fnn = false_nearest_neighbors(x, fnn_options);
 
+  // D2 in the chosen embedding, with three dimensions above the embedding dimension so saturation
+  // can be judged; radii from the data's range as in `chaos d2`.
+  CorrelationSumOptions d2_options;
+  d2_options.delay = delay;
+  d2_options.theiler = theiler;
+  d2_options.max_dimension =
+      cao_result.embedding_dimension ? std::min(args.max_dimension, *cao_result.embedding_dimension + 3) : args.max_dimension;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  d2_options.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, 40);
+  const CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, d2_options));
+
   Report report("analyze", args.output);
   report.parameter("file", builtin ? std::string("(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)") : args.input.file)
       .parameter("N", x.size()).parameter("dt", series.dt).parameter("max_delay", mi_options.max_delay)
@@ -110,6 +123,11 @@ void run(AnalyzeArgs& args) {
   j["fnn_embedding_dimension"] = optional_json(fnn.embedding_dimension);
   j["max_E2_deviation"] = cao_result.max_E2_deviation;
   j["stochastic"] = cao_result.stochastic;
+  j["d2"] = optional_json(d2.d2);
+  j["d2_interval"] = d2.d2_interval ? nlohmann::ordered_json::array({d2.d2_interval->low, d2.d2_interval->high})
+                                    : nlohmann::ordered_json(nullptr);
+  j["d2_status"] = to_string(d2.status);
+  j["d2_explanation"] = d2.explanation;
   j["autocorrelation"] = {{"first_zero_crossing", optional_json(zero)}, {"decorrelation_time", optional_json(decay)}};
   j["mutual_information"] = {{"delay", mi.delay}, {"information", mi.information}, {"first_minimum", optional_json(minimum)}};
   j["cao"] = {{"dimension", cao_result.dimension}, {"E1", cao_result.E1}, {"E2", cao_result.E2}};
@@ -133,6 +151,9 @@ void run(AnalyzeArgs& args) {
   out << "determinism\tmax|E2-1| = " << number(cao_result.max_E2_deviation)
       << (cao_result.stochastic ? "\t[E2 within its sampling error of 1: indistinguishable from noise]\n"
                                 : "\t[E2 departs from 1 beyond its sampling error: deterministic structure]\n");
+  out << "correlation_dimension\t" << (d2.d2 ? number(*d2.d2) : "none");
+  if (d2.d2_interval) out << " in [" << number(d2.d2_interval->low) << ", " << number(d2.d2_interval->high) << "]";
+  out << "\t[" << to_string(d2.status) << ": " << d2.explanation << "]\n";
   out << "#\n# evidence: mutual information (nats) around the chosen delay\n# delay\tI\n";
   const std::size_t from = delay > 3 ? delay - 3 : 0;
   for (std::size_t k = from; k <= std::min(delay + 3, mi.delay.back()); ++k)

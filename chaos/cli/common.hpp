@@ -101,6 +101,7 @@ void register_mutual(CLI::App& app);
 void register_autocorrelation(CLI::App& app);
 void register_cao(CLI::App& app);
 void register_fnn(CLI::App& app);
+void register_d2(CLI::App& app);
 void register_analyze(CLI::App& app);
 void register_validate(CLI::App& app);
 

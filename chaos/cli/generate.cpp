@@ -106,7 +106,7 @@ void run(const GenerateArgs& args) {
 void register_generate(CLI::App& app) {
   auto args = std::make_shared<GenerateArgs>();
   CLI::App* command = app.add_subcommand("generate", "write a series from a reference system (full precision)");
-  command->add_option("system", args->system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, white_noise, ar1")
+  command->add_option("system", args->system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, white_noise, uniform_noise, ar1")
       ->required();
   command->add_option("-l,--length", args->length, "number of samples")->capture_default_str();
   command->add_option("-p,--parameter", args->settings, "system parameter name=value (repeatable)");

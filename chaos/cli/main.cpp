@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   register_autocorrelation(app);
   register_cao(app);
   register_fnn(app);
+  register_d2(app);
   register_analyze(app);
   register_validate(app);
   try {

@@ -10,7 +10,7 @@ namespace chaos {
 
 namespace {
 
-constexpr std::array<std::pair<SystemKind, const char*>, 10> kNames{{
+constexpr std::array<std::pair<SystemKind, const char*>, 11> kNames{{
     {SystemKind::lorenz, "lorenz"},
     {SystemKind::rossler, "rossler"},
     {SystemKind::henon, "henon"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<SystemKind, const char*>, 10> kNames{{
     {SystemKind::sine, "sine"},
     {SystemKind::quasi_periodic, "quasi_periodic"},
     {SystemKind::white_noise, "white_noise"},
+    {SystemKind::uniform_noise, "uniform_noise"},
     {SystemKind::ar1, "ar1"},
 }};
 
@@ -99,6 +100,7 @@ std::vector<SystemParameter> system_parameters(SystemKind system) {
       return {{"f1", 1.0, "first frequency"}, {"f2", 1.6180339887498949, "second frequency (golden mean: incommensurate)"},
               {"dt", 0.05, "sampling interval"}};
     case SystemKind::white_noise:
+    case SystemKind::uniform_noise:
       return {};
     case SystemKind::ar1:
       return {{"phi", 0.9, "lag-1 coefficient, |phi| < 1"}};
@@ -143,6 +145,8 @@ Trajectory generate(const GenerateRequest& request) {
       return quasi_periodic(n, p["f1"], p["f2"], p["dt"]);
     case SystemKind::white_noise:
       return white_noise(n, request.seed);
+    case SystemKind::uniform_noise:
+      return uniform_noise(n, request.seed);
     case SystemKind::ar1:
       return ar1(n, p["phi"], request.seed);
   }

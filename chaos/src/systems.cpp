@@ -347,6 +347,14 @@ Trajectory white_noise(std::size_t n, std::uint64_t seed) {
   return scalar(std::move(values), 1.0);
 }
 
+Trajectory uniform_noise(std::size_t n, std::uint64_t seed) {
+  require_samples(n, "uniform_noise");
+  Random rng(seed);
+  std::vector<double> values(n);
+  for (auto& v : values) v = rng.uniform();
+  return scalar(std::move(values), 1.0);
+}
+
 Trajectory ar1(std::size_t n, double phi, std::uint64_t seed) {
   require_samples(n, "ar1");
   if (!(std::isfinite(phi) && std::abs(phi) < 1.0))

@@ -7,6 +7,8 @@
 #include <tuple>
 
 #include "chaos/cao.hpp"
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
@@ -110,6 +112,18 @@ std::vector<double> make_series(const Reference& ref, const Conditions& c) {
   throw InvalidInput(ErrorCode::parse, ref.id + ": system " + ref.system + " has no component '" + ref.component + "'");
 }
 
+// The delay: a number of samples, or "mi" for the first mutual-information minimum (16 boxes,
+// delays up to 100), the way a user without a hand-picked delay would choose it.
+std::size_t delay_of(const Conditions& c, const std::vector<double>& x) {
+  if (c.text("tau", "") != "mi") return c.count("tau", 1);
+  MutualInformationOptions options;
+  options.max_delay = 100;
+  const auto minimum = first_minimum(mutual_information(x, options));
+  if (!minimum)
+    throw InvalidInput(ErrorCode::invalid_parameter, c.ref.id + ": no mutual-information minimum for delays 1..100");
+  return *minimum;
+}
+
 std::string describe(const std::optional<std::size_t>& v, const char* none) {
   return v ? std::to_string(*v) : std::string(none);
 }
@@ -182,7 +196,7 @@ ValidationResult validate(const Reference& ref) {
     detail << "first minimum of I(tau): " << describe(minimum, "none within the range");
   } else if (ref.quantity.rfind("cao.", 0) == 0) {
     CaoOptions options;
-    options.delay = c.count("tau", 1);
+    options.delay = delay_of(c, x);
     options.theiler = c.count("w", 0);
     std::tie(options.min_dimension, options.max_dimension) = c.range("m", 1, 10);
     const CaoResult cao_result = cao(x, options);
@@ -203,6 +217,31 @@ ValidationResult validate(const Reference& ref) {
         finite = finite && std::isfinite(cao_result.E1[k]) && std::isfinite(cao_result.E2[k]);
       result.measured = finite ? 1.0 : 0.0;
       detail << (finite ? "every E1(m) and E2(m) finite" : "a non-finite E1 or E2");
+    } else {
+      throw InvalidInput(ErrorCode::parse, ref.id + ": unknown quantity " + ref.quantity);
+    }
+  } else if (ref.quantity.rfind("d2", 0) == 0) {
+    CorrelationSumOptions options;
+    options.delay = delay_of(c, x);
+    options.theiler = c.count("w", 0);
+    std::tie(options.min_dimension, options.max_dimension) = c.range("m", 1, 10);
+    options.radii = log_radii(parse_number(c.text("r", ""), ref.id + ": condition r"),
+                              parse_number(c.text("R", ""), ref.id + ": condition R"), c.count("radii", 40));
+    const CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, options));
+    if (ref.quantity == "d2") {
+      result.measured = d2.d2;
+      detail << "tau = " << options.delay << ", status " << to_string(d2.status);
+      if (d2.d2) detail << ", D2 = " << *d2.d2 << " in [" << d2.d2_interval->low << ", " << d2.d2_interval->high
+                        << "], region eps in [" << d2.scaling_region->low << ", " << d2.scaling_region->high << "]";
+      detail << ": " << d2.explanation;
+    } else if (ref.quantity == "d2.at_dimension") {
+      const std::size_t at = c.count("at", options.max_dimension);
+      for (std::size_t k = 0; k < d2.dimension.size(); ++k)
+        if (d2.dimension[k] == at) result.measured = d2.d2_by_dimension[k];
+      detail << "D2(m = " << at << ") over its own scaling region";
+    } else if (ref.quantity == "d2.not_saturated") {
+      result.measured = d2.status == D2Status::not_saturated ? 1.0 : 0.0;
+      detail << "status " << to_string(d2.status) << ": " << d2.explanation;
     } else {
       throw InvalidInput(ErrorCode::parse, ref.id + ": unknown quantity " + ref.quantity);
     }

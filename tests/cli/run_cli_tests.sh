@@ -78,6 +78,17 @@ expect_json_keys fnn "$work/henon.dat" -M 5 -- dimension false_fraction embeddin
 expect_json_keys autocorrelation "$work/lorenz.dat" -- lag autocorrelation first_zero_crossing decorrelation_time
 expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension
 
+expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
+expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
+expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
+
+# --plot draws a file (PNG and SVG) with gnuplot.
+for ext in png svg; do
+  "$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --plot "$work/d2.$ext" > /dev/null
+  [[ -s $work/d2.$ext ]] && pass || fail "d2 --plot $ext produced no file"
+done
+head -c 8 "$work/d2.png" | od -An -c | grep -q "P   N   G" && pass || fail "d2.png is not a PNG"
+
 # A null, not a guess, when there is no minimum: a monotone ramp has no MI minimum.
 seq 1 500 > "$work/ramp.dat"
 fm=$("$CHAOS" mutual "$work/ramp.dat" -D 5 --json | jq '.first_minimum')
@@ -90,7 +101,7 @@ for key in delay min_dimension max_dimension theiler norm N; do
 done
 
 # Every command has --help.
-for cmd in generate mutual autocorrelation cao fnn analyze validate; do
+for cmd in generate mutual autocorrelation cao fnn d2 analyze validate; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 

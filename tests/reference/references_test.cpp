@@ -5,6 +5,11 @@
 
 #include "chaos/validation.hpp"
 
+namespace chaos {
+// Names the row in test listings instead of dumping its bytes.
+void PrintTo(const Reference& r, std::ostream* out) { *out << r.id << " (" << r.source << ")"; }
+}  // namespace chaos
+
 namespace {
 
 class ReferenceCase : public ::testing::TestWithParam<chaos::Reference> {};

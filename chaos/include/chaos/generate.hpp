@@ -15,7 +15,7 @@
 
 namespace chaos {
 
-enum class SystemKind { lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, white_noise, ar1 };
+enum class SystemKind { lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, white_noise, uniform_noise, ar1 };
 
 const char* to_string(SystemKind system) noexcept;
 std::optional<SystemKind> system_from_name(std::string_view name) noexcept;

@@ -55,6 +55,9 @@ Trajectory sine(std::size_t n, double frequency = 1.0, double dt = 0.01);
 Trajectory quasi_periodic(std::size_t n, double f1 = 1.0, double f2 = 1.6180339887498949,
                           double dt = 0.05);
 Trajectory white_noise(std::size_t n, std::uint64_t seed = 1);
+// Independent samples uniform in [0, 1): in any delay embedding with a Theiler window of at least
+// m - 1 the pairs are pairs of independent uniform points in the unit cube (D2 = m).
+Trajectory uniform_noise(std::size_t n, std::uint64_t seed = 1);
 // x[t] = phi x[t-1] + e[t], e ~ N(0, 1), started from the stationary distribution.
 Trajectory ar1(std::size_t n, double phi = 0.9, std::uint64_t seed = 1);
 

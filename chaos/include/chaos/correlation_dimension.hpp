@@ -1,0 +1,69 @@
+#pragma once
+// The correlation dimension D2 from correlation sums (Grassberger & Procaccia 1983; seed Eq. 33),
+// with the scaling region chosen automatically and an honest interval:
+//  1. local slopes d ln C / d ln eps for every m (radii with fewer than min_pairs pairs are left out:
+//     their relative statistical error is above 1/sqrt(min_pairs); so are radii where C = 1);
+//  2. per m, the widest flat region gives D2(m) (the least-squares slope there) and an interval
+//     (the range of the local slopes over that region);
+//  3. the saturated D2 needs one region shared by the `saturation_dimensions` highest dimensions
+//     that have an estimate, with their D2(m) agreeing within the tolerance; its interval is the
+//     range of all local slopes of those dimensions over the shared region.
+// Otherwise the result says "not saturated" (D2(m) keeps growing, as for noise) or "no scaling
+// region". A second, independent estimate is the Takens-Theiler maximum-likelihood D2 at the upper
+// edge of the region (Takens 1985; Theiler 1988), with its standard error.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "chaos/correlation_sum.hpp"
+#include "chaos/scaling_region.hpp"
+
+namespace chaos {
+
+enum class D2Status { saturated, not_saturated, no_scaling_region };
+const char* to_string(D2Status status) noexcept;
+
+struct CorrelationDimensionOptions {
+  ScalingRegionOptions region;
+  std::size_t saturation_dimensions = 3;
+  std::uint64_t min_pairs = 100;
+  void validate() const;
+};
+
+struct Interval {
+  double low = 0.0, high = 0.0;
+};
+
+struct CorrelationDimensionResult {
+  std::vector<std::size_t> dimension;
+  std::vector<double> radius;
+  std::vector<std::vector<std::optional<double>>> local_slope;  // [m index][radius index]
+  std::vector<std::optional<double>> d2_by_dimension;
+  std::vector<std::optional<Interval>> d2_by_dimension_interval;
+  std::vector<std::optional<Interval>> region_by_dimension;     // radii bounding each per-m region
+  D2Status status = D2Status::no_scaling_region;
+  std::optional<double> d2;                 // saturated value
+  std::optional<Interval> d2_interval;
+  std::optional<Interval> scaling_region;   // radii [low, high] of the shared region
+  std::vector<std::size_t> saturation_dimensions_used;
+  std::string explanation;                  // one sentence a user can read
+  double eckmann_ruelle_limit = 0.0;        // 2 log10(points)
+  bool exceeds_eckmann_ruelle = false;
+  std::optional<double> takens_theiler;     // at the upper edge of the shared region, highest m used
+  std::optional<double> takens_theiler_error;
+};
+
+CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,
+                                                 const CorrelationDimensionOptions& options = {});
+
+// Takens-Theiler estimate at radius index k: C(r_k) / integral_0^{r_k} C(r)/r dr, with C a power
+// law between grid radii (and below the first, with the first interval's exponent). Standard error
+// D / sqrt(pairs closer than r_k) (Theiler 1988). nullopt where C vanishes.
+std::optional<std::pair<double, double>> takens_theiler(const std::vector<double>& radius,
+                                                        const std::vector<double>& correlation_sum,
+                                                        std::uint64_t pairs_at_k, std::size_t k);
+
+}  // namespace chaos

@@ -1,0 +1,64 @@
+#pragma once
+// Correlation sums C(eps, m) for every embedding dimension m = min..max in one pass over the pairs
+// (Grassberger & Procaccia 1983; seed Eq. 32). Convention, the same for every search mode:
+//   C(eps, m) = (number of pairs i < j with j - i > w and |X_i(m) - X_j(m)| < eps) / (admissible pairs),
+// over the same reference set of points for every m, namely i < N - (max-1) tau, so the curves for
+// different m are comparable. With the maximum norm the distance in m + 1 dimensions extends the
+// one in m by one coordinate, which is what makes the single pass possible.
+//
+// Search modes give identical counts (a test): brute force (the definition), a kd-tree, and a
+// box-assisted grid in the spirit of TISEAN's d2 (Grassberger 1990; Hegger, Kantz & Schreiber 1999).
+// Speed for accuracy: a cap on the pairs counted per radius (TISEAN -N) and a random subset of
+// reference points, both off by default and reported in the result.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "chaos/norm.hpp"
+
+namespace chaos {
+
+enum class CorrelationSearch { brute_force, kd_tree, box_assisted };
+
+const char* to_string(CorrelationSearch search) noexcept;
+
+struct CorrelationSumOptions {
+  std::size_t delay = 1;           // -d
+  std::size_t min_dimension = 1;   // -m
+  std::size_t max_dimension = 10;  // -M
+  std::size_t theiler = 0;         // -t: pairs with |i - j| <= theiler are excluded
+  Norm norm = Norm::max;
+  std::vector<double> radii;       // strictly increasing, positive (log_radii makes TISEAN's grid)
+  CorrelationSearch search = CorrelationSearch::box_assisted;
+  // TISEAN's -N: once this many pairs are closer than a radius, stop counting for that radius and
+  // normalise by the pairs examined until then (reference points are visited in a seeded random
+  // order so the examined pairs are not biased in time). 0: no cap, exact counts.
+  std::uint64_t pairs_per_radius = 0;
+  // Use only this many reference points i (a seeded random subset); partners j range over all
+  // points. 0: every point is a reference point.
+  // With a cap or a subset each reference point counts its partners on both sides (|i - j| > w),
+  // so `pairs` and `examined` count ordered pairs: with all P points as reference points and no
+  // cap reached, both are exactly twice the exact counts and C is the same.
+  std::size_t reference_points = 0;
+  std::uint64_t seed = 1;
+  std::size_t threads = 1;  // results are identical for any thread count
+  void validate() const;
+};
+
+struct CorrelationSumResult {
+  std::vector<std::size_t> dimension;               // m = min .. max
+  std::vector<double> radius;                       // as given
+  std::vector<std::vector<double>> correlation_sum; // [m index][radius index], in [0, 1]
+  std::vector<std::vector<std::uint64_t>> pairs;    // pairs closer than the radius
+  std::vector<std::vector<std::uint64_t>> examined; // admissible pairs examined (all of them without a cap)
+  std::size_t points = 0;                           // embedded points in the reference set
+};
+
+// n radii from r_min to r_max, equally spaced in log (TISEAN -r -R -#).
+std::vector<double> log_radii(double r_min, double r_max, std::size_t n);
+
+CorrelationSumResult correlation_sum(std::span<const double> x, const CorrelationSumOptions& options);
+
+}  // namespace chaos

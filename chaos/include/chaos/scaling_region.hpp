@@ -1,0 +1,47 @@
+#pragma once
+// Finding the straight part of one or more curves y_c(x) on a shared grid, without a hand-picked
+// range: the widest interval of x on which every curve's local slope dy/dx stays within a stated
+// tolerance of one common value. Used for the correlation dimension (ln C against ln eps across the
+// highest embedding dimensions) and, later, for the linear region of Lyapunov divergence curves.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace chaos {
+
+// dy/dx at each grid point by a least-squares line through the 2*half_width + 1 points centred on
+// it (fewer at the ends). nullopt where the fit has fewer than 2 defined points. Undefined y values
+// (nullopt, e.g. ln C where C = 0) are left out of the fits.
+std::vector<std::optional<double>> local_slopes(std::span<const double> x, std::span<const std::optional<double>> y,
+                                                std::size_t half_width = 1);
+
+struct ScalingRegionOptions {
+  // Every local slope in the region lies within tolerance * |mean slope| of the mean slope
+  // (relative), or within tolerance (absolute, when relative is false).
+  double tolerance = 0.05;
+  bool relative = true;
+  std::size_t min_points = 5;  // grid points in the region
+  std::size_t half_width = 1;  // of the local-slope fits
+  void validate() const;
+};
+
+struct ScalingRegion {
+  std::size_t first = 0, last = 0;  // grid indices, inclusive
+  double slope = 0.0;               // mean of the local slopes over the region and the curves
+  double slope_min = 0.0, slope_max = 0.0;  // their range: the plateau's actual flatness
+};
+
+// The widest region (in x) shared by all curves; ties go to the flatter region. nullopt when no
+// interval of at least min_points satisfies the tolerance.
+std::optional<ScalingRegion> find_scaling_region(std::span<const double> x,
+                                                 const std::vector<std::vector<std::optional<double>>>& slopes,
+                                                 const ScalingRegionOptions& options = {});
+
+// Least-squares slope of y against x over [first, last], skipping undefined y; nullopt if fewer
+// than 2 defined points.
+std::optional<double> fit_slope(std::span<const double> x, std::span<const std::optional<double>> y, std::size_t first,
+                                std::size_t last);
+
+}  // namespace chaos

@@ -1,0 +1,147 @@
+#include "chaos/correlation_dimension.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "chaos/error.hpp"
+
+namespace chaos {
+
+const char* to_string(D2Status status) noexcept {
+  switch (status) {
+    case D2Status::saturated: return "saturated";
+    case D2Status::not_saturated: return "not_saturated";
+    case D2Status::no_scaling_region: return "no_scaling_region";
+  }
+  return "unknown";
+}
+
+void CorrelationDimensionOptions::validate() const {
+  region.validate();
+  if (saturation_dimensions < 1)
+    throw InvalidInput(ErrorCode::invalid_parameter, "saturation needs at least 1 dimension (got 0)");
+}
+
+std::optional<std::pair<double, double>> takens_theiler(const std::vector<double>& radius,
+                                                        const std::vector<double>& c, std::uint64_t pairs_at_k,
+                                                        std::size_t k) {
+  if (k >= radius.size() || k >= c.size() || !(c[k] > 0.0)) return std::nullopt;
+  std::size_t first = 0;
+  while (first < k && !(c[first] > 0.0)) ++first;
+  // Below the first populated radius C is extended as a power law with the next interval's exponent.
+  const std::size_t next = first + 1 <= k ? first + 1 : first;
+  if (next == first) return std::nullopt;  // one populated radius: no exponent to extend with
+  const double s0 = std::log(c[next] / c[first]) / std::log(radius[next] / radius[first]);
+  if (!(s0 > 0.0)) return std::nullopt;
+  double integral = c[first] / s0;
+  for (std::size_t j = first; j < k; ++j) {
+    const double ratio = std::log(radius[j + 1] / radius[j]);
+    const double s = std::log(c[j + 1] / c[j]) / ratio;
+    integral += s > 1e-12 ? (c[j + 1] - c[j]) / s : c[j] * ratio;  // C flat over the interval
+  }
+  const double d = c[k] / integral;
+  return std::make_pair(d, d / std::sqrt(static_cast<double>(std::max<std::uint64_t>(pairs_at_k, 1))));
+}
+
+CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,
+                                                 const CorrelationDimensionOptions& options) {
+  options.validate();
+  CorrelationDimensionResult out;
+  out.dimension = sums.dimension;
+  out.radius = sums.radius;
+  const std::size_t dims = sums.dimension.size();
+  const std::size_t radii = sums.radius.size();
+  if (dims == 0 || radii < 2)
+    throw InvalidInput(ErrorCode::invalid_parameter, "the correlation dimension needs at least 2 radii and 1 dimension (got " +
+                                                         std::to_string(radii) + " radii, " + std::to_string(dims) + " dimensions)");
+  std::vector<double> log_r(radii);
+  for (std::size_t k = 0; k < radii; ++k) log_r[k] = std::log(sums.radius[k]);
+
+  // Steps 1-2: local slopes and a region per dimension.
+  std::vector<std::vector<std::optional<double>>> log_c(dims, std::vector<std::optional<double>>(radii));
+  for (std::size_t d = 0; d < dims; ++d) {
+    for (std::size_t k = 0; k < radii; ++k)
+      // Left out: too few pairs for a meaningful ratio, and radii where every examined pair is
+      // already closer than eps (C = 1 says nothing about the scaling, only that eps exceeds the
+      // attractor).
+      if (sums.pairs[d][k] >= options.min_pairs && sums.correlation_sum[d][k] > 0.0 &&
+          sums.pairs[d][k] < sums.examined[d][k])
+        log_c[d][k] = std::log(sums.correlation_sum[d][k]);
+    out.local_slope.push_back(local_slopes(log_r, log_c[d], options.region.half_width));
+    const auto region = find_scaling_region(log_r, {out.local_slope[d]}, options.region);
+    if (region) {
+      out.d2_by_dimension.push_back(fit_slope(log_r, log_c[d], region->first, region->last));
+      out.d2_by_dimension_interval.push_back(Interval{region->slope_min, region->slope_max});
+      out.region_by_dimension.push_back(Interval{sums.radius[region->first], sums.radius[region->last]});
+    } else {
+      out.d2_by_dimension.push_back(std::nullopt);
+      out.d2_by_dimension_interval.push_back(std::nullopt);
+      out.region_by_dimension.push_back(std::nullopt);
+    }
+  }
+  out.eckmann_ruelle_limit = 2.0 * std::log10(static_cast<double>(std::max<std::size_t>(sums.points, 1)));
+
+  // Step 3: the highest dimensions that have an estimate must share one plateau.
+  std::vector<std::size_t> top;
+  for (std::size_t d = dims; d-- > 0 && top.size() < options.saturation_dimensions;)
+    if (out.d2_by_dimension[d]) top.insert(top.begin(), d);
+  std::ostringstream why;
+  const auto list_d2 = [&] {
+    std::ostringstream s;
+    for (std::size_t d = 0; d < dims; ++d)
+      if (out.d2_by_dimension[d]) s << (s.tellp() > 0 ? ", " : "") << "m=" << out.dimension[d] << ": " << *out.d2_by_dimension[d];
+    return s.str();
+  };
+  if (top.empty()) {
+    out.status = D2Status::no_scaling_region;
+    why << "no dimension has a range of at least " << options.region.min_points << " radii with local slopes within "
+        << options.region.tolerance * 100 << "% of their mean";
+  } else if (top.size() < options.saturation_dimensions) {
+    out.status = D2Status::not_saturated;
+    why << "only " << top.size() << " dimension(s) have a scaling region, " << options.saturation_dimensions
+        << " are needed to judge saturation (" << list_d2() << ")";
+  } else {
+    std::vector<std::vector<std::optional<double>>> curves;
+    for (const auto d : top) curves.push_back(out.local_slope[d]);
+    const auto shared = find_scaling_region(log_r, curves, options.region);
+    if (!shared) {
+      out.status = D2Status::not_saturated;
+      why << "the highest dimensions share no plateau; D2(m) by dimension: " << list_d2();
+    } else {
+      out.status = D2Status::saturated;
+      double sum = 0.0, lo = shared->slope_min, hi = shared->slope_max;
+      for (const auto d : top) {
+        const double fit = fit_slope(log_r, log_c[d], shared->first, shared->last).value_or(shared->slope);
+        sum += fit;
+        lo = std::min(lo, fit);
+        hi = std::max(hi, fit);
+      }
+      out.d2 = sum / static_cast<double>(top.size());
+      out.d2_interval = Interval{lo, hi};
+      out.scaling_region = Interval{sums.radius[shared->first], sums.radius[shared->last]};
+      out.saturation_dimensions_used.clear();
+      for (const auto d : top) out.saturation_dimensions_used.push_back(out.dimension[d]);
+      const std::size_t d_top = top.back();
+      if (const auto tt = takens_theiler(sums.radius, sums.correlation_sum[d_top], sums.pairs[d_top][shared->last],
+                                         shared->last)) {
+        out.takens_theiler = tt->first;
+        out.takens_theiler_error = tt->second;
+      }
+      why << "local slopes of m = " << out.dimension[top.front()] << ".." << out.dimension[top.back()]
+          << " agree within " << options.region.tolerance * 100 << "% for eps in [" << out.scaling_region->low << ", "
+          << out.scaling_region->high << "]";
+    }
+  }
+  double largest = out.d2.value_or(0.0);
+  for (const auto& v : out.d2_by_dimension)
+    if (v) largest = std::max(largest, *v);
+  out.exceeds_eckmann_ruelle = largest > out.eckmann_ruelle_limit;
+  if (out.exceeds_eckmann_ruelle)
+    why << "; an estimate exceeds the Eckmann-Ruelle limit 2 log10(N) = " << out.eckmann_ruelle_limit
+        << " and cannot be trusted";
+  out.explanation = why.str();
+  return out;
+}
+
+}  // namespace chaos

@@ -1,0 +1,1020 @@
+#include "chaos/correlation_sum.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cstdlib>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+
+#include "chaos/embedding.hpp"
+#include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
+#include "chaos/random.hpp"
+#include "chaos/series.hpp"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+// Layout of the computation (docs/correlation_sum.md has the conventions and the proofs of exactness).
+//
+// Every pair distance is accumulated coordinate by coordinate exactly as DelayEmbedding::distance
+// does it (max(acc, |a - b|), or acc + d*d then sqrt), so every mode sees the same doubles and the
+// strict comparison d < r gives the same integer counts. A pair is put into a histogram over the
+// radius grid (bin g = number of radii <= d); the count for radius k is the sum of bins 0..k.
+//
+// Two ways of walking the pairs:
+//   exact     no cap and no reference subset: every unordered pair i < j, j - i > w, once;
+//   reference a cap or a subset: each reference point i with all partners j, |i - j| > w, on both
+//             sides (ordered pairs, so a point's count does not depend on which others are
+//             reference points), in a seeded random order.
+
+namespace chaos {
+
+namespace {
+
+using Count = std::uint64_t;
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+std::string number(double v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
+std::size_t mul_sat(std::size_t a, std::size_t b) noexcept { return a != 0 && b > saturated / a ? saturated : a * b; }
+std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > saturated - b ? saturated : a + b; }
+
+bool in_window(std::size_t i, std::size_t j, std::size_t w) noexcept { return (i > j ? i - j : j - i) <= w; }
+
+// The two norms as compile-time policies; `add` is the step DelayEmbedding::distance takes per
+// coordinate and `finish` turns the accumulator into the distance.
+struct MaxNorm {
+  static double add(double acc, double d) noexcept { return std::max(acc, d); }
+  static double finish(double acc) noexcept { return acc; }
+};
+struct EuclideanNorm {
+  static double add(double acc, double d) noexcept { return acc + d * d; }
+  static double finish(double acc) noexcept { return std::sqrt(acc); }
+};
+
+// Every mode compares the accumulator with a threshold instead of the distance with a radius:
+// acc < t(r) exactly when finish(acc) < r. For the maximum norm t(r) = r; for the Euclidean norm
+// t(r) is the smallest double a with sqrt(a) >= r (found by bisection over the bit patterns, on
+// which sqrt is monotone), so the box-assisted loops need no square root and still agree with
+// brute force, which takes the square root and compares with r.
+double threshold(Norm norm, double r) {
+  if (norm == Norm::max) return r;
+  std::uint64_t lo = 0, hi = std::bit_cast<std::uint64_t>(infinity);  // sqrt(inf) >= r always
+  while (lo < hi) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (std::sqrt(std::bit_cast<double>(mid)) >= r)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return std::bit_cast<double>(lo);
+}
+
+// Bin of an accumulator value in the threshold grid in O(1): non-negative doubles are ordered like
+// their bit patterns, so the exponent and the top `bits` mantissa bits index cells no wider than a
+// factor 1 + 2^-bits (a cheap, monotone stand-in for the logarithm; up to 1024 cells per octave
+// and 4096 in all). A cell that holds no threshold has one bin for all its values, read from the
+// table; a cell that holds one is marked, and the bin is fixed up there by comparing with the
+// thresholds themselves (with 40 radii over 6 octaves, about 1 cell in 80). The bin is exact in
+// both cases.
+class AccBins {
+ public:
+  // The lookup itself, small enough to copy into a loop's locals: held in registers, its fields
+  // need not be reloaded after every histogram store (a store through Count* may alias them).
+  struct Lookup {
+    const std::int32_t* cell;  // g >= 0: the bin of every value in the cell; -1 - g: fix up from g
+    const double* t;
+    std::uint64_t base;
+    int shift;
+    double floor;  // lower edge of cell 0, which lies below the first threshold
+
+    std::uint64_t cell_of(double acc) const noexcept {
+      return (std::bit_cast<std::uint64_t>(std::max(acc, floor)) >> shift) - base;
+    }
+    // The exact bin from a marked cell's entry.
+    std::size_t fix(std::int32_t entry, double acc) const noexcept {
+      auto g = static_cast<std::size_t>(-1 - entry);
+      while (t[g] <= acc) ++g;  // stops at t_max > acc at the latest
+      return g;
+    }
+    // Number of thresholds t <= acc, for 0 <= acc < t_max (the survivors of a filter).
+    std::size_t inside(double acc) const noexcept {
+      const std::int32_t e = cell[cell_of(acc)];
+      return e >= 0 ? static_cast<std::size_t>(e) : fix(e, acc);
+    }
+  };
+
+  explicit AccBins(std::vector<double> t) : t_(std::move(t)) {
+    const double lo = t_.front(), hi = t_.back();
+    constexpr std::uint64_t max_cells = 4096;
+    int shift = 52;
+    for (int bits = 10; bits > 0; --bits) {  // as fine as a table of max_cells allows
+      shift = 52 - bits;
+      if (key(hi, shift) - key(lo, shift) + 2 <= max_cells) break;
+    }
+    const std::uint64_t base = key(lo, shift) - (key(lo, shift) > 0 ? 1 : 0);
+    const std::uint64_t count = key(hi, shift) - base + 1;
+    cell_.resize(static_cast<std::size_t>(count));
+    for (std::size_t c = 0; c < cell_.size(); ++c) {
+      const double edge = std::bit_cast<double>((base + c) << shift);
+      const double next_edge = std::bit_cast<double>((base + c + 1) << shift);
+      const auto g = std::lower_bound(t_.begin(), t_.end(), edge) - t_.begin();
+      const bool marked = g < static_cast<std::ptrdiff_t>(t_.size()) && t_[static_cast<std::size_t>(g)] < next_edge;
+      cell_[c] = marked ? static_cast<std::int32_t>(-1 - g) : static_cast<std::int32_t>(g);
+    }
+    lookup_ = {cell_.data(), t_.data(), base, shift, std::bit_cast<double>(base << shift)};
+  }
+
+  const Lookup& lookup() const noexcept { return lookup_; }
+  // Number of thresholds t <= acc, for any acc (the slow general form).
+  std::size_t operator()(double acc) const noexcept {
+    return static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), acc) - t_.begin());
+  }
+
+ private:
+  static std::uint64_t key(double v, int shift) noexcept { return std::bit_cast<std::uint64_t>(v) >> shift; }
+
+  std::vector<double> t_;
+  std::vector<std::int32_t> cell_;
+  Lookup lookup_{};
+};
+
+// Everything the counting loops need, in the units they compute in.
+struct Problem {
+  std::span<const double> y;       // the series (times a power of two for the Euclidean norm)
+  std::vector<double> radii;       // likewise scaled; brute force compares distances with these
+  std::vector<double> thresholds;  // the same radii as accumulator thresholds
+  double r_max = 0.0, t_max = 0.0;
+  std::size_t tau = 1, w = 0;
+  std::size_t points = 0;            // P: the reference set is i < P = N - (max-1) tau
+  std::size_t min_m = 1, max_m = 1;  // dimensions counted
+  std::size_t nm = 1, nr = 1;        // number of dimensions and of radii
+  Norm norm = Norm::max;
+  std::size_t threads = 1;
+  const AccBins* bins = nullptr;
+
+  double at(std::size_t i, std::size_t k) const noexcept { return y[i + k * tau]; }
+};
+
+// Runs f(task, worker) for every task on min(threads, tasks) workers that take tasks from a shared
+// counter. Which worker runs a task varies; the callers only add integers per worker, so the sums
+// do not depend on it.
+template <class F>
+void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f) {
+  const std::size_t workers = std::max<std::size_t>(1, std::min(threads, tasks));
+  if (workers == 1) {
+    for (std::size_t t = 0; t < tasks; ++t) f(t, std::size_t{0});
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(workers);
+  const auto body = [&](std::size_t worker) {
+    try {
+      for (std::size_t t; (t = next.fetch_add(1, std::memory_order_relaxed)) < tasks;) f(t, worker);
+    } catch (...) {
+      errors[worker] = std::current_exception();
+      next.store(tasks);
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(workers - 1);
+  for (std::size_t k = 1; k < workers; ++k) pool.emplace_back(body, k);
+  body(0);
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+std::size_t worker_count(std::size_t threads, std::size_t tasks) {
+  return std::max<std::size_t>(1, std::min(threads, tasks));
+}
+
+// Histograms [dimension index][bin], one per worker, summed at the end (integer sums: any split
+// and any order give the same totals).
+using Histogram = std::vector<Count>;
+
+Histogram sum_histograms(const std::vector<Histogram>& parts) {
+  Histogram total(parts.front().size(), 0);
+  for (const auto& h : parts)
+    for (std::size_t k = 0; k < h.size(); ++k) total[k] += h[k];
+  return total;
+}
+
+// Cumulative counts [mi][k] = pairs closer than radius k, from a histogram over bins.
+std::vector<std::vector<Count>> cumulate(const Histogram& h, std::size_t nm, std::size_t nr) {
+  std::vector<std::vector<Count>> out(nm, std::vector<Count>(nr));
+  for (std::size_t mi = 0; mi < nm; ++mi) {
+    Count acc = 0;
+    for (std::size_t k = 0; k < nr; ++k) out[mi][k] = acc += h[mi * nr + k];
+  }
+  return out;
+}
+
+// The first position in [begin, end) where pred fails, for a pred that holds on a prefix.
+template <class Pred>
+std::size_t first_failing(std::size_t begin, std::size_t end, Pred pred) {
+  std::size_t count = end - begin;
+  while (count > 0) {
+    const std::size_t half = count / 2;
+    if (pred(begin + half)) {
+      begin += half + 1;
+      count -= half + 1;
+    } else {
+      count = half;
+    }
+  }
+  return begin;
+}
+
+// Chunks of consecutive reference points for the exact walks.
+constexpr std::size_t chunk_points = 256;
+
+// ---------------------------------------------------------------------------------------------
+// Brute force: the definition, every pair and every coordinate; the bin by binary search.
+
+template <class N>
+void brute_pair(const Problem& pb, std::size_t i, std::size_t j, Count* hist) {
+  double acc = 0.0;
+  for (std::size_t k = 0; k < pb.max_m; ++k) {
+    acc = N::add(acc, std::abs(pb.at(i, k) - pb.at(j, k)));
+    const double d = N::finish(acc);
+    if (!(d < pb.r_max)) return;  // the distance never decreases with m: nothing more to count
+    if (k + 1 >= pb.min_m) {
+      const auto g = std::upper_bound(pb.radii.begin(), pb.radii.end(), d) - pb.radii.begin();
+      ++hist[(k + 1 - pb.min_m) * pb.nr + static_cast<std::size_t>(g)];
+    }
+  }
+}
+
+template <class N>
+Histogram brute_exact(const Problem& pb) {
+  const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
+  std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(pb.nm * pb.nr, 0));
+  parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
+    Count* hist = parts[worker].data();
+    const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
+    for (std::size_t i = t * chunk_points; i < end; ++i)
+      for (std::size_t j = i + pb.w + 1; j < pb.points; ++j) brute_pair<N>(pb, i, j, hist);
+  });
+  return sum_histograms(parts);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Box-assisted, exact walk. All comparisons are on accumulators against thresholds.
+//
+// m = 1: the reference values sorted; for each radius a two-pointer sweep counts the pairs of
+// positions p < q with acc(v[q] - v[p]) < t (monotone in p and q, so the sweep is exact), then the
+// pairs inside the Theiler window, enumerated, are subtracted. O(P (nr + w) + P log P).
+template <class N>
+std::vector<Count> box_dimension_one(const Problem& pb) {
+  std::vector<double> v(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
+  std::sort(v.begin(), v.end());
+  const auto acc = [](double a, double b) { return N::add(0.0, std::abs(a - b)); };
+  std::vector<Count> pairs(pb.nr, 0);
+  for (std::size_t k = 0; k < pb.nr; ++k) {
+    const double t = pb.thresholds[k];
+    std::size_t hi = 0;
+    Count total = 0;
+    for (std::size_t p = 0; p < v.size(); ++p) {
+      hi = std::max(hi, p + 1);
+      while (hi < v.size() && acc(v[hi], v[p]) < t) ++hi;
+      total += hi - p - 1;
+    }
+    pairs[k] = total;
+  }
+  Histogram window(pb.nr + 1, 0);
+  for (std::size_t lag = 1; lag <= pb.w && lag < pb.points; ++lag)
+    for (std::size_t i = 0; i + lag < pb.points; ++i) ++window[(*pb.bins)(acc(pb.y[i], pb.y[i + lag]))];
+  Count excluded = 0;
+  for (std::size_t k = 0; k < pb.nr; ++k) pairs[k] -= excluded += window[k];
+  return pairs;
+}
+
+// m >= 2: a grid over the first two coordinates. Points are grouped into rows by coordinate 1
+// (row height h >= r_max) and sorted by coordinate 0 within a row. A pair closer than r_max in any
+// m >= 2 has acc(coordinate difference) < t_max in coordinates 0 and 1 (the accumulator only
+// grows), hence differs by less than h in coordinate 1 and lies in the same or adjacent rows, and
+// it lies inside the coordinate-0 window of the other point. Each unordered pair is visited once,
+// from its lower row (same row: from the earlier position).
+struct Grid {
+  std::size_t size = 0;
+  std::vector<double> coords;  // coordinate k of the point at grid position p: coords[k * size + p]
+  std::vector<std::size_t> index;
+  struct Row {
+    std::int64_t id;
+    std::size_t begin, end;
+  };
+  std::vector<Row> rows;
+  struct Chunk {
+    std::size_t row, begin, end;
+  };
+  std::vector<Chunk> chunks;
+  const double* coordinate(std::size_t k) const noexcept { return coords.data() + k * size; }
+};
+
+Grid build_grid(const Problem& pb) {
+  const std::size_t n = pb.points;
+  double lo = infinity, hi = -infinity;
+  for (std::size_t i = 0; i < n; ++i) {
+    lo = std::min(lo, pb.at(i, 1));
+    hi = std::max(hi, pb.at(i, 1));
+  }
+  // The row of a value is floor((v - lo) / h), computed in floating point. With at most 2^30 rows
+  // the quotient's rounding error is below 2^-22 rows, and the margin 1 + 2^-20 on h keeps two
+  // values less than r_max (1 + 2^-50) apart in rows that differ by at most one.
+  const double h = std::max(pb.r_max, (hi - lo) * 0x1p-30) * (1.0 + 0x1p-20);
+  struct Key {
+    std::int64_t row;
+    double c0;
+    std::size_t i;
+  };
+  std::vector<Key> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double q = (pb.at(i, 1) - lo) / h;  // h may be infinite (a radius beyond all distances): one row
+    keys[i] = {static_cast<std::int64_t>(std::isfinite(q) ? q : 0.0), pb.at(i, 0), i};
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return a.row != b.row ? a.row < b.row : (a.c0 != b.c0 ? a.c0 < b.c0 : a.i < b.i);
+  });
+  Grid g;
+  g.size = n;
+  g.coords.resize(n * pb.max_m);
+  g.index.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::size_t i = keys[p].i;
+    g.index[p] = i;
+    for (std::size_t k = 0; k < pb.max_m; ++k) g.coords[k * n + p] = pb.at(i, k);
+    if (g.rows.empty() || g.rows.back().id != keys[p].row) g.rows.push_back({keys[p].row, p, p});
+    g.rows.back().end = p + 1;
+  }
+  for (std::size_t t = 0; t < g.rows.size(); ++t)
+    for (std::size_t b = g.rows[t].begin; b < g.rows[t].end; b += chunk_points)
+      g.chunks.push_back({t, b, std::min(g.rows[t].end, b + chunk_points)});
+  return g;
+}
+
+// Survivors' accumulators per level (dimension m = 2 .. max at level m - 2), binned in batches.
+// Collecting them first keeps the filter loops free of table lookups; the binning loop then runs
+// over a short array that stays in the L1 cache. Consecutive survivors often share a bin, and
+// back-to-back increments of one counter wait for each other, so four interleaved copies of the
+// histogram take turns and are added up at the end.
+class Survivors {
+ public:
+  static constexpr std::size_t block = 256;  // candidates filtered level by level at a time
+  static constexpr std::size_t batch = 512;  // survivors per level collected before binning
+
+  Survivors(const Problem& pb, Count* hist)
+      : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(pb.min_m > 2 ? pb.min_m - 2 : 0),
+        acc_(levels_ * capacity), n_(levels_, 0), wide_(copies * pb.nm * pb.nr, 0) {}
+  ~Survivors() {
+    flush();
+    for (std::size_t k = 0; k < wide_.size(); ++k) hist_[k / copies] += wide_[k];
+  }
+  Survivors(const Survivors&) = delete;
+  Survivors& operator=(const Survivors&) = delete;
+
+  std::size_t levels() const noexcept { return levels_; }
+  std::size_t first_stored() const noexcept { return first_; }  // levels below are filtered, not counted
+  double* buffer(std::size_t level) noexcept { return acc_.data() + level * capacity; }
+  std::size_t& count(std::size_t level) noexcept { return n_[level]; }
+  // Room for one more block at every level, else bin what has been collected.
+  void make_room() noexcept {
+    if (n_[first_] >= batch) flush();
+  }
+
+  void flush() noexcept {
+    const AccBins::Lookup bins = pb_.bins->lookup();
+    for (std::size_t level = first_; level < levels_; ++level) {
+      Count* h = wide_.data() + (level + 2 - pb_.min_m) * pb_.nr * copies;
+      const double* a = buffer(level);
+      const std::size_t n = n_[level];
+      std::size_t u = 0;
+      for (; u + copies <= n; u += copies) {  // unrolled by hand: the compiler keeps the loop
+        ++h[bins.inside(a[u]) * copies];
+        ++h[bins.inside(a[u + 1]) * copies + 1];
+        ++h[bins.inside(a[u + 2]) * copies + 2];
+        ++h[bins.inside(a[u + 3]) * copies + 3];
+      }
+      for (; u < n; ++u) ++h[bins.inside(a[u]) * copies];
+      n_[level] = 0;
+    }
+  }
+
+ private:
+  static constexpr std::size_t copies = 4;  // the unrolled loop in flush() assumes 4
+  static constexpr std::size_t capacity = batch + block + 4;  // + 4: a packed store writes 4 lanes
+  const Problem& pb_;
+  Count* hist_;
+  std::size_t levels_, first_;
+  std::vector<double> acc_;
+  std::vector<std::size_t> n_;
+  std::vector<Count> wide_;
+};
+
+// Scan of the candidates q in [qb, qe) of grid point p, a block at a time and level by level: the
+// accumulator of every candidate in the block takes one more coordinate per level, and those
+// below t_max are appended to the level's buffer without a branch. A level with no survivors
+// ends the block (the accumulator never decreases). Level-major order keeps each level's count
+// in a register; candidate-major order would chain every update through memory.
+template <class N, bool check_window>
+void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s) {
+  const std::size_t levels = s.levels(), first = s.first_stored(), w = pb.w, i = g.index[p];
+  const double t = pb.t_max;
+  const double* c0 = g.coordinate(0);
+  const double* c1 = g.coordinate(1);
+  double a[Survivors::block];
+  for (std::size_t q0 = qb; q0 < qe; q0 += Survivors::block) {
+    const std::size_t len = std::min(Survivors::block, qe - q0);
+    s.make_room();
+    for (std::size_t level = 0; level < levels; ++level) {
+      const double* ck = g.coordinate(level + 1) + q0;
+      const double ak = g.coordinate(level + 1)[p];
+      double* out = s.buffer(level);
+      std::size_t n = s.count(level), alive = 0;
+      for (std::size_t u = 0; u < len; ++u) {
+        double v = level == 0 ? N::add(N::add(0.0, std::abs(c0[p] - c0[q0 + u])), std::abs(c1[p] - ck[u]))
+                              : N::add(a[u], std::abs(ak - ck[u]));
+        if constexpr (check_window)
+          if (level == 0 && in_window(i, g.index[q0 + u], w)) v = infinity;  // never survives
+        a[u] = v;
+        out[n] = v;
+        const bool keep = v < t;
+        n += keep && level >= first;
+        alive += keep;
+      }
+      s.count(level) = n;
+      if (alive == 0) break;
+    }
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The same scan four candidates at a time with AVX2. The operations are the scalar ones lane by
+// lane (subtract, absolute value, max or multiply-then-add without fusing: AVX2 alone does not
+// enable FMA), so the accumulators are bit-identical. Survivors are packed into the level buffer
+// with a permutation chosen by the comparison mask.
+struct CompressTable {
+  alignas(32) std::int32_t index[16][8];
+};
+constexpr CompressTable make_compress_table() {
+  CompressTable table{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int out = 0;
+    for (int lane = 0; lane < 4; ++lane)
+      if (mask & (1 << lane)) {
+        table.index[mask][2 * out] = 2 * lane;
+        table.index[mask][2 * out + 1] = 2 * lane + 1;
+        ++out;
+      }
+  }
+  return table;
+}
+constexpr CompressTable compress_table = make_compress_table();
+
+template <class N>
+__attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb,
+                                                       std::size_t qe, Survivors& s) {
+  const std::size_t levels = s.levels(), first = s.first_stored();
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d t = _mm256_set1_pd(pb.t_max);
+  const double* c0 = g.coordinate(0);
+  const __m256d a0 = _mm256_set1_pd(c0[p]);
+  alignas(32) double a[Survivors::block];
+  const std::size_t vector_end = qb + (qe - qb) / 4 * 4;  // the last few candidates go to the scalar scan
+  for (std::size_t q0 = qb; q0 < vector_end; q0 += Survivors::block) {
+    const std::size_t len = std::min(Survivors::block, vector_end - q0);
+    s.make_room();
+    for (std::size_t level = 0; level < levels; ++level) {
+      const double* ck = g.coordinate(level + 1) + q0;
+      const __m256d ak = _mm256_set1_pd(g.coordinate(level + 1)[p]);
+      double* out = s.buffer(level);
+      std::size_t n = s.count(level), alive = 0;
+      const bool store = level >= first;
+      for (std::size_t u = 0; u < len; u += 4) {
+        const __m256d dk = _mm256_andnot_pd(sign, _mm256_sub_pd(ak, _mm256_loadu_pd(ck + u)));
+        __m256d v;
+        if (level == 0) {
+          const __m256d d0 = _mm256_andnot_pd(sign, _mm256_sub_pd(a0, _mm256_loadu_pd(c0 + q0 + u)));
+          if constexpr (std::is_same_v<N, MaxNorm>)
+            v = _mm256_max_pd(d0, dk);
+          else
+            v = _mm256_add_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(dk, dk));
+        } else {
+          const __m256d prev = _mm256_load_pd(a + u);
+          if constexpr (std::is_same_v<N, MaxNorm>)
+            v = _mm256_max_pd(prev, dk);
+          else
+            v = _mm256_add_pd(prev, _mm256_mul_pd(dk, dk));
+        }
+        _mm256_store_pd(a + u, v);
+        const int mask = _mm256_movemask_pd(_mm256_cmp_pd(v, t, _CMP_LT_OQ));
+        const __m256i perm = _mm256_load_si256(reinterpret_cast<const __m256i*>(compress_table.index[mask]));
+        _mm256_storeu_ps(reinterpret_cast<float*>(out + n), _mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
+        const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+        n += store ? k : 0;
+        alive += k;
+      }
+      s.count(level) = n;
+      if (alive == 0) break;
+    }
+  }
+  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s);
+}
+
+bool use_avx2() {
+  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+  const char* off = std::getenv("CHAOS_NO_SIMD");
+  return available && !(off != nullptr && *off != '\0' && *off != '0');
+}
+#else
+bool use_avx2() { return false; }
+#endif
+
+template <class N, bool check_window>
+void grid_candidates(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+                     bool simd) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s);
+#endif
+  (void)simd;
+  scan_scalar<N, check_window>(pb, g, p, qb, qe, s);
+}
+
+// The pairs 1 <= j - i <= w that the grid counted when it leaves the Theiler window to a
+// subtraction: the same accumulators in the same order, so exactly the same bins.
+template <class N>
+void window_pairs(const Problem& pb, Count* hist) {
+  const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
+  const AccBins::Lookup bins = pb.bins->lookup();
+  std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(pb.nm * pb.nr, 0));
+  parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
+    Count* h = parts[worker].data();
+    const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
+    for (std::size_t i = t * chunk_points; i < end; ++i)
+      for (std::size_t j = i + 1; j <= i + pb.w && j < pb.points; ++j) {
+        double acc = N::add(N::add(0.0, std::abs(pb.at(i, 0) - pb.at(j, 0))), std::abs(pb.at(i, 1) - pb.at(j, 1)));
+        for (std::size_t m = 2; m <= pb.max_m; ++m) {
+          if (m > 2) acc = N::add(acc, std::abs(pb.at(i, m - 1) - pb.at(j, m - 1)));
+          if (!(acc < pb.t_max)) break;
+          if (m >= pb.min_m) ++h[(m - pb.min_m) * pb.nr + bins.inside(acc)];
+        }
+      }
+  });
+  const Histogram total = sum_histograms(parts);
+  for (std::size_t k = 0; k < total.size(); ++k) hist[k] -= total[k];
+}
+
+template <class N, bool check_window>
+Histogram box_grid(const Problem& pb, const Grid& g) {
+  const double t = pb.t_max;
+  const bool simd = use_avx2();
+  std::vector<Histogram> parts(worker_count(pb.threads, g.chunks.size()), Histogram(pb.nm * pb.nr, 0));
+  parallel_tasks(pb.threads, g.chunks.size(), [&](std::size_t c, std::size_t worker) {
+    Survivors survivors(pb, parts[worker].data());
+    const Grid::Chunk& chunk = g.chunks[c];
+    const Grid::Row& row = g.rows[chunk.row];
+    const bool has_next = chunk.row + 1 < g.rows.size() && g.rows[chunk.row + 1].id == row.id + 1;
+    const Grid::Row next = has_next ? g.rows[chunk.row + 1] : Grid::Row{0, 0, 0};
+    const double* c0 = g.coordinate(0);
+    // The coordinate-0 window: positions q with acc(c0[q] - c0[p]) < t_max on either side. The
+    // tests are monotone in p and q (rounding is monotone), so the pointers only move forward.
+    const auto left_of = [&](std::size_t p, std::size_t q) {
+      return c0[q] <= c0[p] && !(N::add(0.0, c0[p] - c0[q]) < t);
+    };
+    const auto not_right_of = [&](std::size_t p, std::size_t q) {
+      return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
+    };
+    std::size_t same = chunk.begin + 1;
+    std::size_t lo = first_failing(next.begin, next.end, [&](std::size_t q) { return left_of(chunk.begin, q); });
+    std::size_t hi = lo;
+    for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
+      same = std::max(same, p + 1);
+      while (same < row.end && not_right_of(p, same)) ++same;
+      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd);
+      if (!has_next) continue;
+      while (lo < next.end && left_of(p, lo)) ++lo;
+      hi = std::max(hi, lo);
+      while (hi < next.end && not_right_of(p, hi)) ++hi;
+      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd);
+    }
+  });
+  return sum_histograms(parts);
+}
+
+// With a small window (w <= P/8, so at most P^2/8 window pairs) the grid counts every pair and
+// the window pairs are subtracted afterwards, which keeps the index test out of the inner loop.
+template <class N>
+Histogram box_grid(const Problem& pb) {
+  const Grid g = build_grid(pb);
+  if (pb.w > pb.points / 8) return box_grid<N, true>(pb, g);
+  Histogram h = box_grid<N, false>(pb, g);
+  window_pairs<N>(pb, h.data());
+  return h;
+}
+
+template <class N>
+std::vector<std::vector<Count>> box_exact(const Problem& pb) {
+  std::vector<std::vector<Count>> pairs(pb.nm);
+  if (pb.max_m >= 2) pairs = cumulate(box_grid<N>(pb), pb.nm, pb.nr);
+  if (pb.min_m == 1) pairs[0] = box_dimension_one<N>(pb);
+  return pairs;
+}
+
+// ---------------------------------------------------------------------------------------------
+// kd-tree, exact walk: KdTree::count_within per dimension, radius and point counts the partners
+// on both sides of the point, so the total over all points is twice the number of unordered pairs.
+
+std::vector<KdTree> build_trees(const Problem& pb) {
+  std::vector<KdTree> trees;
+  trees.reserve(pb.nm);
+  for (std::size_t m = pb.min_m; m <= pb.max_m; ++m)
+    trees.emplace_back(DelayEmbedding(pb.y, m, pb.tau, pb.points), pb.norm);
+  return trees;
+}
+
+std::vector<std::vector<Count>> kd_exact(const Problem& pb) {
+  const std::vector<KdTree> trees = build_trees(pb);
+  const NeighborQuery query{pb.w, false};
+  const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
+  std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(pb.nm * pb.nr, 0));
+  parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
+    Count* sums = parts[worker].data();
+    const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
+    for (std::size_t i = t * chunk_points; i < end; ++i)
+      for (std::size_t mi = 0; mi < pb.nm; ++mi)
+        for (std::size_t k = 0; k < pb.nr; ++k) sums[mi * pb.nr + k] += trees[mi].count_within(i, pb.radii[k], query);
+  });
+  const Histogram total = sum_histograms(parts);
+  std::vector<std::vector<Count>> pairs(pb.nm, std::vector<Count>(pb.nr));
+  for (std::size_t mi = 0; mi < pb.nm; ++mi)
+    for (std::size_t k = 0; k < pb.nr; ++k) pairs[mi][k] = total[mi * pb.nr + k] / 2;
+  return pairs;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reference walk: per-point counts, cumulative over radii, for a cap or a subset.
+//
+// A counter fills cum[mi * nr + k] with the number of partners j of point i (|i - j| > w, either
+// side) closer than radius k, for every k < need[mi]; entries from need[mi] on are not used.
+
+class ReferenceCounter {
+ public:
+  virtual ~ReferenceCounter() = default;
+  virtual void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram& scratch) const = 0;
+};
+
+// Turns a per-point histogram into cumulative counts.
+void histogram_to_cumulative(const Histogram& h, std::size_t nm, std::size_t nr, Count* cum) {
+  for (std::size_t mi = 0; mi < nm; ++mi) {
+    Count acc = 0;
+    for (std::size_t k = 0; k < nr; ++k) cum[mi * nr + k] = acc += h[mi * nr + k];
+  }
+}
+
+template <class N>
+class BruteCounter final : public ReferenceCounter {
+ public:
+  explicit BruteCounter(const Problem& pb) : pb_(pb) {}
+  void count(std::size_t i, const std::vector<std::size_t>&, Count* cum, Histogram& h) const override {
+    std::fill(h.begin(), h.end(), 0);
+    for (std::size_t j = 0; j < pb_.points; ++j)
+      if (!in_window(i, j, pb_.w)) brute_pair<N>(pb_, i, j, h.data());
+    histogram_to_cumulative(h, pb_.nm, pb_.nr, cum);
+  }
+
+ private:
+  const Problem& pb_;
+};
+
+class KdCounter final : public ReferenceCounter {
+ public:
+  explicit KdCounter(const Problem& pb) : pb_(pb), trees_(build_trees(pb)) {}
+  void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram&) const override {
+    const NeighborQuery query{pb_.w, false};
+    for (std::size_t mi = 0; mi < pb_.nm; ++mi)
+      for (std::size_t k = 0; k < need[mi]; ++k) cum[mi * pb_.nr + k] = trees_[mi].count_within(i, pb_.radii[k], query);
+  }
+
+ private:
+  const Problem& pb_;
+  std::vector<KdTree> trees_;
+};
+
+// Box-assisted per point: the points sorted by coordinate 0, so the candidates of i are the
+// positions whose coordinate 0 lies within the largest radius still needed (found by binary
+// search); the accumulator is extended coordinate by coordinate from m = 1 with early exit.
+template <class N>
+class BoxCounter final : public ReferenceCounter {
+ public:
+  explicit BoxCounter(const Problem& pb) : pb_(pb) {
+    const std::size_t n = pb.points, m = pb.max_m;
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return pb.at(a, 0) != pb.at(b, 0) ? pb.at(a, 0) < pb.at(b, 0) : a < b;
+    });
+    coords_.resize(n * m);
+    index_ = std::move(order);
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t k = 0; k < m; ++k) coords_[p * m + k] = pb.at(index_[p], k);
+  }
+
+  void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram& h) const override {
+    std::fill(h.begin(), h.end(), 0);
+    std::size_t top = 0;
+    for (const std::size_t n : need) top = std::max(top, n);
+    if (top > 0) {
+      const std::size_t m = pb_.max_m, nr = pb_.nr;
+      const double t = pb_.thresholds[top - 1];
+      const double a0 = pb_.at(i, 0);
+      const auto c0 = [&](std::size_t p) { return coords_[p * m]; };
+      // The window: first position not too far left, then the first one too far right.
+      const std::size_t lo = first_failing(0, pb_.points, [&](std::size_t p) {
+        return c0(p) <= a0 && !(N::add(0.0, a0 - c0(p)) < t);
+      });
+      const std::size_t hi = first_failing(lo, pb_.points, [&](std::size_t p) {
+        return c0(p) <= a0 || N::add(0.0, c0(p) - a0) < t;
+      });
+      const AccBins::Lookup bins = pb_.bins->lookup();
+      std::vector<double> a(m);
+      for (std::size_t k = 0; k < m; ++k) a[k] = pb_.at(i, k);
+      for (std::size_t q = lo; q < hi; ++q) {
+        if (in_window(i, index_[q], pb_.w)) continue;
+        const double* b = &coords_[q * m];
+        double acc = 0.0;
+        for (std::size_t k = 0; k < m; ++k) {
+          acc = N::add(acc, std::abs(a[k] - b[k]));
+          if (!(acc < t)) break;  // the accumulator never decreases: no larger m counts either
+          if (k + 1 >= pb_.min_m) ++h[(k + 1 - pb_.min_m) * nr + bins.inside(acc)];
+        }
+      }
+    }
+    histogram_to_cumulative(h, pb_.nm, pb_.nr, cum);
+  }
+
+ private:
+  const Problem& pb_;
+  std::vector<double> coords_;  // all max_m coordinates per point, in coordinate-0 order
+  std::vector<std::size_t> index_;
+};
+
+// Partners of point i on both sides outside the Theiler window.
+Count admissible_partners(std::size_t i, std::size_t points, std::size_t w) {
+  const std::size_t first = i > w ? i - w : 0;
+  const std::size_t last = std::min(points - 1, add_sat(i, w));
+  return points - (last - first + 1);
+}
+
+struct Totals {
+  std::vector<std::vector<Count>> pairs, examined;
+};
+
+// Reference points in `order`. Without a cap, all of them are counted, split over the workers.
+// With a cap the points are taken in waves, the per-point counts merged in `order`: after each
+// point, a radius whose count reached the cap is closed for that dimension (its `examined` stops
+// there). Counts grow with the radius, so the closed radii of a dimension are always the largest
+// ones and need[mi] (the number still open) describes them. The merge is sequential and per
+// point, so the outcome does not depend on the wave size or the number of threads.
+Totals reference_walk(const Problem& pb, const ReferenceCounter& counter, const std::vector<std::size_t>& order,
+                      std::uint64_t cap) {
+  const std::size_t nm = pb.nm, nr = pb.nr, stride = nm * nr;
+  Totals out{std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0)),
+             std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0))};
+  std::vector<std::size_t> need(nm, nr);
+  if (cap == 0) {
+    const std::size_t tasks = (order.size() + chunk_points - 1) / chunk_points;
+    const std::size_t workers = worker_count(pb.threads, tasks);
+    std::vector<Histogram> sums(workers, Histogram(stride, 0));
+    std::vector<Histogram> scratch(workers, Histogram(stride, 0));
+    std::vector<std::vector<Count>> cum(workers, std::vector<Count>(stride, 0));
+    parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
+      const std::size_t end = std::min(order.size(), (t + 1) * chunk_points);
+      for (std::size_t u = t * chunk_points; u < end; ++u) {
+        counter.count(order[u], need, cum[worker].data(), scratch[worker]);
+        for (std::size_t k = 0; k < stride; ++k) sums[worker][k] += cum[worker][k];
+      }
+    });
+    const Histogram total = sum_histograms(sums);
+    Count examined = 0;
+    for (const std::size_t i : order) examined += admissible_partners(i, pb.points, pb.w);
+    for (std::size_t mi = 0; mi < nm; ++mi)
+      for (std::size_t k = 0; k < nr; ++k) {
+        out.pairs[mi][k] = total[mi * nr + k];
+        out.examined[mi][k] = examined;
+      }
+    return out;
+  }
+
+  const std::size_t per_worker = 64;
+  const std::size_t wave_size = per_worker * std::max<std::size_t>(1, pb.threads);
+  std::vector<Count> cum(std::min(wave_size, order.size()) * stride, 0);
+  std::vector<Histogram> scratch(worker_count(pb.threads, wave_size), Histogram(stride, 0));
+  for (std::size_t start = 0; start < order.size();) {
+    if (std::all_of(need.begin(), need.end(), [](std::size_t n) { return n == 0; })) break;
+    const std::size_t wave = std::min(wave_size, order.size() - start);
+    parallel_tasks(pb.threads, (wave + per_worker - 1) / per_worker, [&](std::size_t t, std::size_t worker) {
+      const std::size_t end = std::min(wave, (t + 1) * per_worker);
+      for (std::size_t u = t * per_worker; u < end; ++u)
+        counter.count(order[start + u], need, &cum[u * stride], scratch[worker]);
+    });
+    for (std::size_t u = 0; u < wave; ++u) {
+      const Count partners = admissible_partners(order[start + u], pb.points, pb.w);
+      for (std::size_t mi = 0; mi < nm; ++mi) {
+        for (std::size_t k = 0; k < need[mi]; ++k) {
+          out.pairs[mi][k] += cum[u * stride + mi * nr + k];
+          out.examined[mi][k] += partners;
+        }
+        while (need[mi] > 0 && out.pairs[mi][need[mi] - 1] >= cap) --need[mi];
+      }
+    }
+    start += wave;
+  }
+  return out;
+}
+
+// The reference points: a seeded partial Fisher-Yates shuffle of 0 .. P-1, `count` of them.
+std::vector<std::size_t> reference_order(std::size_t points, std::size_t count, std::uint64_t seed) {
+  std::vector<std::size_t> order(points);
+  for (std::size_t i = 0; i < points; ++i) order[i] = i;
+  Random rng(seed);
+  for (std::size_t t = 0; t < count; ++t)
+    std::swap(order[t], order[t + static_cast<std::size_t>(rng.below(points - t))]);
+  order.resize(count);
+  return order;
+}
+
+template <class N>
+Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
+  const bool exact = options.pairs_per_radius == 0 && options.reference_points == 0;
+  if (exact) {
+    std::vector<std::vector<Count>> pairs;
+    switch (options.search) {
+      case CorrelationSearch::brute_force: pairs = cumulate(brute_exact<N>(pb), pb.nm, pb.nr); break;
+      case CorrelationSearch::kd_tree: pairs = kd_exact(pb); break;
+      case CorrelationSearch::box_assisted: pairs = box_exact<N>(pb); break;
+    }
+    const std::size_t span = pb.points - pb.w - 1;  // validated: P >= w + 2
+    const Count all = static_cast<Count>(span) * static_cast<Count>(span + 1) / 2;
+    return {std::move(pairs), std::vector<std::vector<Count>>(pb.nm, std::vector<Count>(pb.nr, all))};
+  }
+  const std::size_t count = options.reference_points > 0 ? options.reference_points : pb.points;
+  const std::vector<std::size_t> order = reference_order(pb.points, count, options.seed);
+  const std::uint64_t cap = options.pairs_per_radius;
+  switch (options.search) {
+    case CorrelationSearch::brute_force: return reference_walk(pb, BruteCounter<N>(pb), order, cap);
+    case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap);
+    case CorrelationSearch::box_assisted: break;
+  }
+  return reference_walk(pb, BoxCounter<N>(pb), order, cap);
+}
+
+}  // namespace
+
+const char* to_string(CorrelationSearch search) noexcept {
+  switch (search) {
+    case CorrelationSearch::brute_force: return "brute_force";
+    case CorrelationSearch::kd_tree: return "kd_tree";
+    case CorrelationSearch::box_assisted: return "box_assisted";
+  }
+  return "unknown";
+}
+
+void CorrelationSumOptions::validate() const {
+  const auto refuse = [](const std::string& message) {
+    throw InvalidInput(ErrorCode::invalid_parameter, "correlation sum: " + message);
+  };
+  if (delay == 0) refuse("delay tau must be at least 1 sample (got tau = 0)");
+  if (min_dimension == 0) refuse("minimum embedding dimension must be at least 1 (got m = 0)");
+  if (min_dimension > max_dimension)
+    refuse("minimum embedding dimension must not exceed the maximum (got min m = " + std::to_string(min_dimension) +
+           " > max m = " + std::to_string(max_dimension) + ")");
+  if (threads == 0) refuse("the number of threads must be at least 1 (got 0)");
+  if (norm != Norm::max && norm != Norm::euclidean) refuse("unknown norm");
+  if (search != CorrelationSearch::brute_force && search != CorrelationSearch::kd_tree &&
+      search != CorrelationSearch::box_assisted)
+    refuse("unknown search mode");
+  if (radii.empty()) refuse("at least one radius is needed (got none)");
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    if (!std::isfinite(radii[k]) || !(radii[k] > 0.0))
+      refuse("radii must be finite and positive (got radius[" + std::to_string(k) + "] = " + number(radii[k]) + ")");
+    if (k > 0 && !(radii[k] > radii[k - 1]))
+      refuse("radii must be strictly increasing (got radius[" + std::to_string(k) + "] = " + number(radii[k]) +
+             " after radius[" + std::to_string(k - 1) + "] = " + number(radii[k - 1]) + ")");
+  }
+}
+
+std::vector<double> log_radii(double r_min, double r_max, std::size_t n) {
+  const auto refuse = [](const std::string& message) {
+    throw InvalidInput(ErrorCode::invalid_parameter, "log_radii: " + message);
+  };
+  if (!(std::isfinite(r_min) && r_min > 0.0 && std::isfinite(r_max) && r_max > 0.0))
+    refuse("radii must be finite and positive (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");
+  if (n == 0) refuse("the number of radii must be at least 1 (got 0)");
+  if (n == 1) {
+    if (r_min != r_max)
+      refuse("one radius needs r_min = r_max (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");
+    return {r_min};
+  }
+  if (!(r_min < r_max))
+    refuse("r_min must be smaller than r_max for " + std::to_string(n) + " radii (got r_min = " + number(r_min) +
+           ", r_max = " + number(r_max) + ")");
+  std::vector<double> r(n);
+  const double a = std::log(r_min), step = (std::log(r_max) - a) / static_cast<double>(n - 1);
+  for (std::size_t k = 0; k < n; ++k) r[k] = std::exp(a + step * static_cast<double>(k));
+  r.front() = r_min;  // the ends exactly as given
+  r.back() = r_max;
+  for (std::size_t k = 1; k < n; ++k)
+    if (!(r[k] > r[k - 1]))
+      refuse(std::to_string(n) + " radii between " + number(r_min) + " and " + number(r_max) +
+             " are not distinct in double precision");
+  return r;
+}
+
+CorrelationSumResult correlation_sum(std::span<const double> x, const CorrelationSumOptions& options) {
+  options.validate();
+  require_finite(x, "correlation sum");
+  require_not_constant(x, "correlation sum");
+  const std::size_t tau = options.delay, w = options.theiler, top = options.max_dimension;
+  const std::size_t minimum = add_sat(add_sat(mul_sat(top - 1, tau), w), 2);
+  require_length(x, minimum, "correlation sum",
+                 "the reference set i < N - (m-1)*tau for m up to " + std::to_string(top) + " with tau = " +
+                     std::to_string(tau) + " needs at least one pair outside the Theiler window w = " +
+                     std::to_string(w) + ": N >= (m-1)*tau + w + 2 = " + std::to_string(top - 1) + "*" +
+                     std::to_string(tau) + " + " + std::to_string(w) + " + 2");
+  const std::size_t points = x.size() - (top - 1) * tau;
+  if (options.reference_points > points)
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "correlation sum: reference_points must not exceed the " + std::to_string(points) +
+                           " embedded points N - (m-1)*tau (got " + std::to_string(options.reference_points) + ")");
+
+  // For the Euclidean norm the series and radii are multiplied by a power of two that brings
+  // max |x| into [0.5, 1): exact, so every comparison d < r keeps its outcome, while squares can
+  // neither overflow nor underflow. The maximum norm needs no squares and is used as given.
+  std::vector<double> scaled;
+  std::vector<double> radii = options.radii;
+  std::span<const double> y = x;
+  if (options.norm == Norm::euclidean) {
+    double largest = 0.0;
+    for (const double v : x) largest = std::max(largest, std::abs(v));
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    scaled.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) scaled[i] = std::ldexp(x[i], -exponent);
+    for (double& r : radii) r = std::ldexp(r, -exponent);
+    y = scaled;
+  }
+
+  std::vector<double> thresholds(radii.size());
+  for (std::size_t k = 0; k < radii.size(); ++k) thresholds[k] = threshold(options.norm, radii[k]);
+  const AccBins bins(thresholds);
+  Problem pb;
+  pb.y = y;
+  pb.radii = radii;
+  pb.thresholds = thresholds;
+  pb.r_max = radii.back();
+  pb.t_max = thresholds.back();
+  pb.tau = tau;
+  pb.w = w;
+  pb.points = points;
+  pb.min_m = options.min_dimension;
+  pb.max_m = top;
+  pb.nm = top - options.min_dimension + 1;
+  pb.nr = radii.size();
+  pb.norm = options.norm;
+  pb.threads = options.threads;
+  pb.bins = &bins;
+
+  Totals totals = options.norm == Norm::max ? compute<MaxNorm>(pb, options) : compute<EuclideanNorm>(pb, options);
+
+  CorrelationSumResult result;
+  for (std::size_t m = options.min_dimension; m <= top; ++m) result.dimension.push_back(m);
+  result.radius = options.radii;
+  result.correlation_sum.assign(pb.nm, std::vector<double>(pb.nr, 0.0));
+  for (std::size_t mi = 0; mi < pb.nm; ++mi)
+    for (std::size_t k = 0; k < pb.nr; ++k)
+      if (totals.examined[mi][k] > 0)
+        result.correlation_sum[mi][k] =
+            static_cast<double>(totals.pairs[mi][k]) / static_cast<double>(totals.examined[mi][k]);
+  result.pairs = std::move(totals.pairs);
+  result.examined = std::move(totals.examined);
+  result.points = options.reference_points > 0 ? options.reference_points : points;
+  return result;
+}
+
+}  // namespace chaos
