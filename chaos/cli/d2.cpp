@@ -24,6 +24,7 @@ struct D2Args {
   std::optional<std::size_t> theiler;
   std::optional<double> r_min, r_max;
   std::size_t radii = 40;
+  std::vector<double> radius_list;
   std::string norm = "max";
   std::string search = "box";
   std::string plot;
@@ -102,7 +103,7 @@ void run(D2Args& args) {
   const double range = *hi - *lo;
   const double r_max = args.r_max.value_or(range / 4.0);
   const double r_min = args.r_min.value_or(range / 1000.0);
-  args.sums.radii = log_radii(r_min, r_max, args.radii);
+  args.sums.radii = args.radius_list.empty() ? log_radii(r_min, r_max, args.radii) : args.radius_list;
 
   const CorrelationSumResult sums = correlation_sum(x, args.sums);
   const CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
@@ -113,7 +114,8 @@ void run(D2Args& args) {
       .parameter("dt", series.dt).parameter("delay", args.sums.delay).parameter("min_dimension", args.sums.min_dimension)
       .parameter("max_dimension", args.sums.max_dimension).parameter("theiler", args.sums.theiler)
       .parameter("theiler_source", theiler_source).parameter("norm", args.norm).parameter("search", args.search)
-      .parameter("r_min", r_min).parameter("r_max", r_max).parameter("radii", args.radii)
+      .parameter("r_min", args.sums.radii.front()).parameter("r_max", args.sums.radii.back())
+      .parameter("radii", args.sums.radii.size())
       .parameter("pairs_per_radius", args.sums.pairs_per_radius).parameter("reference_points", args.sums.reference_points)
       .parameter("seed", args.sums.seed).parameter("threads", args.sums.threads)
       .parameter("tolerance", args.dimension.region.tolerance).parameter("min_points", args.dimension.region.min_points)
@@ -187,6 +189,8 @@ void register_d2(CLI::App& app) {
   command->add_option("-r,--min-radius", args->r_min, "smallest radius (default: data range / 1000)");
   command->add_option("-R,--max-radius", args->r_max, "largest radius (default: data range / 4)");
   command->add_option("-#,--radii", args->radii, "number of log-spaced radii")->capture_default_str();
+  command->add_option("--radius-list", args->radius_list, "explicit increasing radii (comma-separated), instead of -r -R -#")
+      ->delimiter(',');
   command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
   command->add_option("--search", args->search, "box (box-assisted), kd (kd-tree) or brute")->capture_default_str();
   command->add_option("-N,--pairs-per-radius", args->sums.pairs_per_radius,

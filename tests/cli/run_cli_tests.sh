@@ -79,6 +79,9 @@ expect_json_keys autocorrelation "$work/lorenz.dat" -- lag autocorrelation first
 expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension
 
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
+r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
+[[ $r == "[0.01,0.02,0.05,0.1]" ]] && pass || fail "--radius-list gave radius $r"
+expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
 
