@@ -9,43 +9,18 @@
 #include <string>
 
 #include "chaos/error.hpp"
-#include "fftw_planner.hpp"
+#include "fftw.hpp"
 #include "chaos/series.hpp"
 
 namespace chaos {
 
 namespace {
 
+using detail::FftwBuffer;
+using detail::fftw_buffer;
+using detail::Plan;
 
-struct FftwFree {
-  void operator()(void* p) const noexcept { fftw_free(p); }
-};
-template <class T>
-using FftwBuffer = std::unique_ptr<T[], FftwFree>;
 
-template <class T>
-FftwBuffer<T> fftw_buffer(std::size_t count) {
-  auto* p = static_cast<T*>(fftw_malloc(sizeof(T) * count));
-  if (p == nullptr) throw std::bad_alloc();
-  return FftwBuffer<T>(p);
-}
-
-class Plan {
- public:
-  explicit Plan(fftw_plan p) : p_(p) {
-    if (p_ == nullptr) throw std::bad_alloc();
-  }
-  ~Plan() {
-    std::lock_guard lock(detail::fftw_planner_mutex());
-    fftw_destroy_plan(p_);
-  }
-  Plan(const Plan&) = delete;
-  Plan& operator=(const Plan&) = delete;
-  void execute() const noexcept { fftw_execute(p_); }
-
- private:
-  fftw_plan p_;
-};
 
 // Smallest 2^a 3^b 5^c >= n: FFTW is fast on such sizes, and they are at most 25% above n
 // where a power of two can be almost 100% above.

@@ -10,38 +10,15 @@
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
 namespace {
 
-constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
-
-// Saturating arithmetic for the length requirement, so absurd options give a clear "too short"
-// instead of a wrapped-around requirement.
-std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return a != 0 && b > saturated / a ? saturated : a * b;
-}
-std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > saturated - b ? saturated : a + b; }
-
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
-
-// The series times a power of two that brings max |x| into [0.5, 1). The factor is exact, so
-// nearest neighbours and the ratios E1, E2 are unchanged bit for bit, while sums of squares (the
-// Euclidean norm) can neither overflow nor underflow for series of any magnitude.
-std::vector<double> rescaled(std::span<const double> x, int& exponent) {
-  double largest = 0.0;
-  for (const double v : x) largest = std::max(largest, std::abs(v));
-  std::frexp(largest, &exponent);
-  std::vector<double> y(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) y[i] = std::ldexp(x[i], -exponent);
-  return y;
-}
+using detail::add_sat;
+using detail::mul_sat;
+const auto& number = detail::format_number;
 
 }  // namespace
 
@@ -84,8 +61,9 @@ CaoResult cao(std::span<const double> x, const CaoOptions& options) {
                      ": N >= m*tau + 2*w + 2 = " + std::to_string(top) + "*" + std::to_string(tau) + " + 2*" +
                      std::to_string(w) + " + 2");
 
-  int exponent = 0;
-  const std::vector<double> y = rescaled(x, exponent);
+  // Exact power-of-two rescaling: no neighbour or ratio changes, sums of squares stay finite.
+  const int exponent = detail::scale_exponent(x);
+  const std::vector<double> y = detail::scaled_by_power_of_two(x, exponent);
   const std::size_t n = y.size();
   const std::size_t count = options.max_dimension - options.min_dimension + 1;
 

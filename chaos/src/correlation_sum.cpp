@@ -18,6 +18,7 @@
 #include "chaos/neighbors.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -40,20 +41,14 @@ namespace chaos {
 
 namespace {
 
+using detail::add_sat;
+using detail::mul_sat;
+const auto& number = detail::format_number;
+
 using Count = std::uint64_t;
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
-
-constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
-std::size_t mul_sat(std::size_t a, std::size_t b) noexcept { return a != 0 && b > saturated / a ? saturated : a * b; }
-std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > saturated - b ? saturated : a + b; }
 
 bool in_window(std::size_t i, std::size_t j, std::size_t w) noexcept { return (i > j ? i - j : j - i) <= w; }
 

@@ -10,39 +10,15 @@
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
 namespace {
 
-constexpr std::size_t saturated = std::numeric_limits<std::size_t>::max();
-
-// Saturating arithmetic for the length requirement, so absurd options give a clear "too short"
-// instead of a wrapped-around requirement.
-std::size_t mul_sat(std::size_t a, std::size_t b) noexcept {
-  return a != 0 && b > saturated / a ? saturated : a * b;
-}
-std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > saturated - b ? saturated : a + b; }
-
-std::string number(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
-
-// The series times a power of two that brings max |x| into [0.5, 1): exact, so every ratio the
-// criteria compare is unchanged, while the Euclidean sums of squares can neither overflow nor
-// underflow whatever the magnitude of the data.
-std::vector<double> rescaled(std::span<const double> x) {
-  double largest = 0.0;
-  for (const double v : x) largest = std::max(largest, std::abs(v));
-  int exponent = 0;
-  std::frexp(largest, &exponent);
-  std::vector<double> y(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) y[i] = std::ldexp(x[i], -exponent);
-  return y;
-}
+using detail::add_sat;
+using detail::mul_sat;
+const auto& number = detail::format_number;
 
 // Population standard deviation (Kennel et al.'s R_A), two-pass for accuracy.
 double standard_deviation(const std::vector<double>& y) {
@@ -94,7 +70,7 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
                      ": N >= m*tau + 2*w + 2 = " + std::to_string(options.max_dimension) + "*" +
                      std::to_string(tau) + " + 2*" + std::to_string(w) + " + 2");
 
-  const std::vector<double> y = rescaled(x);
+  const std::vector<double> y = detail::scaled_by_power_of_two(x, detail::scale_exponent(x));
   const double attractor_size = standard_deviation(y);
   const std::size_t n = y.size();
   const NeighborQuery query{w, true};  // ties at distance 0 are skipped, as in Cao's method

@@ -14,13 +14,17 @@
 #include <utility>
 
 #include "chaos/error.hpp"
-#include "fftw_planner.hpp"
+#include "fftw.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
 
 namespace chaos {
 
 namespace {
+
+using detail::FftwBuffer;
+using detail::fftw_buffer;
+using detail::Plan;
 
 std::string num(double v) {
   char buffer[32];
@@ -29,45 +33,6 @@ std::string num(double v) {
 }
 
 
-struct FftwFree {
-  void operator()(void* p) const noexcept { fftw_free(p); }
-};
-template <class T>
-using FftwBuffer = std::unique_ptr<T[], FftwFree>;
-
-template <class T>
-FftwBuffer<T> fftw_buffer(std::size_t count) {
-  auto* p = static_cast<T*>(fftw_malloc(sizeof(T) * count));
-  if (p == nullptr) throw std::bad_alloc();
-  return FftwBuffer<T>(p);
-}
-
-class Plan {
- public:
-  Plan() = default;
-  explicit Plan(fftw_plan p) : p_(p) {
-    if (p_ == nullptr) throw std::bad_alloc();
-  }
-  ~Plan() { reset(); }
-  Plan(Plan&& other) noexcept : p_(std::exchange(other.p_, nullptr)) {}
-  Plan& operator=(Plan&& other) noexcept {
-    if (this != &other) {
-      reset();
-      p_ = std::exchange(other.p_, nullptr);
-    }
-    return *this;
-  }
-  void execute() const noexcept { fftw_execute(p_); }
-
- private:
-  void reset() noexcept {
-    if (p_ == nullptr) return;
-    std::lock_guard lock(detail::fftw_planner_mutex());
-    fftw_destroy_plan(p_);
-    p_ = nullptr;
-  }
-  fftw_plan p_ = nullptr;
-};
 
 // A real-to-complex / complex-to-real pair for one length on its own buffers. FFTW_ESTIMATE picks
 // the algorithm without timing anything, so the same length always gets the same plan and the

@@ -1,4 +1,4 @@
-#include "fftw_planner.hpp"
+#include "fftw.hpp"
 
 namespace chaos::detail {
 

@@ -1,0 +1,49 @@
+#pragma once
+// Small private helpers shared by the estimators: saturating index arithmetic for length checks,
+// full-precision numbers in messages, and the exact power-of-two rescaling that keeps sums of
+// squares finite for data of any magnitude.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace chaos::detail {
+
+inline constexpr std::size_t size_max = std::numeric_limits<std::size_t>::max();
+
+// a * b and a + b, saturating at size_max: absurd options give a clear "too short" instead of a
+// wrapped-around requirement.
+inline std::size_t mul_sat(std::size_t a, std::size_t b) noexcept { return a != 0 && b > size_max / a ? size_max : a * b; }
+inline std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > size_max - b ? size_max : a + b; }
+
+// All 17 significant digits, so a message shows the number that was really used.
+inline std::string format_number(double v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+// The power of two 2^exponent with max |x| / 2^exponent in [0.5, 1). Dividing by it is exact, so
+// neighbours, ratios and comparisons are unchanged bit for bit while squares cannot overflow or
+// underflow.
+inline int scale_exponent(std::span<const double> x) noexcept {
+  double largest = 0.0;
+  for (const double v : x) largest = std::max(largest, std::abs(v));
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return exponent;
+}
+
+inline std::vector<double> scaled_by_power_of_two(std::span<const double> x, int exponent) {
+  std::vector<double> y(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) y[i] = std::ldexp(x[i], -exponent);
+  return y;
+}
+
+}  // namespace chaos::detail
