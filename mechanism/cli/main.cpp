@@ -1,0 +1,220 @@
+// The `mechanism` command: the slider-crank simulator from a scene file.
+//   mechanism scene [--default] [scene.toml] [--set key=value]...
+//   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
+// Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene,
+// 5 the integration could not continue (the summary says when and why).
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "mechanism/error.hpp"
+#include "mechanism/scene.hpp"
+#include "mechanism/signals.hpp"
+#include "mechanism/simulate.hpp"
+
+namespace {
+
+enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_scene = 3, integration_failed = 5 };
+
+struct SceneOptions {
+  std::string file;
+  std::vector<std::string> overrides;
+};
+
+void add_scene_options(CLI::App& cmd, SceneOptions& o) {
+  cmd.add_option("scene", o.file, "scene file (TOML); without one, the built-in seed scene");
+  cmd.add_option("--set", o.overrides, "override a key: --set joint.slider.clearance=0.2e-3 (repeatable)");
+}
+
+mechanism::Scene load_scene(const SceneOptions& o) {
+  std::string text;
+  if (!o.file.empty()) {
+    std::ifstream in(o.file);
+    if (!in) throw mechanism::InvalidParameter("scene", o.file, "cannot be opened (missing or unreadable file)");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
+  mechanism::Scene scene = mechanism::read_scene(text, o.overrides, o.file.empty() ? "scene" : o.file);
+  for (const auto& w : mechanism::scene_warnings(scene)) std::cerr << "mechanism: warning: " << w << "\n";
+  return scene;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+void write_scene_header(std::ostream& out, const mechanism::Scene& scene) {
+  std::istringstream lines(mechanism::to_toml(scene));
+  for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+}
+
+// A progress bar on stderr when it is a terminal and the run is long enough to need one.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  void operator()(double fraction) {
+    if (!enabled_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (elapsed < 2.0 && fraction < 1.0) return;
+    const int width = 40, filled = static_cast<int>(fraction * width);
+    const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << std::setw(3)
+              << static_cast<int>(100 * fraction) << "%  " << std::fixed << std::setprecision(0) << remaining
+              << " s left " << std::flush;
+    shown_ = true;
+  }
+  ~ProgressBar() {
+    if (shown_) std::cerr << "\n";
+  }
+
+ private:
+  bool enabled_, shown_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mechanism: planar slider-crank with translational and revolute clearance joints"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "mechanism 0.1.0");
+
+  SceneOptions scene_opts;
+  bool print_default = false;
+  auto* scene_cmd = app.add_subcommand("scene", "print the resolved scene (every key, defaults included)");
+  add_scene_options(*scene_cmd, scene_opts);
+  scene_cmd->add_flag("--default", print_default, "print the built-in seed scene with a comment on every key");
+
+  SceneOptions sim_opts;
+  bool json = false, strobe = false, quiet = false;
+  std::string out_path, signals;
+  auto* sim = app.add_subcommand("simulate", "integrate the scene and write the chosen signals");
+  add_scene_options(*sim, sim_opts);
+  sim->add_flag("--stroboscopic", strobe, "write one row per crank revolution (with a revolution column) instead of the time series");
+  sim->add_option("--signals", signals, "comma-separated columns to write (default: all; see docs/mechanism/simulate.md)");
+  sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)");
+  sim->add_flag("--json", json, "write a JSON summary to standard output (the table then goes only to -o FILE)");
+  sim->add_flag("-q,--quiet", quiet, "no progress bar");
+
+  try {
+    app.parse(argc, argv);
+    if (scene_cmd->parsed()) {
+      if (print_default) {
+        std::cout << mechanism::default_scene_toml();
+      } else {
+        std::cout << mechanism::to_toml(load_scene(scene_opts));
+      }
+      return ok;
+    }
+    // simulate
+    mechanism::Scene scene = load_scene(sim_opts);
+    if (strobe) scene.run.stroboscopic = true;
+    mechanism::SliderCrank system(scene);
+    const mechanism::SignalTable table = mechanism::signal_table(system);
+    std::vector<std::size_t> columns;
+    if (signals.empty()) {
+      for (std::size_t i = 0; i < table.names.size(); ++i) columns.push_back(i);
+    } else {
+      std::stringstream list(signals);
+      for (std::string name; std::getline(list, name, ',');) {
+        auto it = std::find(table.names.begin(), table.names.end(), name);
+        if (it == table.names.end()) {
+          std::string all;
+          for (const auto& n : table.names) all += " " + n;
+          throw mechanism::InvalidParameter("--signals", name, "is not a signal of this scene; it has:" + all);
+        }
+        columns.push_back(static_cast<std::size_t>(it - table.names.begin()));
+      }
+    }
+    std::unique_ptr<std::ofstream> file;
+    std::ostream* out = nullptr;
+    if (!out_path.empty()) {
+      file = std::make_unique<std::ofstream>(out_path);
+      if (!*file) throw mechanism::InvalidParameter("-o", out_path, "cannot be written");
+      out = file.get();
+    } else if (!json) {
+      out = &std::cout;
+    }
+    if (out) {
+      *out << "# mechanism simulate: " << (scene.run.stroboscopic ? "one row per crank revolution" : "time series")
+           << "\n# resolved scene:\n";
+      write_scene_header(*out, scene);
+      *out << "#";
+      if (scene.run.stroboscopic) *out << " revolution";
+      for (std::size_t c : columns) *out << (c == columns.front() && !scene.run.stroboscopic ? " " : "\t") << table.names[c] << " [" << table.units[c] << "]";
+      *out << "\n";
+    }
+    std::vector<double> values;
+    auto write_row = [&](const std::string& prefix, double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+      if (!out) return;
+      mechanism::signal_values(system, t, x, ev, values);
+      *out << prefix;
+      for (std::size_t i = 0; i < columns.size(); ++i) *out << (i || !prefix.empty() ? "\t" : "") << number(values[columns[i]]);
+      *out << "\n";
+    };
+    mechanism::SimulationObserver observer;
+    if (scene.run.stroboscopic) {
+      observer.stroboscopic = [&](std::size_t rev, double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+        write_row(std::to_string(rev), t, x, ev);
+      };
+    } else {
+      observer.sample = [&](double t, const mechanism::State& x, const mechanism::Evaluation& ev) { write_row("", t, x, ev); };
+    }
+    ProgressBar bar(!quiet && isatty(fileno(stderr)));
+    observer.progress = [&](double f) { bar(f); };
+    const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
+    if (json) {
+      nlohmann::ordered_json j;
+      j["status"] = mechanism::to_string(s.status);
+      j["message"] = s.message;
+      j["end_time"] = s.end_time;
+      j["steps"] = s.steps;
+      j["rejected_steps"] = s.rejected_steps;
+      j["rhs_evaluations"] = s.rhs_evaluations;
+      j["step"] = s.step;
+      j["wall_seconds"] = s.wall_seconds;
+      j["max_penetration"] = s.max_penetration;
+      j["contact_events"] = s.contact_events;
+      j["energy_balance_error"] = s.energy_balance_error;
+      j["energy_balance_relative"] = s.energy_balance_relative;
+      j["samples"] = s.samples;
+      j["stroboscopic_samples"] = s.stroboscopic_samples;
+      j["coordinates"] = system.coordinate_names();
+      std::cout << j.dump(2) << "\n";
+    }
+    if (s.status != mechanism::SimulationStatus::completed) {
+      std::cerr << "mechanism: the integration stopped: " << s.message << "\n";
+      return integration_failed;
+    }
+    return ok;
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return usage_error;
+  } catch (const mechanism::InvalidParameter& e) {
+    std::cerr << "mechanism: invalid scene: " << e.what() << "\n";
+    return invalid_scene;
+  } catch (const std::exception& e) {
+    std::cerr << "mechanism: internal error: " << e.what() << "\n";
+    return internal_error;
+  }
+}

@@ -1,0 +1,99 @@
+#pragma once
+// A kinematic jet: a scalar quantity of the mechanism (a coordinate of a point, an angle) written
+// as a function of the generalised coordinates q and of time through the driven crank angle. It
+// carries what the equations of motion need and nothing more:
+//   value  the quantity itself,
+//   rate   its time derivative,
+//   grad   its gradient with respect to (q, theta_crank): the row of the velocity Jacobian, so
+//          that rate = grad . (q_dot, omega),
+//   bias   the part of its second time derivative not proportional to q_ddot (centripetal and
+//          Coriolis terms; the crank turns at constant speed, so theta_crank_ddot = 0).
+// Its acceleration is then grad . (q_ddot, 0) + bias. The arithmetic below is forward-mode
+// differentiation to second order along the motion, so any pose built from the mechanism's
+// lengths and angles (sums, products, sin, cos, asin) comes with exact Jacobians and bias terms,
+// and the equations of motion follow from the principle of virtual power (Kane's form of
+// Lagrange's equations, seed Eq. 20-21) without deriving them by hand per joint topology.
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+namespace mechanism {
+
+// At most 8 free coordinates (crank pivot 2, conrod end 2, conrod angle, slider pin 2, slider
+// angle) plus the driven crank angle; fixed capacity keeps every jet on the stack.
+inline constexpr int max_jet_columns = 9;
+using JetRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, max_jet_columns>;
+
+struct Jet {
+  double value = 0.0;
+  double rate = 0.0;
+  double bias = 0.0;
+  JetRow grad;
+
+  // A constant (zero gradient) over `columns` columns.
+  static Jet constant(double value, int columns) {
+    Jet j;
+    j.value = value;
+    j.grad = JetRow::Zero(columns);
+    return j;
+  }
+  // The free coordinate `index` with its current value and rate.
+  static Jet coordinate(int index, double value, double rate, int columns) {
+    Jet j = constant(value, columns);
+    j.rate = rate;
+    j.grad(index) = 1.0;
+    return j;
+  }
+};
+
+inline Jet operator+(const Jet& a, const Jet& b) {
+  return {a.value + b.value, a.rate + b.rate, a.bias + b.bias, a.grad + b.grad};
+}
+inline Jet operator-(const Jet& a, const Jet& b) {
+  return {a.value - b.value, a.rate - b.rate, a.bias - b.bias, a.grad - b.grad};
+}
+inline Jet operator-(const Jet& a) { return {-a.value, -a.rate, -a.bias, -a.grad}; }
+inline Jet operator*(double s, const Jet& a) { return {s * a.value, s * a.rate, s * a.bias, s * a.grad}; }
+inline Jet operator*(const Jet& a, const Jet& b) {
+  // (ab)'' = a'' b + 2 a' b' + a b''; only the q_ddot-free parts go into the bias.
+  return {a.value * b.value, a.rate * b.value + a.value * b.rate,
+          a.bias * b.value + 2.0 * a.rate * b.rate + a.value * b.bias,
+          b.value * a.grad + a.value * b.grad};
+}
+
+// f(a) for a scalar function with derivatives d1 = f'(a), d2 = f''(a).
+inline Jet chain(const Jet& a, double f, double d1, double d2) {
+  return {f, d1 * a.rate, d1 * a.bias + d2 * a.rate * a.rate, d1 * a.grad};
+}
+inline Jet sin(const Jet& a) {
+  const double s = std::sin(a.value), c = std::cos(a.value);
+  return chain(a, s, c, -s);
+}
+inline Jet cos(const Jet& a) {
+  const double s = std::sin(a.value), c = std::cos(a.value);
+  return chain(a, c, -s, -c);
+}
+// asin on (-1, 1); the caller guarantees |a| < 1 (a conrod shorter than the crank offset is
+// refused when the scene is read).
+inline Jet asin(const Jet& a) {
+  const double r = 1.0 - a.value * a.value;
+  const double d1 = 1.0 / std::sqrt(r);
+  return chain(a, std::asin(a.value), d1, a.value * d1 / r);
+}
+
+// A point of the plane as two jets.
+struct JetPoint {
+  Jet x, y;
+};
+inline JetPoint operator+(const JetPoint& a, const JetPoint& b) { return {a.x + b.x, a.y + b.y}; }
+inline JetPoint operator-(const JetPoint& a, const JetPoint& b) { return {a.x - b.x, a.y - b.y}; }
+
+// p + R(angle) (ox, oy): a point fixed in a body whose reference point is p and whose angle is
+// `angle`, at body-frame offset (ox, oy).
+inline JetPoint offset(const JetPoint& p, const Jet& angle, double ox, double oy) {
+  const Jet c = cos(angle), s = sin(angle);
+  return {p.x + ox * c - oy * s, p.y + ox * s + oy * c};
+}
+
+}  // namespace mechanism

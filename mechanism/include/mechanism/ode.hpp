@@ -1,0 +1,31 @@
+#pragma once
+// The vocabulary shared by the integrators (Boost.Odeint's system / stepper / observer split, with a
+// C++20 concept in place of its overloads). A *system* is any type with a const member
+//   rhs(t, x, dxdt)
+// that writes dx/dt at (t, x) into dxdt. The steppers pass a dxdt already sized like x, so a system
+// should assign into it element by element (or with a same-size Eigen expression) and never
+// reallocate: the simulator calls rhs tens of millions of times. Discrete memory a system keeps
+// (contact flags, the velocity at impact, ...) may be changed by the caller between steps; the
+// stepper must then be told with invalidate(), because it reuses f(t, x) from the previous step.
+
+#include <Eigen/Core>
+
+namespace mechanism {
+
+using State = Eigen::VectorXd;
+
+template <class S>
+concept OdeSystem = requires(const S& s, double t, const State& x, State& dxdt) { s.rhs(t, x, dxdt); };
+
+namespace detail {
+
+// Out of line (mechanism/src/integrators.cpp) so that the throwing path stays out of the inlined
+// stepping code. Throws InvalidParameter(key, value formatted to round-trip, rule).
+[[noreturn]] void throw_invalid(const char* key, double value, const char* rule);
+
+// Bit-for-bit equality of two states of any size: how a stepper decides that the caller handed it
+// back the state it produced, so that f(t1, x1) may serve as the next step's first stage.
+inline bool same_state(const State& a, const State& b) { return a.size() == b.size() && a == b; }
+
+}  // namespace detail
+}  // namespace mechanism

@@ -1,0 +1,157 @@
+#pragma once
+// A scene: everything the simulator needs to know about one run, read from TOML (toml++) and
+// validated once. It says what to model: the bodies, the crank driver, gravity, and for each joint
+// whether it is ideal or has clearance (then with its contact and friction laws); then the
+// integrator and the run. The built-in default is the seed paper's scene (Tables 1 and 2) with our
+// documented choices for what the paper leaves open (docs/mechanism/scene.md).
+//
+// Units are SI throughout (m, kg, kg m^2, s, N, Pa) except the crank speed, given in rpm as the
+// seed does. Angles are in radians.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mechanism/contact_law.hpp"
+#include "mechanism/friction_law.hpp"
+
+namespace mechanism {
+
+// A link: length between its two pins, mass, moment of inertia about its mass centre, and the
+// mass centre's position as a fraction of the length from its first pin (b2, b3 of seed Eq. 25).
+struct Link {
+  double length = 0.0;
+  double mass = 0.0;
+  double inertia = 0.0;
+  double mass_centre = 0.5;
+};
+
+struct Material {
+  double young_modulus = 207e9;
+  double poisson_ratio = 0.3;
+};
+
+// The slider: a rectangle of `length` (along the guide) by `height`, `width` deep (out of plane,
+// used only by the contact-area stiffness of seed Eq. 11). Its pin and mass centre are at its
+// geometric centre.
+struct Slider {
+  double mass = 0.28;
+  double inertia = 2.5e-4;
+  double length = 0.05;
+  double height = 0.05;
+  double width = 0.05;
+  Material material;
+};
+
+struct Driver {
+  double speed_rpm = 5000.0;  // constant crank speed
+  double initial_angle = 0.0;  // crank angle at t = 0
+  double angular_speed() const;  // rad/s
+  double period() const;         // s, one crank revolution
+};
+
+enum class JointKind { ideal, clearance };
+
+// How the slider meets a guide surface.
+//   face:    the seed's model (Eq. 11-12, 18-19): per surface one resultant force at the centroid
+//            W of the penetrated region, the penetration of the deepest corner, and the stiffness of
+//            the contact length L_c.
+//   corners: Flores et al. 2008: each penetrating corner is its own point contact with the
+//            stiffness of `stiffness_model`, halved so that a flat, uniformly penetrating slider
+//            feels the same total force as in the face model.
+enum class SliderContactModel { face, corners };
+
+// The stiffness of the slider-guide contact.
+//   contact_length: seed Eq. 11 with S = L_c W and L_c from Eq. 12 (changes during contact);
+//   flat_face:      Eq. 11 evaluated once at L_c = L_s (a constant);
+//   given:          the number in `stiffness` (N/m^n).
+enum class SliderStiffness { contact_length, flat_face, given };
+
+struct TranslationalJoint {
+  JointKind kind = JointKind::clearance;
+  double clearance = 0.5e-3;  // gap per side: guide height = slider height + 2 clearance
+  SliderContactModel model = SliderContactModel::face;
+  SliderStiffness stiffness_model = SliderStiffness::contact_length;
+  double stiffness = 1e10;  // used only when stiffness_model = given
+  Material guide;
+  ContactLawParameters contact;
+  FrictionLawParameters friction;
+};
+
+// Journal-in-bearing stiffness: Hertz's cylinder-in-hole value from the materials and radii
+// (Flores' formula), or a given number.
+enum class JournalStiffness { hertz, given };
+
+// A revolute joint; with clearance the journal (the pin, radius bearing_radius - clearance) moves
+// inside the bearing (the hole, radius bearing_radius).
+struct RevoluteJoint {
+  JointKind kind = JointKind::ideal;
+  double bearing_radius = 0.01;
+  double clearance = 0.5e-3;
+  JournalStiffness stiffness_model = JournalStiffness::hertz;
+  double stiffness = 1e10;  // used only when stiffness_model = given
+  Material journal;
+  Material bearing;
+  ContactLawParameters contact;
+  // No friction by default: the seed's Fig. 12 weakens revolute friction (mu = 0 or 0.05).
+  FrictionLawParameters friction = [] {
+    FrictionLawParameters f;
+    f.law = FrictionLaw::none;
+    return f;
+  }();
+};
+
+enum class IntegratorMethod { rk4, dopri5 };
+
+struct IntegratorSettings {
+  IntegratorMethod method = IntegratorMethod::rk4;
+  // RK4: the largest step; the step used is the crank period divided by the smallest whole number
+  // of steps that keeps it at or below this, so stroboscopic samples fall on step ends.
+  double step = 1e-6;
+  // Dormand-Prince 5(4).
+  double relative_tolerance = 1e-8;
+  double absolute_tolerance = 1e-10;
+  double max_step = 1e-4;
+  double min_step = 1e-14;     // below this dopri5 reports step_underflow
+  double max_steps = 1e9;      // accepted + rejected steps before a run reports step_limit
+};
+
+struct RunSettings {
+  double duration = 0.06;         // simulated time after the transient, s (5 crank periods)
+  double transient = 0.0;         // simulated time run but not written, s
+  double output_interval = 1e-5;  // time-series sampling interval, s (0: no time series)
+  bool stroboscopic = false;      // also sample once per crank revolution (at the initial angle)
+};
+
+struct Scene {
+  Link crank{0.05, 0.3, 1e-4, 0.5};
+  Link conrod{0.12, 0.21, 2.5e-4, 0.5};
+  Slider slider;
+  Driver driver;
+  double gravity = 9.81;  // m/s^2 along -y
+  TranslationalJoint slider_guide;
+  RevoluteJoint crank_ground;
+  RevoluteJoint crank_conrod;
+  RevoluteJoint conrod_slider;
+  IntegratorSettings integrator;
+  RunSettings run;
+};
+
+// The seed's scene as commented TOML: the text `mechanism scene --default` prints.
+std::string_view default_scene_toml();
+
+// Reads a scene: the default scene, then the keys of `toml_text` (may be empty), then each
+// override "dotted.key=value" (the value in TOML syntax: 0.2e-3, "corners", true). Unknown keys,
+// wrong types and impossible values (negative mass, conrod not longer than the crank offset,
+// clearance <= 0, zero step, ...) throw InvalidParameter naming the key, the value and the rule.
+// `source` names the text in messages (a file name).
+Scene read_scene(std::string_view toml_text, const std::vector<std::string>& overrides = {},
+                 std::string_view source = "scene");
+
+// The resolved scene as TOML, every key with its value (defaults included).
+std::string to_toml(const Scene& scene);
+
+// Warnings a valid scene still deserves (mu_s < mu_k: LuGre without a stiction peak, ...).
+std::vector<std::string> scene_warnings(const Scene& scene);
+
+}  // namespace mechanism

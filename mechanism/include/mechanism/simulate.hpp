@@ -1,0 +1,51 @@
+#pragma once
+// The simulation loop: integrates a SliderCrank over the scene's run with the scene's integrator,
+// handles the hybrid part between steps (contact onsets located on the step's dense output, the
+// impact velocity latched there, memory committed), and hands time-series and stroboscopic
+// samples to an observer (Odeint's system / stepper / observer split). An integration that cannot
+// continue ends with a status, the time and the reason; it is never an exception.
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "mechanism/slider_crank.hpp"
+
+namespace mechanism {
+
+enum class SimulationStatus { completed, step_underflow, non_finite, step_limit };
+const char* to_string(SimulationStatus status) noexcept;
+
+struct SimulationSummary {
+  SimulationStatus status = SimulationStatus::completed;
+  std::string message;        // empty when completed
+  double end_time = 0.0;      // s, where the integration stopped
+  std::size_t steps = 0;      // accepted steps
+  std::size_t rejected_steps = 0;
+  std::size_t rhs_evaluations = 0;
+  double step = 0.0;          // RK4: the step used (a whole fraction of the crank period)
+  double wall_seconds = 0.0;
+  double max_penetration = 0.0;  // m, deepest penetration of any contact site at a step end
+  std::size_t contact_events = 0;  // contact onsets
+  // max over step ends of |E(t) - E(0) - W_drive(t) - W_contact(t)| (J), E = kinetic + gravity;
+  // and the same divided by the largest kinetic energy seen, a scale-free measure.
+  double energy_balance_error = 0.0;
+  double energy_balance_relative = 0.0;
+  std::size_t samples = 0;
+  std::size_t stroboscopic_samples = 0;
+};
+
+struct SimulationObserver {
+  // A time-series row every run.output_interval after the transient.
+  std::function<void(double t, const State& x, const Evaluation& ev)> sample;
+  // Once per crank revolution after the transient, at the initial crank angle (when
+  // run.stroboscopic, or whenever this is set).
+  std::function<void(std::size_t revolution, double t, const State& x, const Evaluation& ev)> stroboscopic;
+  // Fraction of the simulated time done, called about every percent.
+  std::function<void(double fraction)> progress;
+};
+
+// Runs the scene of `system` from its initial state (seed Eq. 29).
+SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observer = {});
+
+}  // namespace mechanism

@@ -1,0 +1,152 @@
+#pragma once
+// The slider-crank as an ODE system built from a scene. It models only what the scene requires:
+// the generalised coordinates are chosen from the joints (an ideal joint adds none and no contact
+// code), and each clearance joint adds its coordinates and its contact sites, each with the
+// memory its laws need (the impact velocity latched at onset; the LuGre bristle deflection).
+//
+// Coordinates (when present, in this order):
+//   crank_pivot_x, crank_pivot_y   crank-ground clearance: the crank's journal centre
+//   conrod_pin_x, conrod_pin_y     crank-conrod clearance: the conrod's bearing centre at its first pin
+//   conrod_angle                   theta_3; dependent (not a coordinate) when the slider is ideally
+//                                  pinned to the conrod and ideally guided
+//   slider_x, slider_y             conrod-slider clearance: the slider's centre (slider_y only when
+//                                  the translational joint has clearance)
+//   slider_angle                   translational clearance: theta_4
+// The crank turns at constant speed (its angle is prescribed). The seed's scene (translational
+// clearance only) integrates conrod_angle and slider_angle: seed Eq. 27.
+//
+// Continuous state x = (q, q_dot, W_drive, W_contact): the last two integrate the work of the
+// driving torque and of all contact and friction forces, so the energy balance
+// E(t) - E(0) = W_drive + W_contact checks the integration. The equations of motion are the
+// principle of virtual power over the three moving bodies, with Jacobians and bias accelerations
+// from kinematic jets (kinematic_jet.hpp).
+//
+// Discrete memory (per contact site) changes only between integrator steps, in commit(): during
+// a step's stages every site sees the memory of the step's start, so rejected or repeated stages
+// are reproducible.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mechanism/ode.hpp"
+#include "mechanism/scene.hpp"
+
+namespace mechanism {
+
+// Where the slider touches the guide, after Flores et al. 2008.
+enum class SliderConfiguration {
+  free_flight = 0,   // no corner penetrates
+  one_corner = 1,    // a single corner
+  flat = 2,          // two adjacent corners on the same surface
+  jammed = 3,        // two diagonally opposite corners, one on each surface
+  other = 4,         // any other combination (deep penetration)
+};
+
+enum class SiteKind { slider_face_upper, slider_face_lower, slider_corner, journal };
+
+// Memory of one contact site between steps.
+struct ContactMemory {
+  bool touching = false;         // penetrating at the end of the last accepted step
+  double impact_velocity = 0.0;  // penetration rate latched at onset (m/s)
+  double deflection = 0.0;       // LuGre bristle deflection at the end of the last accepted step
+};
+
+// One contact site's state at an evaluation.
+struct SiteEvaluation {
+  double penetration = 0.0;       // > 0 in contact (the deepest corner for a slider face)
+  double penetration_rate = 0.0;  // > 0 approaching
+  double normal_force = 0.0;      // N, >= 0
+  double friction_force = 0.0;    // N, along the tangent, opposing the sliding velocity
+  double sliding_velocity = 0.0;  // m/s
+  double deflection = 0.0;        // LuGre bristle deflection at this instant
+  double contact_length = 0.0;    // slider faces: L_c of seed Eq. 12
+  double stiffness = 0.0;         // the stiffness used
+};
+
+// Everything the equations produce at (t, x): used by the right-hand side, by commit() and by
+// the outputs, so all three see the same numbers.
+struct Evaluation {
+  std::vector<double> q_ddot;
+  double crank_angle = 0.0;
+  std::array<double, 3> slider_pose{};       // x, y, angle of the slider centre
+  std::array<double, 3> slider_velocity{};   // their rates
+  std::array<double, 3> slider_acceleration{};
+  double conrod_angle = 0.0, conrod_rate = 0.0;
+  double driving_torque = 0.0;      // N m on the crank, keeping its speed constant
+  double drive_power = 0.0;         // driving_torque * omega
+  double contact_power = 0.0;       // power of all contact and friction forces on the bodies
+  double kinetic_energy = 0.0;
+  double potential_energy = 0.0;    // gravity
+  std::vector<SiteEvaluation> sites;
+  SliderConfiguration configuration = SliderConfiguration::free_flight;
+  // Journal eccentricity (journal centre minus bearing centre) for each revolute clearance joint,
+  // in the order of joint_names().
+  std::vector<std::array<double, 2>> eccentricity;
+};
+
+class SliderCrank {
+ public:
+  explicit SliderCrank(const Scene& scene);
+
+  const Scene& scene() const { return scene_; }
+  int coordinate_count() const { return n_; }
+  int state_size() const { return 2 * n_ + 2; }
+  const std::vector<std::string>& coordinate_names() const { return names_; }
+  // Revolute clearance joints modelled, e.g. {"crank_conrod"}.
+  const std::vector<std::string>& journal_names() const { return journal_names_; }
+  std::size_t site_count() const { return sites_.size(); }
+  SiteKind site_kind(std::size_t i) const { return sites_[i].kind; }
+
+  // The seed's Eq. 29: the ideal mechanism's pose and velocities at t = 0 (clearance coordinates
+  // at the centre of their clearance, slider level), work accumulators at zero.
+  State initial_state() const;
+
+  // The ODE right-hand side (OdeSystem).
+  void rhs(double t, const State& x, State& dxdt) const;
+
+  // Full evaluation at (t, x) with the current memory.
+  void evaluate(double t, const State& x, Evaluation& out) const;
+
+  // Penetration of each site (its event function: contact onset where it crosses 0 upward).
+  void penetrations(double t, const State& x, std::vector<double>& out) const;
+
+  // After an accepted step ending at time t, given the evaluation at the step's end made with the
+  // step's memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
+  // located onset time for sites that started touching during the step, NaN or absent otherwise),
+  // forget them at release, keep the LuGre deflections reached exactly over the step, and start
+  // the next step's clock at t. Returns true when a latch changed the right-hand side at t (the
+  // stepper's cached first stage is then stale).
+  bool commit(double t, const Evaluation& at_end, const std::vector<double>& onset_rate);
+
+  const std::vector<ContactMemory>& memory() const { return memory_; }
+  double omega() const { return omega_; }
+
+ private:
+  struct Site {
+    SiteKind kind;
+    int joint = -1;     // for journals: index into the revolute joints modelled
+    int corner = -1;    // for slider corners: 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right
+  };
+  struct Journal {
+    const RevoluteJoint* joint;
+    int which;  // 0 crank_ground, 1 crank_conrod, 2 conrod_slider
+    double stiffness;
+  };
+
+  Scene scene_;
+  int n_ = 0;
+  int idx_crank_pivot_ = -1, idx_conrod_pin_ = -1, idx_conrod_angle_ = -1;
+  int idx_slider_x_ = -1, idx_slider_y_ = -1, idx_slider_angle_ = -1;
+  bool slider_clearance_ = false;
+  double omega_ = 0.0;
+  double slider_flat_stiffness_ = 0.0;  // Eq. 11 at L_c = L_s, or the given value
+  std::vector<std::string> names_;
+  std::vector<std::string> journal_names_;
+  std::vector<Journal> journals_;
+  std::vector<Site> sites_;
+  std::vector<ContactMemory> memory_;
+  double step_start_ = 0.0;
+};
+
+}  // namespace mechanism

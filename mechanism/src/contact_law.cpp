@@ -1,0 +1,92 @@
+#include "mechanism/contact_law.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "mechanism/error.hpp"
+
+namespace mechanism {
+
+namespace {
+
+// Shortest round-trip text of a value, for the message of InvalidParameter.
+std::string text(double v) {
+  std::array<char, 32> buf{};
+  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), res.ptr);
+}
+
+constexpr std::array<std::pair<NormalContactLaw, std::string_view>, 6> kNames{{
+    {NormalContactLaw::hertz, "hertz"},
+    {NormalContactLaw::hunt_crossley, "hunt_crossley"},
+    {NormalContactLaw::lankarani_nikravesh, "lankarani_nikravesh"},
+    {NormalContactLaw::flores, "flores"},
+    {NormalContactLaw::hu_guo, "hu_guo"},
+    {NormalContactLaw::gonthier, "gonthier"},
+}};
+
+void check_restitution(double e) {
+  // Written so that NaN fails too.
+  if (!(e > 0.0 && e <= 1.0)) throw InvalidParameter("restitution", text(e), "must be in (0, 1]");
+}
+
+}  // namespace
+
+void ContactLawParameters::validate() const {
+  check_restitution(restitution);
+  if (!(std::isfinite(exponent) && exponent > 0.0))
+    throw InvalidParameter("exponent", text(exponent), "must be finite and > 0");
+  if (!(std::isfinite(velocity_floor) && velocity_floor > 0.0))
+    throw InvalidParameter("velocity_floor", text(velocity_floor), "must be finite and > 0 (m/s)");
+}
+
+double hysteresis_factor(NormalContactLaw law, double restitution) {
+  check_restitution(restitution);
+  const double e = restitution;
+  switch (law) {
+    case NormalContactLaw::hertz: return 0.0;
+    case NormalContactLaw::hunt_crossley: return 1.5 * (1.0 - e);
+    case NormalContactLaw::lankarani_nikravesh: return 0.75 * (1.0 - e * e);
+    case NormalContactLaw::flores: return 8.0 * (1.0 - e) / (5.0 * e);
+    case NormalContactLaw::hu_guo: return 3.0 * (1.0 - e) / (2.0 * e);
+    case NormalContactLaw::gonthier: return (1.0 - e * e) / e;
+  }
+  throw InvalidParameter("law", std::to_string(static_cast<int>(law)), "unknown NormalContactLaw");
+}
+
+double normal_force(const ContactLawParameters& p, double stiffness, double penetration,
+                    double penetration_rate, double impact_velocity) {
+  p.validate();
+  if (!(std::isfinite(stiffness) && stiffness >= 0.0))
+    throw InvalidParameter("stiffness", text(stiffness), "must be finite and >= 0");
+  if (penetration <= 0.0) return 0.0;  // NaN goes on and comes out as NaN
+  const double chi = hysteresis_factor(p.law, p.restitution);
+  const double elastic = stiffness * std::pow(penetration, p.exponent);
+  // Hertz or e = 1 has no rate term; a zero (or underflowed) elastic part makes the product 0 and
+  // must not meet an overflowed rate ratio (0 * inf).
+  if (chi == 0.0 || elastic == 0.0) return elastic;
+  // fmax would drop a NaN impact velocity; keep it so that it reaches the result.
+  const double latched = std::isnan(impact_velocity)
+                             ? impact_velocity
+                             : std::fmax(std::fabs(impact_velocity), p.velocity_floor);
+  const double force = elastic * (1.0 + chi * penetration_rate / latched);
+  // Contacts only push: the dissipative term may exceed the elastic one near release.
+  return force < 0.0 ? 0.0 : force;
+}
+
+std::string_view to_string(NormalContactLaw law) noexcept {
+  for (const auto& [value, name] : kNames)
+    if (value == law) return name;
+  return "unknown";
+}
+
+std::optional<NormalContactLaw> parse_normal_contact_law(std::string_view name) noexcept {
+  for (const auto& [value, known] : kNames)
+    if (known == name) return value;
+  return std::nullopt;
+}
+
+}  // namespace mechanism

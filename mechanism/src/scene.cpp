@@ -1,0 +1,467 @@
+// Scene reading and writing. Every key is listed once, in visit_fields(), with its rule and a
+// one-line description; reading, validation, the resolved-scene output and the commented default
+// scene all walk that one list, so a key cannot be documented in one place and missing in another.
+
+#include "mechanism/scene.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "mechanism/error.hpp"
+
+namespace mechanism {
+
+double Driver::angular_speed() const { return speed_rpm * 2.0 * std::numbers::pi / 60.0; }
+double Driver::period() const { return 60.0 / speed_rpm; }
+
+namespace {
+
+enum class Rule { finite, positive, non_negative, restitution, poisson, fraction };
+
+const char* rule_text(Rule r) {
+  switch (r) {
+    case Rule::finite: return "must be a finite number";
+    case Rule::positive: return "must be a finite number > 0";
+    case Rule::non_negative: return "must be a finite number >= 0";
+    case Rule::restitution: return "must be in (0, 1]";
+    case Rule::poisson: return "must be in [0, 0.5)";
+    case Rule::fraction: return "must be in [0, 1]";
+  }
+  return "";
+}
+
+bool satisfies(Rule r, double v) {
+  if (!std::isfinite(v)) return false;
+  switch (r) {
+    case Rule::finite: return true;
+    case Rule::positive: return v > 0.0;
+    case Rule::non_negative: return v >= 0.0;
+    case Rule::restitution: return v > 0.0 && v <= 1.0;
+    case Rule::poisson: return v >= 0.0 && v < 0.5;
+    case Rule::fraction: return v >= 0.0 && v <= 1.0;
+  }
+  return false;
+}
+
+std::string format_number(double v) {
+  char buf[64];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, end);
+  // TOML needs a '.' or an exponent to read a float back as a float.
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// Names of enumerators, in enumerator order.
+template <class E>
+struct EnumNames;
+template <>
+struct EnumNames<JointKind> {
+  static constexpr std::string_view names[] = {"ideal", "clearance"};
+};
+template <>
+struct EnumNames<SliderContactModel> {
+  static constexpr std::string_view names[] = {"face", "corners"};
+};
+template <>
+struct EnumNames<SliderStiffness> {
+  static constexpr std::string_view names[] = {"contact_length", "flat_face", "given"};
+};
+template <>
+struct EnumNames<JournalStiffness> {
+  static constexpr std::string_view names[] = {"hertz", "given"};
+};
+template <>
+struct EnumNames<IntegratorMethod> {
+  static constexpr std::string_view names[] = {"rk4", "dopri5"};
+};
+template <>
+struct EnumNames<NormalContactLaw> {
+  static constexpr std::string_view names[] = {"hertz",  "hunt_crossley", "lankarani_nikravesh",
+                                               "flores", "hu_guo",        "gonthier"};
+};
+template <>
+struct EnumNames<FrictionLaw> {
+  static constexpr std::string_view names[] = {"none", "coulomb", "ambrosio", "lugre_absolute",
+                                               "lugre_normalised"};
+};
+
+template <class E>
+std::string choices_text() {
+  std::string s = "must be one of";
+  for (auto n : EnumNames<E>::names) s += std::string(" \"") + std::string(n) + "\"";
+  return s;
+}
+
+// Calls v.number(key, double&, Rule, doc), v.flag(key, bool&, doc) and v.choice(key, Enum&, doc)
+// for every key of the scene, in the order the resolved scene is printed.
+template <class Visitor>
+void visit_contact(Visitor& v, const std::string& p, ContactLawParameters& c) {
+  v.choice(p + "law", c.law, "normal contact law (force K d^n (1 + chi d_rate / d_rate_impact))");
+  v.number(p + "restitution", c.restitution, Rule::restitution,
+           "coefficient of restitution c_e (seed Eq. 10 leaves it open; Flores' benchmarks use 0.9)");
+  v.number(p + "exponent", c.exponent, Rule::positive, "n of seed Eq. 10 (1.5 for metal on metal)");
+  v.number(p + "velocity_floor", c.velocity_floor, Rule::positive,
+           "m/s; smallest latched impact velocity (keeps the damping finite at grazing contact)");
+}
+
+template <class Visitor>
+void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f) {
+  v.choice(p + "law", f.law, "friction law");
+  v.number(p + "static_coefficient", f.static_coefficient, Rule::non_negative, "mu_s");
+  v.number(p + "kinetic_coefficient", f.kinetic_coefficient, Rule::non_negative, "mu_k");
+  v.number(p + "stribeck_velocity", f.stribeck_velocity, Rule::positive,
+           "v_s, m/s (blank in the seed's Table 2; 1e-3 is common)");
+  v.number(p + "stribeck_exponent", f.stribeck_exponent, Rule::positive,
+           "gamma (blank in the seed's Table 2; 2 is common)");
+  v.number(p + "sigma0", f.sigma0, Rule::positive,
+           "LuGre bristle stiffness (N/m absolute form, 1/m normalised form)");
+  v.number(p + "sigma1", f.sigma1, Rule::non_negative,
+           "LuGre bristle damping (N s/m absolute form, s/m normalised form)");
+  v.number(p + "sigma2", f.sigma2, Rule::non_negative, "LuGre viscous coefficient (same units as sigma1)");
+  v.number(p + "ambrosio_v0", f.ambrosio_v0, Rule::positive, "m/s; Ambrosio's law: no friction below");
+  v.number(p + "ambrosio_v1", f.ambrosio_v1, Rule::positive, "m/s; Ambrosio's law: full friction above");
+}
+
+template <class Visitor>
+void visit_material(Visitor& v, const std::string& p, Material& m) {
+  v.number(p + "young_modulus", m.young_modulus, Rule::positive, "Pa");
+  v.number(p + "poisson_ratio", m.poisson_ratio, Rule::poisson, "");
+}
+
+template <class Visitor>
+void visit_revolute(Visitor& v, const std::string& p, RevoluteJoint& j) {
+  v.choice(p + "type", j.kind, "ideal (a pin: no coordinates, no contact code) or clearance");
+  v.number(p + "bearing_radius", j.bearing_radius, Rule::positive,
+           "m (not given by the seed; Flores uses 10 mm); the journal radius is bearing_radius - clearance");
+  v.number(p + "clearance", j.clearance, Rule::positive, "m, radial clearance c_r");
+  v.choice(p + "stiffness_model", j.stiffness_model, "hertz (from materials and radii) or given");
+  v.number(p + "stiffness", j.stiffness, Rule::positive, "N/m^n, used when stiffness_model = \"given\"");
+  visit_material(v, p + "journal.", j.journal);
+  visit_material(v, p + "bearing.", j.bearing);
+  visit_contact(v, p + "contact.", j.contact);
+  visit_friction(v, p + "friction.", j.friction);
+}
+
+template <class Visitor>
+void visit_link(Visitor& v, const std::string& p, Link& l) {
+  v.number(p + "length", l.length, Rule::positive, "m, pin to pin");
+  v.number(p + "mass", l.mass, Rule::positive, "kg");
+  v.number(p + "inertia", l.inertia, Rule::positive, "kg m^2, about the mass centre");
+  v.number(p + "mass_centre", l.mass_centre, Rule::fraction,
+           "mass centre as a fraction of the length from the first pin (not given by the seed: mid-length)");
+}
+
+template <class Visitor>
+void visit_fields(Visitor& v, Scene& s) {
+  // Top-level keys first: in TOML a key after a [table] header belongs to that table.
+  v.number("gravity", s.gravity, Rule::non_negative, "m/s^2, along -y");
+  visit_link(v, "crank.", s.crank);
+  visit_link(v, "conrod.", s.conrod);
+  v.number("slider.mass", s.slider.mass, Rule::positive, "kg");
+  v.number("slider.inertia", s.slider.inertia, Rule::positive, "kg m^2");
+  v.number("slider.length", s.slider.length, Rule::positive, "m, along the guide (L_s)");
+  v.number("slider.height", s.slider.height, Rule::positive, "m, across the guide (H)");
+  v.number("slider.width", s.slider.width, Rule::positive, "m, out of plane (W, for the contact area of Eq. 11)");
+  visit_material(v, "slider.", s.slider.material);
+  v.number("driver.speed_rpm", s.driver.speed_rpm, Rule::positive, "constant crank speed, rpm");
+  v.number("driver.initial_angle", s.driver.initial_angle, Rule::finite, "crank angle at t = 0, rad");
+  const std::string t = "joint.slider.";
+  v.choice(t + "type", s.slider_guide.kind, "ideal (slider on the guide line) or clearance");
+  v.number(t + "clearance", s.slider_guide.clearance, Rule::positive,
+           "m, gap per side: guide height = slider height + 2 clearance");
+  v.choice(t + "model", s.slider_guide.model,
+           "face (seed Eq. 18-19: one force per surface at the contact centroid) or corners (Flores 2008)");
+  v.choice(t + "stiffness_model", s.slider_guide.stiffness_model,
+           "contact_length (seed Eq. 11-12), flat_face (Eq. 11 at L_c = L_s) or given");
+  v.number(t + "stiffness", s.slider_guide.stiffness, Rule::positive,
+           "N/m^n, used when stiffness_model = \"given\"");
+  visit_material(v, t + "guide.", s.slider_guide.guide);
+  visit_contact(v, t + "contact.", s.slider_guide.contact);
+  visit_friction(v, t + "friction.", s.slider_guide.friction);
+  visit_revolute(v, "joint.crank_ground.", s.crank_ground);
+  visit_revolute(v, "joint.crank_conrod.", s.crank_conrod);
+  visit_revolute(v, "joint.conrod_slider.", s.conrod_slider);
+  v.choice("integrator.method", s.integrator.method,
+           "rk4 (fixed step, the seed's method) or dopri5 (adaptive Dormand-Prince 5(4))");
+  v.number("integrator.step", s.integrator.step, Rule::positive,
+           "s; RK4's largest step (the step divides the crank period exactly)");
+  v.number("integrator.relative_tolerance", s.integrator.relative_tolerance, Rule::positive, "dopri5");
+  v.number("integrator.absolute_tolerance", s.integrator.absolute_tolerance, Rule::positive, "dopri5");
+  v.number("integrator.max_step", s.integrator.max_step, Rule::positive, "s; dopri5's largest step");
+  v.number("integrator.min_step", s.integrator.min_step, Rule::positive,
+           "s; dopri5 reports step_underflow when it needs a smaller step");
+  v.number("integrator.max_steps", s.integrator.max_steps, Rule::positive,
+           "steps (accepted and rejected) before a run stops with step_limit");
+  v.number("run.duration", s.run.duration, Rule::positive, "s, simulated after the transient");
+  v.number("run.transient", s.run.transient, Rule::non_negative, "s, simulated and not written");
+  v.number("run.output_interval", s.run.output_interval, Rule::non_negative,
+           "s between time-series rows (0: none)");
+  v.flag("run.stroboscopic", s.run.stroboscopic, "also sample once per crank revolution");
+}
+
+std::string node_text(const toml::node& n) {
+  std::ostringstream os;
+  if (auto s = n.as_string()) {
+    os << '"' << s->get() << '"';
+  } else if (auto i = n.as_integer()) {
+    os << i->get();
+  } else if (auto d = n.as_floating_point()) {
+    os << format_number(d->get());
+  } else if (auto b = n.as_boolean()) {
+    os << (b->get() ? "true" : "false");
+  } else {
+    os << "(a " << n.type() << ")";
+  }
+  return os.str();
+}
+
+// Reads the keys present in a table into the scene, checking types and rules; records each key
+// it knows so that the rest can be reported as unknown.
+struct Reader {
+  const toml::table& table;
+  std::set<std::string> known;
+
+  const toml::node* find(const std::string& key) {
+    known.insert(key);
+    return table.at_path(key).node();
+  }
+  void number(const std::string& key, double& out, Rule rule, std::string_view) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    double v;
+    if (auto i = n->as_integer()) {
+      v = static_cast<double>(i->get());
+    } else if (auto d = n->as_floating_point()) {
+      v = d->get();
+    } else {
+      throw InvalidParameter(key, node_text(*n), "must be a number");
+    }
+    if (!satisfies(rule, v)) throw InvalidParameter(key, node_text(*n), rule_text(rule));
+    out = v;
+  }
+  void flag(const std::string& key, bool& out, std::string_view) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    auto b = n->as_boolean();
+    if (!b) throw InvalidParameter(key, node_text(*n), "must be true or false");
+    out = b->get();
+  }
+  template <class E>
+  void choice(const std::string& key, E& out, std::string_view) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    auto s = n->as_string();
+    if (!s) throw InvalidParameter(key, node_text(*n), choices_text<E>());
+    const auto& names = EnumNames<E>::names;
+    for (std::size_t i = 0; i < std::size(names); ++i) {
+      if (names[i] == s->get()) {
+        out = static_cast<E>(i);
+        return;
+      }
+    }
+    throw InvalidParameter(key, node_text(*n), choices_text<E>());
+  }
+};
+
+void collect_leaves(const toml::table& t, const std::string& prefix, std::vector<std::string>& out) {
+  for (const auto& [k, node] : t) {
+    const std::string key = prefix + std::string(k.str());
+    if (auto sub = node.as_table()) {
+      collect_leaves(*sub, key + ".", out);
+    } else {
+      out.push_back(key);
+    }
+  }
+}
+
+// Writes "key = value  # doc" lines grouped under [section] headers, in visiting order.
+struct Writer {
+  bool with_docs = false;
+  std::ostringstream out;
+  std::string section = "\x01";
+
+  void line(const std::string& key, const std::string& value, std::string_view doc) {
+    const auto dot = key.rfind('.');
+    const std::string sec = dot == std::string::npos ? "" : key.substr(0, dot);
+    const std::string name = dot == std::string::npos ? key : key.substr(dot + 1);
+    if (sec != section) {
+      if (section != "\x01") out << '\n';
+      if (!sec.empty()) out << '[' << sec << "]\n";
+      section = sec;
+    }
+    out << name << " = " << value;
+    if (with_docs && !doc.empty()) out << "  # " << doc;
+    out << '\n';
+  }
+  void number(const std::string& key, double& v, Rule, std::string_view doc) { line(key, format_number(v), doc); }
+  void flag(const std::string& key, bool& v, std::string_view doc) { line(key, v ? "true" : "false", doc); }
+  template <class E>
+  void choice(const std::string& key, E& v, std::string_view doc) {
+    std::string d(doc);
+    if (with_docs) {
+      d += " (";
+      bool first = true;
+      for (auto n : EnumNames<E>::names) {
+        d += (first ? "" : " | ") + std::string(n);
+        first = false;
+      }
+      d += ")";
+    }
+    line(key, "\"" + std::string(EnumNames<E>::names[static_cast<std::size_t>(v)]) + "\"", d);
+  }
+};
+
+std::string write_scene(const Scene& scene, bool with_docs) {
+  Scene copy = scene;
+  Writer w;
+  w.with_docs = with_docs;
+  visit_fields(w, copy);
+  return w.out.str();
+}
+
+// Inserts value (TOML syntax) at a dotted key, creating tables on the way.
+void apply_override(toml::table& table, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InvalidParameter("--set", assignment, "must be KEY=VALUE, e.g. joint.slider.clearance=0.2e-3");
+  }
+  const std::string key = assignment.substr(0, eq);
+  const std::string value = assignment.substr(eq + 1);
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    // A bare word is taken as a string, so --set joint.slider.model=corners works unquoted.
+    try {
+      parsed = toml::parse("v = \"" + value + "\"");
+    } catch (const toml::parse_error&) {
+      throw InvalidParameter(key, value, "must be a TOML value (a number, true/false or a string)");
+    }
+  }
+  toml::table* t = &table;
+  std::size_t start = 0;
+  for (;;) {
+    const auto dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw InvalidParameter(key, value, "the key has an empty part");
+    if (dot == std::string::npos) {
+      t->insert_or_assign(part, *parsed.get("v"));
+      return;
+    }
+    auto* next = t->get(part);
+    if (!next) {
+      t->insert(part, toml::table{});
+      next = t->get(part);
+    }
+    if (!next->is_table()) throw InvalidParameter(key, value, "'" + part + "' is a value, not a table");
+    t = next->as_table();
+    start = dot + 1;
+  }
+}
+
+void check_consistency(const Scene& s) {
+  // The conrod must reach the guide line from every crank position (and the clearances only add
+  // to the offset), so that the ideal-joint initial conditions and the ideal slider exist.
+  double reach = s.crank.length;
+  for (const RevoluteJoint* j : {&s.crank_ground, &s.crank_conrod, &s.conrod_slider}) {
+    if (j->kind == JointKind::clearance) reach += j->clearance;
+  }
+  if (s.slider_guide.kind == JointKind::clearance) reach += s.slider_guide.clearance;
+  if (!(s.conrod.length > reach)) {
+    throw InvalidParameter("conrod.length", format_number(s.conrod.length),
+                           "must exceed the crank length plus the clearances (" + format_number(reach) +
+                               " m), or the slider cannot stay on the guide");
+  }
+  for (auto [name, j] : {std::pair{"joint.crank_ground", &s.crank_ground},
+                         std::pair{"joint.crank_conrod", &s.crank_conrod},
+                         std::pair{"joint.conrod_slider", &s.conrod_slider}}) {
+    if (j->kind == JointKind::clearance && !(j->clearance < j->bearing_radius)) {
+      throw InvalidParameter(std::string(name) + ".clearance", format_number(j->clearance),
+                             "must be smaller than bearing_radius (" + format_number(j->bearing_radius) +
+                                 " m): the journal radius would be <= 0");
+    }
+    if (j->kind == JointKind::clearance) {
+      j->contact.validate();
+      j->friction.validate();
+    }
+  }
+  if (s.slider_guide.kind == JointKind::clearance) {
+    s.slider_guide.contact.validate();
+    s.slider_guide.friction.validate();
+  }
+  if (s.run.output_interval > 0.0 && s.run.output_interval > s.run.duration) {
+    throw InvalidParameter("run.output_interval", format_number(s.run.output_interval),
+                           "must not exceed run.duration (" + format_number(s.run.duration) + " s)");
+  }
+  if (!(s.integrator.min_step <= s.integrator.max_step)) {
+    throw InvalidParameter("integrator.min_step", format_number(s.integrator.min_step),
+                           "must not exceed integrator.max_step (" + format_number(s.integrator.max_step) + " s)");
+  }
+  if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
+    throw InvalidParameter("integrator.step", format_number(s.integrator.step),
+                           "must not exceed the crank period (" + format_number(s.driver.period()) + " s)");
+  }
+}
+
+}  // namespace
+
+std::string_view default_scene_toml() {
+  static const std::string text =
+      "# The seed paper's slider-crank (Tables 1 and 2) with a translational clearance joint.\n"
+      "# Keys the paper leaves open carry our choice; docs/mechanism/scene.md says why.\n\n" +
+      write_scene(Scene{}, true);
+  return text;
+}
+
+Scene read_scene(std::string_view toml_text, const std::vector<std::string>& overrides, std::string_view source) {
+  toml::table table;
+  try {
+    table = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << e.description() << " (line " << e.source().begin.line << ", column " << e.source().begin.column << ")";
+    throw InvalidParameter(std::string(source), "(the file)", "is not valid TOML: " + os.str());
+  }
+  for (const auto& o : overrides) apply_override(table, o);
+
+  Scene scene;
+  Reader reader{table, {}};
+  visit_fields(reader, scene);
+  std::vector<std::string> leaves;
+  collect_leaves(table, "", leaves);
+  for (const auto& key : leaves) {
+    if (!reader.known.count(key)) {
+      throw InvalidParameter(key, node_text(*table.at_path(key).node()),
+                             "is not a scene key (`mechanism scene --default` lists them all)");
+    }
+  }
+  check_consistency(scene);
+  return scene;
+}
+
+std::string to_toml(const Scene& scene) { return write_scene(scene, false); }
+
+std::vector<std::string> scene_warnings(const Scene& s) {
+  std::vector<std::string> w;
+  auto check = [&](const std::string& name, JointKind kind, const FrictionLawParameters& f) {
+    if (kind == JointKind::clearance && f.law != FrictionLaw::none && f.stribeck_peak_missing()) {
+      w.push_back(name + ".friction: static_coefficient " + format_number(f.static_coefficient) +
+                  " < kinetic_coefficient " + format_number(f.kinetic_coefficient) +
+                  ": no stiction peak (the seed's Table 2 prints these values; it may be a swap)");
+    }
+  };
+  check("joint.slider", s.slider_guide.kind, s.slider_guide.friction);
+  check("joint.crank_ground", s.crank_ground.kind, s.crank_ground.friction);
+  check("joint.crank_conrod", s.crank_conrod.kind, s.crank_conrod.friction);
+  check("joint.conrod_slider", s.conrod_slider.kind, s.conrod_slider.friction);
+  return w;
+}
+
+}  // namespace mechanism

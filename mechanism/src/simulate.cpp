@@ -1,0 +1,269 @@
+#include "mechanism/simulate.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "mechanism/dormand_prince.hpp"
+#include "mechanism/event_location.hpp"
+#include "mechanism/rk4.hpp"
+
+namespace mechanism {
+
+const char* to_string(SimulationStatus status) noexcept {
+  switch (status) {
+    case SimulationStatus::completed: return "completed";
+    case SimulationStatus::step_underflow: return "step_underflow";
+    case SimulationStatus::non_finite: return "non_finite";
+    case SimulationStatus::step_limit: return "step_limit";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Everything that happens between two accepted steps, for either stepper.
+template <class Stepper>
+class HybridLoop {
+ public:
+  HybridLoop(SliderCrank& system, Stepper& stepper, const SimulationObserver& observer, SimulationSummary& summary)
+      : sys_(system), stepper_(stepper), obs_(observer), sum_(summary) {
+    const Scene& s = sys_.scene();
+    t_end_ = s.run.transient + s.run.duration;
+    transient_ = s.run.transient;
+    out_dt_ = s.run.output_interval;
+    period_ = s.driver.period();
+    stroboscopic_ = s.run.stroboscopic || static_cast<bool>(obs_.stroboscopic);
+    // Time-series rows at transient + k dt; revolutions at whole periods from the transient on.
+    next_out_ = 0;
+    next_rev_ = static_cast<std::size_t>(std::ceil(transient_ / period_ - 1e-9));
+    onset_rate_.assign(sys_.site_count(), std::numeric_limits<double>::quiet_NaN());
+  }
+
+  double end_time() const { return t_end_; }
+
+  // At t = 0: the first evaluation, the energy reference and a sample if the transient is 0.
+  void start(const State& x) {
+    sys_.evaluate(0.0, x, ev_);
+    energy0_ = ev_.kinetic_energy + ev_.potential_energy;
+    penetration_prev_.resize(sys_.site_count());
+    for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
+    emit_due(0.0, 0.0, x, true);
+    sys_.commit(0.0, ev_, onset_rate_);
+  }
+
+  // After an accepted step from t0 to t1 (x is the state at t1).
+  void after_step(double t0, double t1, const State& x) {
+    emit_due(t0, t1, x, false);
+    sys_.evaluate(t1, x, ev_);
+    const int n = sys_.coordinate_count();
+    const double balance =
+        std::abs(ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1]);
+    sum_.energy_balance_error = std::max(sum_.energy_balance_error, balance);
+    kinetic_max_ = std::max(kinetic_max_, ev_.kinetic_energy);
+    bool onset = false;
+    for (std::size_t i = 0; i < sys_.site_count(); ++i) {
+      const double now = ev_.sites[i].penetration;
+      sum_.max_penetration = std::max(sum_.max_penetration, now);
+      onset_rate_[i] = std::numeric_limits<double>::quiet_NaN();
+      if (penetration_prev_[i] <= 0.0 && now > 0.0) {
+        onset_rate_[i] = rate_at_onset(i, t0, t1, penetration_prev_[i], now);
+        ++sum_.contact_events;
+        onset = true;
+      }
+      penetration_prev_[i] = now;
+    }
+    const bool changed = sys_.commit(t1, ev_, onset_rate_);
+    if (onset || changed) stepper_.invalidate();
+  }
+
+  void finish() {
+    sum_.energy_balance_relative = kinetic_max_ > 0.0 ? sum_.energy_balance_error / kinetic_max_ : 0.0;
+  }
+
+ private:
+  // Locates the onset on the step's dense output and returns the penetration rate there: the
+  // impact velocity of the Lankarani-Nikravesh family, free of the step's position in the impact.
+  double rate_at_onset(std::size_t i, double t0, double t1, double p0, double p1) {
+    auto g = [&](double t) {
+      stepper_.interpolate(t, scratch_);
+      sys_.evaluate(t, scratch_, probe_);
+      return probe_.sites[i].penetration;
+    };
+    const double tol = std::max(1e-15, 1e-6 * (t1 - t0));
+    const double tc = locate_crossing(g, t0, t1, p0, p1, tol);
+    stepper_.interpolate(tc, scratch_);
+    sys_.evaluate(tc, scratch_, probe_);
+    const double rate = probe_.sites[i].penetration_rate;
+    // A crossing on the dense output with a non-positive rate is a graze at the step's
+    // resolution: fall back to the end-of-step rate.
+    return rate > 0.0 ? rate : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  // Emits the time-series rows and revolutions due in (t0, t1] (or at t1 = 0 on start).
+  void emit_due(double t0, double t1, const State& x1, bool at_start) {
+    const double eps = 1e-9 * std::max(out_dt_ > 0 ? out_dt_ : period_, 1e-12);
+    if (obs_.sample && out_dt_ > 0.0) {
+      for (;;) {
+        const double t = transient_ + static_cast<double>(next_out_) * out_dt_;
+        if (t > t_end_ + eps) break;
+        if (at_start ? t > eps : t > t1 + eps) break;
+        emit(t, t1, x1, [&](const State& xs) { obs_.sample(t, xs, probe_); });
+        ++next_out_;
+        ++sum_.samples;
+      }
+    }
+    if (stroboscopic_ && obs_.stroboscopic) {
+      for (;;) {
+        const double t = static_cast<double>(next_rev_) * period_;
+        if (t > t_end_ + eps) break;
+        if (at_start ? t > eps : t > t1 + eps) break;
+        const std::size_t rev = next_rev_;
+        emit(t, t1, x1, [&](const State& xs) { obs_.stroboscopic(rev, t, xs, probe_); });
+        ++next_rev_;
+        ++sum_.stroboscopic_samples;
+      }
+    }
+    (void)t0;
+  }
+
+  template <class F>
+  void emit(double t, double t1, const State& x1, F&& f) {
+    // At the step's end the state is exact; inside the step it comes from the dense output.
+    if (std::abs(t - t1) <= 1e-12 * std::max(1.0, std::abs(t1))) {
+      sys_.evaluate(t1, x1, probe_);
+      f(x1);
+    } else {
+      stepper_.interpolate(t, scratch_);
+      sys_.evaluate(t, scratch_, probe_);
+      f(scratch_);
+    }
+  }
+
+  SliderCrank& sys_;
+  Stepper& stepper_;
+  const SimulationObserver& obs_;
+  SimulationSummary& sum_;
+  double t_end_ = 0, transient_ = 0, out_dt_ = 0, period_ = 0;
+  bool stroboscopic_ = false;
+  std::size_t next_out_ = 0, next_rev_ = 0;
+  double energy0_ = 0, kinetic_max_ = 0;
+  std::vector<double> penetration_prev_, onset_rate_;
+  Evaluation ev_, probe_;
+  State scratch_;
+};
+
+std::string at_time(const char* what, double t) {
+  std::ostringstream os;
+  os.precision(10);
+  os << what << " at t = " << t << " s";
+  return os.str();
+}
+
+}  // namespace
+
+SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observer) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const Scene& scene = system.scene();
+  SimulationSummary sum;
+  State x = system.initial_state();
+  double t = 0.0;
+  double last_progress = -1.0;
+  auto report_progress = [&](double t_now, double t_end) {
+    if (!observer.progress) return;
+    const double f = t_now / t_end;
+    if (f - last_progress >= 0.01 || f >= 1.0) {
+      observer.progress(f);
+      last_progress = f;
+    }
+  };
+
+  if (scene.integrator.method == IntegratorMethod::rk4) {
+    Rk4 stepper;
+    HybridLoop<Rk4> loop(system, stepper, observer, sum);
+    const double period = scene.driver.period();
+    const double per_period = std::ceil(period / scene.integrator.step - 1e-9);
+    const double h = period / per_period;
+    sum.step = h;
+    loop.start(x);
+    const double t_end = loop.end_time();
+    // Step k ends at k h exactly (no accumulated round-off); the last step may be shorter.
+    const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
+    for (std::size_t k = 1; k <= total; ++k) {
+      if (static_cast<double>(k) > scene.integrator.max_steps) {
+        sum.status = SimulationStatus::step_limit;
+        sum.message = at_time("the step limit was reached", t);
+        break;
+      }
+      const double t0 = t;
+      const double t1 = std::min(static_cast<double>(k) * h, t_end);
+      stepper.step(system, t, x, t1 - t0);
+      t = t1;
+      if (!x.allFinite()) {
+        sum.status = SimulationStatus::non_finite;
+        sum.message = at_time("the state became non-finite", t);
+        break;
+      }
+      ++sum.steps;
+      loop.after_step(t0, t1, x);
+      report_progress(t, t_end);
+    }
+    sum.rhs_evaluations = stepper.rhs_evaluations();
+    loop.finish();
+  } else {
+    AdaptiveOptions opt;
+    opt.relative_tolerance = scene.integrator.relative_tolerance;
+    opt.absolute_tolerance = scene.integrator.absolute_tolerance;
+    opt.max_step = scene.integrator.max_step;
+    opt.min_step = scene.integrator.min_step;
+    opt.max_steps = static_cast<std::size_t>(scene.integrator.max_steps);
+    opt.validate();
+    DormandPrince54 stepper(opt);
+    HybridLoop<DormandPrince54> loop(system, stepper, observer, sum);
+    loop.start(x);
+    const double t_end = loop.end_time();
+    double h = std::min(opt.max_step, t_end);
+    // Contacts make the first steps hard to guess; start small and let the controller grow it.
+    h = std::min(h, 1e-6);
+    while (t < t_end) {
+      if (stepper.accepted_steps() + stepper.rejected_steps() >= opt.max_steps) {
+        sum.status = SimulationStatus::step_limit;
+        sum.message = at_time("the step limit was reached", t);
+        break;
+      }
+      const bool last = h >= t_end - t;
+      double trial = last ? t_end - t : h;
+      const double t0 = t;
+      const StepOutcome outcome = stepper.try_step(system, t, x, trial);
+      if (outcome == StepOutcome::rejected) {
+        h = trial;
+        continue;
+      }
+      if (outcome == StepOutcome::step_underflow) {
+        sum.status = SimulationStatus::step_underflow;
+        sum.message = at_time("the step fell below integrator.min_step", t);
+        break;
+      }
+      if (outcome == StepOutcome::non_finite) {
+        sum.status = SimulationStatus::non_finite;
+        sum.message = at_time("the stages became non-finite", t);
+        break;
+      }
+      if (last) t = t_end;  // land exactly on the end
+      h = std::min(trial, opt.max_step);
+      ++sum.steps;
+      loop.after_step(t0, t, x);
+      report_progress(t, t_end);
+    }
+    sum.rejected_steps = stepper.rejected_steps();
+    sum.rhs_evaluations = stepper.rhs_evaluations();
+    loop.finish();
+  }
+  sum.end_time = t;
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return sum;
+}
+
+}  // namespace mechanism

@@ -1,0 +1,99 @@
+// Scene reading: the built-in default is the seed's Tables 1 and 2, the printed scene reads back
+// to the same scene, overrides apply, and every refusal names the key, the value and the rule.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "mechanism/error.hpp"
+#include "mechanism/scene.hpp"
+
+namespace mechanism {
+namespace {
+
+std::string refusal(const std::string& toml, const std::vector<std::string>& overrides = {}) {
+  try {
+    read_scene(toml, overrides);
+  } catch (const InvalidParameter& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Scene, DefaultIsTheSeedTables) {
+  const Scene s = read_scene("");
+  // Seed Table 1.
+  EXPECT_EQ(s.crank.length, 0.05);
+  EXPECT_EQ(s.conrod.length, 0.12);
+  EXPECT_EQ(s.crank.mass, 0.3);
+  EXPECT_EQ(s.conrod.mass, 0.21);
+  EXPECT_EQ(s.slider.mass, 0.28);
+  EXPECT_EQ(s.crank.inertia, 1e-4);
+  EXPECT_EQ(s.conrod.inertia, 2.5e-4);
+  EXPECT_EQ(s.slider.inertia, 2.5e-4);
+  EXPECT_EQ(s.slider.length, 0.05);
+  EXPECT_EQ(s.slider.height, 0.05);
+  EXPECT_EQ(s.slider.width, 0.05);
+  EXPECT_EQ(s.slider.material.young_modulus, 207e9);
+  EXPECT_EQ(s.slider_guide.guide.poisson_ratio, 0.3);
+  // Seed Table 2 (friction as printed, mu_s < mu_k) and the 1e-6 s RK4 step.
+  EXPECT_EQ(s.slider_guide.friction.sigma0, 1e5);
+  EXPECT_EQ(s.slider_guide.friction.sigma1, 400.0);
+  EXPECT_EQ(s.slider_guide.friction.sigma2, 0.0);
+  EXPECT_EQ(s.slider_guide.friction.kinetic_coefficient, 0.11);
+  EXPECT_EQ(s.slider_guide.friction.static_coefficient, 0.1);
+  EXPECT_EQ(s.driver.speed_rpm, 5000.0);
+  EXPECT_EQ(s.integrator.step, 1e-6);
+  EXPECT_EQ(s.integrator.method, IntegratorMethod::rk4);
+  EXPECT_EQ(s.slider_guide.kind, JointKind::clearance);
+  EXPECT_EQ(s.slider_guide.contact.law, NormalContactLaw::lankarani_nikravesh);
+  EXPECT_EQ(s.crank_ground.kind, JointKind::ideal);
+  EXPECT_EQ(s.crank_conrod.kind, JointKind::ideal);
+  EXPECT_EQ(s.conrod_slider.kind, JointKind::ideal);
+}
+
+TEST(Scene, PrintedSceneReadsBackUnchanged) {
+  Scene s = read_scene("", {"joint.slider.clearance=0.2e-3", "joint.crank_conrod.type=clearance",
+                            "integrator.method=\"dopri5\"", "run.stroboscopic=true"});
+  const std::string text = to_toml(s);
+  EXPECT_EQ(to_toml(read_scene(text)), text);
+  // The commented default parses too and gives the default scene.
+  EXPECT_EQ(to_toml(read_scene(default_scene_toml())), to_toml(read_scene("")));
+}
+
+TEST(Scene, OverridesApplyAfterTheFile) {
+  const Scene s = read_scene("[joint.slider]\nclearance = 0.3e-3\nmodel = \"corners\"\n",
+                             {"joint.slider.clearance=0.2e-3", "driver.speed_rpm=1000"});
+  EXPECT_DOUBLE_EQ(s.slider_guide.clearance, 0.2e-3);
+  EXPECT_EQ(s.slider_guide.model, SliderContactModel::corners);
+  EXPECT_DOUBLE_EQ(s.driver.speed_rpm, 1000.0);
+  // Integers are numbers; bare words are strings.
+  EXPECT_EQ(read_scene("", {"joint.slider.model=corners"}).slider_guide.model, SliderContactModel::corners);
+}
+
+TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
+  EXPECT_NE(refusal("[joint.slider]\nclearence = 1e-4\n").find("joint.slider.clearence"), std::string::npos);
+  EXPECT_NE(refusal("", {"crank.mass=\"heavy\""}).find("must be a number"), std::string::npos);
+  EXPECT_NE(refusal("", {"crank.mass=-0.3"}).find("crank.mass = -0.3: must be a finite number > 0"), std::string::npos);
+  EXPECT_NE(refusal("", {"joint.slider.clearance=0"}).find("joint.slider.clearance"), std::string::npos);
+  EXPECT_NE(refusal("", {"integrator.step=0"}).find("integrator.step"), std::string::npos);
+  EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed the crank length"), std::string::npos);
+  EXPECT_NE(refusal("", {"joint.slider.contact.restitution=1.5"}).find("(0, 1]"), std::string::npos);
+  EXPECT_NE(refusal("", {"joint.slider.model=\"wedge\""}).find("must be one of"), std::string::npos);
+  EXPECT_NE(refusal("", {"joint.slider.type=true"}).find("joint.slider.type"), std::string::npos);
+  EXPECT_NE(refusal("", {"noequals"}).find("KEY=VALUE"), std::string::npos);
+  EXPECT_NE(refusal("crank = [1, 2\n").find("not valid TOML"), std::string::npos);
+  EXPECT_NE(refusal("", {"joint.crank_conrod.type=clearance", "joint.crank_conrod.clearance=0.02"})
+                .find("smaller than bearing_radius"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"slider.poisson_ratio=0.5"}).find("[0, 0.5)"), std::string::npos);
+  EXPECT_NE(refusal("", {"driver.speed_rpm=nan"}).find("driver.speed_rpm"), std::string::npos);
+}
+
+TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
+  EXPECT_EQ(scene_warnings(read_scene("")).size(), 1u);  // the seed's printed mu_s = 0.1 < mu_k = 0.11
+  EXPECT_TRUE(scene_warnings(read_scene("", {"joint.slider.friction.static_coefficient=0.12"})).empty());
+}
+
+}  // namespace
+}  // namespace mechanism

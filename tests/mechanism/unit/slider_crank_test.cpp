@@ -1,0 +1,169 @@
+// The slider-crank's equations of motion against closed forms: the coordinates each scene implies,
+// the seed's Eq. 27 for the translational-clearance scene in free flight, the slider's four
+// contact configurations from hand-set poses (Flores et al. 2008), and the face and corner
+// contact models agreeing for a flat, uniformly penetrating slider.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mechanism/scene.hpp"
+#include "mechanism/slider_crank.hpp"
+
+namespace mechanism {
+namespace {
+
+TEST(SliderCrank, ModelsOnlyWhatTheSceneRequires) {
+  // Seed scene: translational clearance only -> conrod and slider angles (seed Eq. 27), two faces.
+  const SliderCrank seed(read_scene(""));
+  EXPECT_EQ(seed.coordinate_names(), (std::vector<std::string>{"conrod_angle", "slider_angle"}));
+  EXPECT_EQ(seed.site_count(), 2u);
+  // Every joint ideal: a one-degree-of-freedom mechanism driven at constant speed, no coordinates.
+  const SliderCrank ideal(read_scene("", {"joint.slider.type=ideal"}));
+  EXPECT_EQ(ideal.coordinate_count(), 0);
+  EXPECT_EQ(ideal.site_count(), 0u);
+  // A revolute clearance adds two coordinates and one site; an ideal guide keeps the slider level.
+  const SliderCrank pin(read_scene("", {"joint.slider.type=ideal", "joint.conrod_slider.type=clearance"}));
+  EXPECT_EQ(pin.coordinate_names(), (std::vector<std::string>{"conrod_angle", "slider_x"}));
+  EXPECT_EQ(pin.site_count(), 1u);
+  const SliderCrank all(read_scene("", {"joint.crank_ground.type=clearance", "joint.crank_conrod.type=clearance",
+                                        "joint.conrod_slider.type=clearance", "joint.slider.model=corners"}));
+  EXPECT_EQ(all.coordinate_count(), 8);
+  EXPECT_EQ(all.site_count(), 4u + 3u);
+  EXPECT_EQ(all.state_size(), 18);
+}
+
+TEST(SliderCrank, FreeFlightFollowsSeedEquation27) {
+  // Seed Eq. 27 with no contact force:
+  //   [I3 + (b3^2 m3 + m4) L3^2] th3'' + (b3 m3 + m4) L2 L3 w^2 sin(th3 - th2) + (b3 m3 + m4) g L3 cos th3 = 0,
+  //   I4 th4'' = 0.
+  const Scene s = read_scene("", {"joint.slider.clearance=0.01"});  // wide enough for no contact here
+  const SliderCrank sys(s);
+  State x = sys.initial_state();
+  x[0] = -0.2;  // conrod angle
+  x[1] = 0.001;  // slider angle
+  x[2] = 7.0;   // conrod rate
+  x[3] = 3.0;   // slider rate
+  const double t = 0.0013;
+  Evaluation ev;
+  sys.evaluate(t, x, ev);
+  for (const auto& site : ev.sites) ASSERT_LE(site.penetration, 0.0);
+  const double w = s.driver.angular_speed(), th2 = w * t, th3 = x[0];
+  const double l2 = s.crank.length, l3 = s.conrod.length, b3 = s.conrod.mass_centre;
+  const double m3 = s.conrod.mass, m4 = s.slider.mass, i3 = s.conrod.inertia, g = s.gravity;
+  const double expected = -((b3 * m3 + m4) * l2 * l3 * w * w * std::sin(th3 - th2) + (b3 * m3 + m4) * g * l3 * std::cos(th3)) /
+                          (i3 + (b3 * b3 * m3 + m4) * l3 * l3);
+  EXPECT_NEAR(ev.q_ddot[0], expected, 1e-9 * std::abs(expected));
+  EXPECT_NEAR(ev.q_ddot[1], 0.0, 1e-12);
+}
+
+// The slider of the seed scene placed by hand: centre height y and tilt a, at crank angle 0.
+Evaluation place_slider(const Scene& s, double y, double angle) {
+  const SliderCrank sys(s);
+  State x = sys.initial_state();
+  // At t = 0 the crank is along +x, so slider_y = L3 sin(conrod angle).
+  x[0] = std::asin(y / s.conrod.length);
+  x[1] = angle;
+  Evaluation ev;
+  sys.evaluate(0.0, x, ev);
+  return ev;
+}
+
+TEST(SliderCrank, TheFourSliderConfigurations) {
+  const Scene s = read_scene("", {"joint.slider.friction.law=none"});
+  const double c = s.slider_guide.clearance, half = 0.5 * s.slider.length;
+  EXPECT_EQ(place_slider(s, 0.0, 0.0).configuration, SliderConfiguration::free_flight);
+  // Tilted about the centre, raised until only the top-right corner passes the upper surface.
+  const double tilt = 0.5 * c / half;  // raises the right end by c / 2
+  EXPECT_EQ(place_slider(s, 0.6 * c, tilt).configuration, SliderConfiguration::one_corner);
+  // Level and raised past the clearance: both upper corners, flat.
+  const Evaluation flat = place_slider(s, c + 1e-5, 0.0);
+  EXPECT_EQ(flat.configuration, SliderConfiguration::flat);
+  EXPECT_GT(flat.sites[0].normal_force, 0.0);  // the upper face pushes down
+  EXPECT_EQ(flat.sites[1].normal_force, 0.0);
+  // Tilted until two opposite corners touch: jammed.
+  const double jam = 1.2 * c / half;
+  const Evaluation jammed = place_slider(s, 0.0, jam);
+  EXPECT_EQ(jammed.configuration, SliderConfiguration::jammed);
+  EXPECT_GT(jammed.sites[0].normal_force, 0.0);
+  EXPECT_GT(jammed.sites[1].normal_force, 0.0);
+}
+
+TEST(SliderCrank, FaceAndCornerModelsAgreeForAFlatUniformPenetration) {
+  // A level slider pressed uniformly into the lower surface: the face model (one force at the
+  // centroid, stiffness of the full contact length) and the corner model (two corners, half the
+  // flat-face stiffness each) give the same total force and no moment (seed-notes' requirement).
+  for (const char* stiffness : {"flat_face", "contact_length"}) {
+    const Scene face = read_scene("", {"joint.slider.friction.law=none", std::string("joint.slider.stiffness_model=") + stiffness});
+    const Scene corners = read_scene("", {"joint.slider.friction.law=none", "joint.slider.model=corners",
+                                          std::string("joint.slider.stiffness_model=") + stiffness});
+    const double y = -(face.slider_guide.clearance + 2e-5);
+    const Evaluation a = place_slider(face, y, 0.0), b = place_slider(corners, y, 0.0);
+    double fa = 0, fb = 0;
+    for (const auto& site : a.sites) fa += site.normal_force;
+    for (const auto& site : b.sites) fb += site.normal_force;
+    EXPECT_GT(fa, 0.0);
+    EXPECT_NEAR(fa, fb, 1e-9 * fa) << stiffness;
+    // Same resulting slider acceleration (force and zero moment).
+    EXPECT_NEAR(a.slider_acceleration[2], 0.0, 1e-6);
+    EXPECT_NEAR(b.slider_acceleration[2], 0.0, 1e-6);
+    EXPECT_NEAR(a.q_ddot[0], b.q_ddot[0], 1e-9 * std::abs(a.q_ddot[0]));
+  }
+}
+
+TEST(SliderCrank, IdealMechanismKinematicsMatchClosedForm) {
+  // Every joint ideal: x = r cos th + sqrt(l^2 - r^2 sin^2 th); the acceleration at th = 0 is
+  // -r w^2 (1 + r/l) = -19 419 m/s^2 at 5000 rpm (reference-values.md, re-derived here).
+  const Scene s = read_scene("", {"joint.slider.type=ideal", "gravity=0"});
+  const SliderCrank sys(s);
+  const double r = s.crank.length, l = s.conrod.length, w = s.driver.angular_speed();
+  State x = sys.initial_state();
+  Evaluation ev;
+  double vmax = 0, vmax_angle = 0, amin = 1e300, amax = -1e300;
+  for (int k = 0; k < 3600; ++k) {
+    const double th = 2 * std::numbers::pi * k / 3600.0, t = th / w;
+    sys.evaluate(t, x, ev);
+    const double xs = r * std::cos(th) + std::sqrt(l * l - r * r * std::sin(th) * std::sin(th));
+    ASSERT_NEAR(ev.slider_pose[0], xs, 1e-14);
+    ASSERT_NEAR(ev.slider_pose[1], 0.0, 1e-15);
+    if (ev.slider_velocity[0] > vmax) {
+      vmax = ev.slider_velocity[0];
+      vmax_angle = th;
+    }
+    amin = std::min(amin, ev.slider_acceleration[0]);
+    amax = std::max(amax, ev.slider_acceleration[0]);
+  }
+  EXPECT_NEAR(amin, -r * w * w * (1 + r / l), 1e-6 * r * w * w);
+  EXPECT_NEAR(amin, -19419.0, 1.0);
+  EXPECT_NEAR(amax, 9696.0, 2.0);
+  EXPECT_NEAR(std::abs(vmax), 28.4, 0.05);
+  // Extremes near 70.2 and 289.8 degrees (velocity negative on the first half-turn).
+  EXPECT_TRUE(std::abs(vmax_angle * 180 / std::numbers::pi - 289.8) < 0.2);
+}
+
+TEST(SliderCrank, IdealDrivingTorqueIsTheRateOfKineticEnergy) {
+  // With no gravity and no contact, tau w = dT/dt. T(th) from the closed-form kinematics by
+  // central differences (brute force); the torque swings about +-212 N m (reference-values.md).
+  const Scene s = read_scene("", {"joint.slider.type=ideal", "gravity=0"});
+  const SliderCrank sys(s);
+  const double w = s.driver.angular_speed();
+  State x = sys.initial_state();
+  Evaluation ev, ep, em;
+  double tmax = -1e300, tmin = 1e300;
+  for (int k = 0; k < 720; ++k) {
+    const double t = (2 * std::numbers::pi * k / 720.0) / w, dt = 1e-7;
+    sys.evaluate(t, x, ev);
+    sys.evaluate(t + dt, x, ep);
+    sys.evaluate(t - dt, x, em);
+    const double dT = (ep.kinetic_energy - em.kinetic_energy) / (2 * dt);
+    ASSERT_NEAR(ev.driving_torque * w, dT, 1e-5 * std::abs(s.crank.mass * w * w * w * 0.05 * 0.05) + 1e-4 * std::abs(dT));
+    tmax = std::max(tmax, ev.driving_torque);
+    tmin = std::min(tmin, ev.driving_torque);
+  }
+  EXPECT_NEAR(tmax, 212.0, 5.0);
+  EXPECT_NEAR(tmin, -212.0, 5.0);
+}
+
+}  // namespace
+}  // namespace mechanism
