@@ -9,6 +9,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -112,7 +113,7 @@ void visit_contact(Visitor& v, const std::string& p, ContactLawParameters& c) {
 }
 
 template <class Visitor>
-void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f) {
+void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f, double& bristle_time_floor) {
   v.choice(p + "law", f.law, "friction law");
   v.number(p + "static_coefficient", f.static_coefficient, Rule::non_negative, "mu_s");
   v.number(p + "kinetic_coefficient", f.kinetic_coefficient, Rule::non_negative, "mu_k");
@@ -127,6 +128,8 @@ void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f) 
   v.number(p + "sigma2", f.sigma2, Rule::non_negative, "LuGre viscous coefficient (same units as sigma1)");
   v.number(p + "ambrosio_v0", f.ambrosio_v0, Rule::positive, "m/s; Ambrosio's law: no friction below");
   v.number(p + "ambrosio_v1", f.ambrosio_v1, Rule::positive, "m/s; Ambrosio's law: full friction above");
+  v.number(p + "bristle_time_floor", bristle_time_floor, Rule::positive,
+           "s; LuGre bristles relax no faster than this (RK4 needs step < 2.78 x floor)");
 }
 
 template <class Visitor>
@@ -146,7 +149,7 @@ void visit_revolute(Visitor& v, const std::string& p, RevoluteJoint& j) {
   visit_material(v, p + "journal.", j.journal);
   visit_material(v, p + "bearing.", j.bearing);
   visit_contact(v, p + "contact.", j.contact);
-  visit_friction(v, p + "friction.", j.friction);
+  visit_friction(v, p + "friction.", j.friction, j.bristle_time_floor);
 }
 
 template <class Visitor>
@@ -184,7 +187,7 @@ void visit_fields(Visitor& v, Scene& s) {
            "N/m^n, used when stiffness_model = \"given\"");
   visit_material(v, t + "guide.", s.slider_guide.guide);
   visit_contact(v, t + "contact.", s.slider_guide.contact);
-  visit_friction(v, t + "friction.", s.slider_guide.friction);
+  visit_friction(v, t + "friction.", s.slider_guide.friction, s.slider_guide.bristle_time_floor);
   visit_revolute(v, "joint.crank_ground.", s.crank_ground);
   visit_revolute(v, "joint.crank_conrod.", s.crank_conrod);
   visit_revolute(v, "joint.conrod_slider.", s.conrod_slider);
@@ -403,6 +406,22 @@ void check_consistency(const Scene& s) {
   if (!(s.integrator.min_step <= s.integrator.max_step)) {
     throw InvalidParameter("integrator.min_step", format_number(s.integrator.min_step),
                            "must not exceed integrator.max_step (" + format_number(s.integrator.max_step) + " s)");
+  }
+  auto lugre = [](const FrictionLawParameters& f) {
+    return f.law == FrictionLaw::lugre_absolute || f.law == FrictionLaw::lugre_normalised;
+  };
+  for (auto [name, kind, f, floor] :
+       {std::tuple{"joint.slider", s.slider_guide.kind, &s.slider_guide.friction, s.slider_guide.bristle_time_floor},
+        std::tuple{"joint.crank_ground", s.crank_ground.kind, &s.crank_ground.friction, s.crank_ground.bristle_time_floor},
+        std::tuple{"joint.crank_conrod", s.crank_conrod.kind, &s.crank_conrod.friction, s.crank_conrod.bristle_time_floor},
+        std::tuple{"joint.conrod_slider", s.conrod_slider.kind, &s.conrod_slider.friction, s.conrod_slider.bristle_time_floor}}) {
+    if (kind == JointKind::clearance && lugre(*f) && s.integrator.method == IntegratorMethod::rk4 &&
+        s.integrator.step > 2.5 * floor) {
+      throw InvalidParameter("integrator.step", format_number(s.integrator.step),
+                             "must be <= 2.5 x " + std::string(name) + ".friction.bristle_time_floor (" +
+                                 format_number(floor) +
+                                 " s): explicit RK4 is unstable on the LuGre bristle state beyond that");
+    }
   }
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),

@@ -51,11 +51,12 @@ class HybridLoop {
     penetration_prev_.resize(sys_.site_count());
     for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
     emit_due(0.0, 0.0, x, true);
-    sys_.commit(0.0, ev_, onset_rate_);
+    State x0 = x;
+    sys_.commit(ev_, onset_rate_, x0);
   }
 
   // After an accepted step from t0 to t1 (x is the state at t1).
-  void after_step(double t0, double t1, const State& x) {
+  void after_step(double t0, double t1, State& x) {
     emit_due(t0, t1, x, false);
     sys_.evaluate(t1, x, ev_);
     const int n = sys_.coordinate_count();
@@ -75,7 +76,7 @@ class HybridLoop {
       }
       penetration_prev_[i] = now;
     }
-    const bool changed = sys_.commit(t1, ev_, onset_rate_);
+    const bool changed = sys_.commit(ev_, onset_rate_, x);
     if (onset || changed) stepper_.invalidate();
   }
 

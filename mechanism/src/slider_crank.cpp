@@ -87,8 +87,43 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     journals_.push_back({&j, w, k});
     journal_names_.emplace_back(joint_names[w]);
   }
+  // LuGre sites carry their bristle deflection in the state, after the work accumulators.
+  for (Site& site : sites_) {
+    const FrictionLawParameters& f =
+        site.kind == SiteKind::journal ? journals_[site.joint].joint->friction : s.slider_guide.friction;
+    if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
+  }
   memory_.assign(sites_.size(), ContactMemory{});
 }
+
+namespace {
+
+// Friction at one site. LuGre (Canudas de Wit et al. 1995): z' = v - sigma0 |v| z / g(v), with g
+// in newtons (absolute form) or as a coefficient (normalised form); the relaxation rate
+// k = sigma0 |v| / g is capped at 1 / floor, so z' = max-rate relaxation toward the steady
+// deflection z_ss = g sign(v) / sigma0 when k floor > 1 (same fixed point, bounded stiffness).
+// The other laws are stateless.
+struct FrictionResult {
+  double force = 0.0, z_rate = 0.0;
+};
+FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z) {
+  if (!(normal > 0.0)) return {};
+  if (!p.has_state()) return {friction(p, normal, v, 0.0, 0.0).force, 0.0};
+  const bool absolute = p.law == FrictionLaw::lugre_absolute;
+  const double g = stribeck_coefficient(p, v) * (absolute ? normal : 1.0);
+  const double k = p.sigma0 * std::abs(v) / g;
+  double z_rate;
+  if (k * floor <= 1.0) {
+    z_rate = v - k * z;
+  } else {
+    const double z_ss = (v > 0 ? g : -g) / p.sigma0;
+    z_rate = (z_ss - z) / floor;
+  }
+  const double coefficient = p.sigma0 * z + p.sigma1 * z_rate + p.sigma2 * v;
+  return {absolute ? -coefficient : -coefficient * normal, z_rate};
+}
+
+}  // namespace
 
 State SliderCrank::initial_state() const {
   const Scene& s = scene_;
@@ -164,7 +199,6 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
   };
 
   out.sites.resize(sites_.size());
-  const double elapsed = t - step_start_;
 
   // Slider corners: body-frame offsets TL, TR, BL, BR.
   const double hl = 0.5 * s.slider.length, hh = 0.5 * s.slider.height;
@@ -240,10 +274,10 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
       const double impact = mem.touching ? mem.impact_velocity : depth_rate;
       se.normal_force = normal_force(tj.contact, se.stiffness, depth, depth_rate, impact);
       se.sliding_velocity = vx;
-      const FrictionEvaluation f =
-          friction(tj.friction, se.normal_force, vx, mem.touching ? mem.deflection : 0.0, elapsed);
+      se.deflection = site.state >= 0 ? x[site.state] : 0.0;
+      const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);
       se.friction_force = f.force;
-      se.deflection = f.deflection;
+      se.deflection_rate = f.z_rate;
       apply(2, wxw, wyw, f.force, upper ? -se.normal_force : se.normal_force);
     } else {
       const Journal& jr = journals_[site.joint];
@@ -275,10 +309,11 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
       const double impact = mem.touching ? mem.impact_velocity : se.penetration_rate;
       se.normal_force = normal_force(jr.joint->contact, jr.stiffness, se.penetration, se.penetration_rate, impact);
       se.sliding_velocity = vt;
-      const FrictionEvaluation f =
-          friction(jr.joint->friction, se.normal_force, vt, mem.touching ? mem.deflection : 0.0, elapsed);
+      se.deflection = site.state >= 0 ? x[site.state] : 0.0;
+      const FrictionResult f =
+          site_friction(jr.joint->friction, jr.joint->bristle_time_floor, se.normal_force, vt, se.deflection);
       se.friction_force = f.force;
-      se.deflection = f.deflection;
+      se.deflection_rate = f.z_rate;
       // On the journal: pushed back toward the bearing centre, friction along the tangent.
       const double gx = -se.normal_force * nx + f.force * tx, gy = -se.normal_force * ny + f.force * ty;
       apply(jb, qx, qy, gx, gy);
@@ -372,6 +407,9 @@ void SliderCrank::rhs(double t, const State& x, State& dxdt) const {
   }
   dxdt[2 * n] = ev.drive_power;
   dxdt[2 * n + 1] = ev.contact_power;
+  for (std::size_t i = 0; i < sites_.size(); ++i) {
+    if (sites_[i].state >= 0) dxdt[sites_[i].state] = ev.sites[i].deflection_rate;
+  }
 }
 
 void SliderCrank::penetrations(double t, const State& x, std::vector<double>& out) const {
@@ -381,7 +419,7 @@ void SliderCrank::penetrations(double t, const State& x, std::vector<double>& ou
   for (std::size_t i = 0; i < sites_.size(); ++i) out[i] = ev.sites[i].penetration;
 }
 
-bool SliderCrank::commit(double t, const Evaluation& at_end, const std::vector<double>& onset_rate) {
+bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {
   bool latched = false;
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     ContactMemory& m = memory_[i];
@@ -393,12 +431,14 @@ bool SliderCrank::commit(double t, const Evaluation& at_end, const std::vector<d
         m.impact_velocity = std::isfinite(at_onset) ? at_onset : se.penetration_rate;
         latched = true;
       }
-      m.deflection = se.deflection;
     } else {
-      m = ContactMemory{};  // released: the bristles unload, the next impact latches anew
+      m = ContactMemory{};  // released: the next impact latches anew
+      if (sites_[i].state >= 0 && x[sites_[i].state] != 0.0) {
+        x[sites_[i].state] = 0.0;  // and the bristles unload
+        latched = true;
+      }
     }
   }
-  step_start_ = t;
   return latched;
 }
 

@@ -19,8 +19,9 @@
 //  - |impact_velocity| is used and raised to velocity_floor, so a grazing onset (latched speed
 //    -> 0) gives a finite damping term instead of a division by ~0.
 //  - Parameters are validated on every call (a few comparisons) and throw InvalidParameter; the
-//    state arguments (penetration, rates) are not: a NaN there propagates to the result so the
-//    integrator's non-finite-state check sees it.
+//    state arguments are not: a NaN penetration (or a NaN rate or impact velocity, for a law with
+//    chi != 0, which uses them) propagates to the result so the integrator's non-finite-state
+//    check sees it.
 
 #include <optional>
 #include <string_view>

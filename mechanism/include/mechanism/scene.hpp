@@ -76,6 +76,11 @@ struct TranslationalJoint {
   Material guide;
   ContactLawParameters contact;
   FrictionLawParameters friction;
+  // LuGre only: the bristle deflection relaxes toward its steady value no faster than this (s).
+  // The true rate sigma0 |v| / g(v) grows without bound as the normal force vanishes at contact
+  // onset and release; an explicit integrator is stable on the bristle state only with
+  // step < 2.78 x this floor (RK4). docs/mechanism/contact-and-friction.md.
+  double bristle_time_floor = 1e-6;
 };
 
 // Journal-in-bearing stiffness: Hertz's cylinder-in-hole value from the materials and radii
@@ -99,6 +104,7 @@ struct RevoluteJoint {
     f.law = FrictionLaw::none;
     return f;
   }();
+  double bristle_time_floor = 1e-6;  // as for the translational joint
 };
 
 enum class IntegratorMethod { rk4, dopri5 };

@@ -15,9 +15,12 @@
 // The crank turns at constant speed (its angle is prescribed). The seed's scene (translational
 // clearance only) integrates conrod_angle and slider_angle: seed Eq. 27.
 //
-// Continuous state x = (q, q_dot, W_drive, W_contact): the last two integrate the work of the
-// driving torque and of all contact and friction forces, so the energy balance
-// E(t) - E(0) = W_drive + W_contact checks the integration. The equations of motion are the
+// Continuous state x = (q, q_dot, W_drive, W_contact, z): W_drive and W_contact integrate the work
+// of the driving torque and of all contact and friction forces, so the energy balance
+// E(t) - E(0) = W_drive + W_contact checks the integration; z holds the LuGre bristle deflection
+// of each site whose law is LuGre (integrated with the same order as the mechanics; its
+// relaxation rate is capped by the joint's bristle_time_floor, and it is reset to zero when the
+// contact opens). The equations of motion are the
 // principle of virtual power over the three moving bodies, with Jacobians and bias accelerations
 // from kinematic jets (kinematic_jet.hpp).
 //
@@ -49,7 +52,6 @@ enum class SiteKind { slider_face_upper, slider_face_lower, slider_corner, journ
 struct ContactMemory {
   bool touching = false;         // penetrating at the end of the last accepted step
   double impact_velocity = 0.0;  // penetration rate latched at onset (m/s)
-  double deflection = 0.0;       // LuGre bristle deflection at the end of the last accepted step
 };
 
 // One contact site's state at an evaluation.
@@ -59,7 +61,8 @@ struct SiteEvaluation {
   double normal_force = 0.0;      // N, >= 0
   double friction_force = 0.0;    // N, along the tangent, opposing the sliding velocity
   double sliding_velocity = 0.0;  // m/s
-  double deflection = 0.0;        // LuGre bristle deflection at this instant
+  double deflection = 0.0;        // LuGre bristle deflection (0 for the other laws)
+  double deflection_rate = 0.0;   // its time derivative
   double contact_length = 0.0;    // slider faces: L_c of seed Eq. 12
   double stiffness = 0.0;         // the stiffness used
 };
@@ -91,7 +94,9 @@ class SliderCrank {
 
   const Scene& scene() const { return scene_; }
   int coordinate_count() const { return n_; }
-  int state_size() const { return 2 * n_ + 2; }
+  int state_size() const { return 2 * n_ + 2 + bristles_; }
+  // Index in the state of site i's bristle deflection, or -1 when its friction law has no state.
+  int bristle_index(std::size_t i) const { return sites_[i].state; }
   const std::vector<std::string>& coordinate_names() const { return names_; }
   // Revolute clearance joints modelled, e.g. {"crank_conrod"}.
   const std::vector<std::string>& journal_names() const { return journal_names_; }
@@ -111,13 +116,12 @@ class SliderCrank {
   // Penetration of each site (its event function: contact onset where it crosses 0 upward).
   void penetrations(double t, const State& x, std::vector<double>& out) const;
 
-  // After an accepted step ending at time t, given the evaluation at the step's end made with the
-  // step's memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
+  // After an accepted step ending at state x, given the evaluation there made with the step's
+  // memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
   // located onset time for sites that started touching during the step, NaN or absent otherwise),
-  // forget them at release, keep the LuGre deflections reached exactly over the step, and start
-  // the next step's clock at t. Returns true when a latch changed the right-hand side at t (the
-  // stepper's cached first stage is then stale).
-  bool commit(double t, const Evaluation& at_end, const std::vector<double>& onset_rate);
+  // forget them at release and unload the bristles there (z = 0 in x). Returns true when this
+  // changed the right-hand side at x (the stepper's cached first stage is then stale).
+  bool commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x);
 
   const std::vector<ContactMemory>& memory() const { return memory_; }
   double omega() const { return omega_; }
@@ -127,6 +131,7 @@ class SliderCrank {
     SiteKind kind;
     int joint = -1;     // for journals: index into the revolute joints modelled
     int corner = -1;    // for slider corners: 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right
+    int state = -1;     // index of the bristle deflection in the state (LuGre), else -1
   };
   struct Journal {
     const RevoluteJoint* joint;
@@ -146,7 +151,7 @@ class SliderCrank {
   std::vector<Journal> journals_;
   std::vector<Site> sites_;
   std::vector<ContactMemory> memory_;
-  double step_start_ = 0.0;
+  int bristles_ = 0;
 };
 
 }  // namespace mechanism

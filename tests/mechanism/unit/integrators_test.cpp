@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -110,7 +112,7 @@ void expect_order(const std::string& what, const std::vector<double>& errors, do
   std::printf("\n");
   for (const double v : s) EXPECT_NEAR(v, order, 0.2) << what;
   // Above round-off (~1e-16 here), so the slopes measure truncation error.
-  EXPECT_GT(errors.back(), 5e-14) << what;
+  EXPECT_GT(errors.back(), 1e-14) << what;
 }
 
 const std::vector<int> kRk4Steps = {20, 40, 80, 160, 320};
@@ -279,48 +281,114 @@ const State kArenstorf0 = vec({0.994, 0.0, 0.0, -2.00158510637908252240537862224
 constexpr double kArenstorfPeriod = 17.0652165601579625588917206249;
 
 struct ArenstorfRun {
-  double error;
+  double error;                // max |x(T) - x(0)|: the global error after one period
+  double worst_local;          // largest true local error of an accepted step, in the tolerance norm
   std::size_t accepted, rejected, evaluations;
 };
 
-ArenstorfRun run_arenstorf(double tolerance, double beta) {
+// The tolerance norm of HNW II.4 (the one the controller uses) applied to a true error.
+double scaled_norm(const State& error, const State& x0, const State& x1, double tol) {
+  const auto sc = tol + tol * x0.array().abs().max(x1.array().abs());
+  return std::sqrt((error.array() / sc).square().mean());
+}
+
+ArenstorfRun run_arenstorf(double tolerance, double beta, bool check_local) {
   AdaptiveOptions options;
   options.relative_tolerance = options.absolute_tolerance = tolerance;
   options.controller_beta = beta;
   DormandPrince54 dp(options);
   const Arenstorf sys;
-  double t = 0.0;
+  double t = 0.0, worst_local = 0.0;
   State x = kArenstorf0;
   double h = dp.initial_step(sys, t, x);
-  EXPECT_EQ(dp.advance_to(sys, t, x, kArenstorfPeriod, h), AdvanceStatus::reached);
+  if (!check_local) {
+    EXPECT_EQ(dp.advance_to(sys, t, x, kArenstorfPeriod, h), AdvanceStatus::reached);
+  } else {
+    // The same loop by hand, to compare every accepted step with a reference for its local
+    // problem: 32 fixed DP steps from the same start, error ~ 32^-5 of the step's own.
+    State x_start, x_ref;
+    while (t < kArenstorfPeriod) {
+      const double t_start = t;
+      x_start = x;
+      if (t + 1.01 * h >= kArenstorfPeriod) h = kArenstorfPeriod - t;
+      const StepOutcome outcome = dp.try_step(sys, t, x, h);
+      if (outcome == StepOutcome::rejected) continue;
+      if (outcome != StepOutcome::accepted) {
+        ADD_FAILURE() << "outcome " << static_cast<int>(outcome);
+        break;
+      }
+      DormandPrince54 reference;
+      double t_ref = t_start;
+      x_ref = x_start;
+      for (int i = 1; i < 32; ++i) reference.step_fixed(sys, t_ref, x_ref, (t - t_start) / 32.0);
+      reference.step_fixed_to(sys, t_ref, x_ref, t);
+      worst_local = std::max(worst_local, scaled_norm(x - x_ref, x_start, x, tolerance));
+    }
+  }
   EXPECT_EQ(t, kArenstorfPeriod);
-  return {max_abs(x - kArenstorf0), dp.accepted_steps(), dp.rejected_steps(), dp.rhs_evaluations()};
+  return {max_abs(x - kArenstorf0), worst_local, dp.accepted_steps(), dp.rejected_steps(), dp.rhs_evaluations()};
+}
+
+// The largest singular value of the period map's Jacobian, by forward differences of tight runs:
+// how much an error committed at t = 0 is amplified by t = T.
+double arenstorf_amplification() {
+  AdaptiveOptions options;
+  options.relative_tolerance = options.absolute_tolerance = 1e-13;
+  const auto flow = [&](const State& x0) {
+    DormandPrince54 dp(options);
+    double t = 0.0;
+    State x = x0;
+    double h = dp.initial_step(Arenstorf{}, t, x);
+    dp.advance_to(Arenstorf{}, t, x, kArenstorfPeriod, h);
+    return x;
+  };
+  const State base = flow(kArenstorf0);
+  Eigen::Matrix4d jacobian;
+  for (int j = 0; j < 4; ++j) {
+    State x = kArenstorf0;
+    x[j] += 1e-7;
+    jacobian.col(j) = (flow(x) - base) / 1e-7;
+  }
+  return std::sqrt((jacobian.transpose() * jacobian).eigenvalues().real().maxCoeff());
 }
 
 TEST(DormandPrince54, ArenstorfOrbitMeetsTheTolerance) {
+  const double amplification = arenstorf_amplification();
+  std::printf("[arenstorf] period map: largest singular value of the Jacobian %.3e\n", amplification);
+  // Why the global error below is allowed 1e5 tol: local errors of size tol are amplified by up to
+  // this factor (the orbit's close approaches to the moon), and the method cannot know it.
+  EXPECT_GT(amplification, 1e5);
+
+  const std::vector<double> tolerances = {1e-6, 1e-8, 1e-10, 1e-12};
   for (const double beta : {0.04, 0.0}) {
     std::vector<ArenstorfRun> runs;
-    const std::vector<double> tolerances = {1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
     for (const double tol : tolerances) {
-      runs.push_back(run_arenstorf(tol, beta));
+      runs.push_back(run_arenstorf(tol, beta, tol >= 1e-10));
       const auto& r = runs.back();
-      std::printf("[arenstorf] beta %.2f tol %.0e: error at T %.3e, accepted %zu, rejected %zu, rhs %zu\n", beta, tol,
-                  r.error, r.accepted, r.rejected, r.evaluations);
+      std::printf(
+          "[arenstorf] beta %.2f tol %.0e: error at T %.3e (%.1e tol), worst local %.3f, accepted %zu, "
+          "rejected %zu, rhs %zu\n",
+          beta, tol, r.error, r.error / tol, r.worst_local, r.accepted, r.rejected, r.evaluations);
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
-      // Tolerances bound local errors; the orbit's close lunar passes amplify them along the way, so
-      // the global error after one period is allowed 1000 tol (HNW Fig. II.4.2 shows errors of this size).
-      EXPECT_LT(runs[i].error, 1000.0 * tolerances[i]) << "tol " << tolerances[i];
+      const double tol = tolerances[i];
+      // What a tolerance promises (HNW II.4): every accepted step's local error is within it. The
+      // controller bounds the embedded 4th-order estimate; the propagated 5th-order solution is
+      // more accurate still.
+      if (tol >= 1e-10) {
+        EXPECT_LE(runs[i].worst_local, 1.0) << "tol " << tol;
+      }
+      EXPECT_LT(runs[i].error, 1e5 * tol) << "tol " << tol;
       // FSAL bookkeeping: 2 for the initial step (its f0 is the first k1), then 6 per attempt.
       EXPECT_EQ(runs[i].evaluations, 2 + 6 * (runs[i].accepted + runs[i].rejected));
-      EXPECT_LT(runs[i].rejected, runs[i].accepted / 2) << "tol " << tolerances[i];
+      EXPECT_LT(runs[i].rejected, runs[i].accepted / 3) << "tol " << tol;
       if (i == 0) continue;
-      // 100 times tighter: the error falls by at least 10 and the step count grows by about
-      // 100^(1/5) = 2.5 (a 5th-order method's step scales as tol^(1/5)).
-      EXPECT_LT(runs[i].error, runs[i - 1].error / 10.0) << "tol " << tolerances[i];
+      // 100 times tighter: the error falls by at least 10 (tolerance proportionality) and the step
+      // count grows by about 100^(1/5) = 2.5 (a 5th-order method's step scales as tol^(1/5)).
+      EXPECT_LT(runs[i].error, runs[i - 1].error / 10.0) << "tol " << tol;
       const double growth = static_cast<double>(runs[i].accepted) / static_cast<double>(runs[i - 1].accepted);
-      EXPECT_GT(growth, 1.6) << "tol " << tolerances[i];
-      EXPECT_LT(growth, 3.6) << "tol " << tolerances[i];
+      EXPECT_GT(growth, 2.0) << "tol " << tol;
+      EXPECT_LT(growth, 3.0) << "tol " << tol;
     }
   }
 }
@@ -482,21 +550,23 @@ TEST(DormandPrince54, StepUnderflowIsReportedAtAFiniteTimeBlowUp) {
     ++attempts;
   }
   EXPECT_EQ(outcome, StepOutcome::step_underflow);
-  EXPECT_LT(attempts, 10000u);  // geometric approach to t = 1: a few hundred steps, no hang
-  EXPECT_LT(t, 1.0);
-  EXPECT_GT(t, 1.0 - 1e-9);
+  EXPECT_LT(attempts, 10000u);  // a geometric approach to the singularity: a few hundred steps
   EXPECT_LT(h, dp.options().min_step);
-  // The state still follows the exact solution to the tolerance's order (relative).
-  EXPECT_NEAR(x[0] * (1.0 - t), 1.0, 1e-4);
-  std::printf("[blow-up] step_underflow at t = 1 - %.3e after %zu attempts (%zu accepted, %zu rejected)\n", 1.0 - t,
-              attempts, dp.accepted_steps(), dp.rejected_steps());
+  // The exact solution through the current (t, x) blows up at t + 1/x. The numerical one has
+  // drifted from x = 1/(1 - t) by accumulated local errors of relative size ~ rtol, which moves its
+  // blow-up time by about as much, so both t and t + 1/x are 1 to within 1e-6.
+  EXPECT_GT(x[0], 1e8);
+  EXPECT_NEAR(t, 1.0, 1e-6);
+  EXPECT_NEAR(t + 1.0 / x[0], 1.0, 1e-6);
+  std::printf("[blow-up] step_underflow at t = 1 %+.3e, x = %.3e, after %zu attempts (%zu accepted, %zu rejected)\n",
+              t - 1.0, x[0], attempts, dp.accepted_steps(), dp.rejected_steps());
 
   // advance_to reports the same status instead of looping.
   DormandPrince54 dp2;
   double t2 = 0.0, h2 = 0.1;
   State x2 = vec({1.0});
   EXPECT_EQ(dp2.advance_to(sys, t2, x2, 2.0, h2), AdvanceStatus::step_underflow);
-  EXPECT_LT(t2, 1.0);
+  EXPECT_NEAR(t2, 1.0, 1e-6);
 }
 
 // Finite for t < 0.5, NaN beyond (a model evaluated outside its domain).
@@ -512,10 +582,12 @@ struct Overflows {
 
 TEST(DormandPrince54, NonFiniteStagesAreReported) {
   DormandPrince54 dp;
-  double t = 0.0, h = 0.4;
+  double t = 0.0;
   State x = vec({1.0});
-  ASSERT_EQ(dp.try_step(BreaksAtHalf{}, t, x, h), StepOutcome::accepted);  // stages at t <= 0.4
-  const double t_before = t, h_before = h = 0.6;
+  dp.step_fixed(BreaksAtHalf{}, t, x, 0.4);  // stages at t <= 0.4: finite
+  ASSERT_TRUE(x.allFinite());
+  double h = 0.6;  // the second stage is at 0.52
+  const double t_before = t, h_before = h;
   const State x_before = x;
   EXPECT_EQ(dp.try_step(BreaksAtHalf{}, t, x, h), StepOutcome::non_finite);
   EXPECT_EQ(t, t_before);
@@ -623,8 +695,8 @@ TEST(Steppers, StepsDoNotAllocate) {
   DormandPrince54 dp;
   double t = 0.0, s = 0.0, h = 1e-3;
   State x = kArenstorf0, y = kArenstorf0, u(4);
-  rk.step(sys, t, x, 1e-3);  // the first call sizes the work vectors
-  dp.try_step(sys, s, y, h);
+  rk.step(sys, t, x, 1e-3);  // the first calls size the work vectors
+  dp.step_fixed(sys, s, y, 1e-3);
   malloc_count = 0;
   counting_mallocs = true;
   for (int i = 0; i < 1000; ++i) {

@@ -1,0 +1,176 @@
+// Whole simulations: properties any correct integration of the model must have. Energy is
+// conserved (up to the drive's work) with restitution 1 and no friction, its error falling at the
+// integrator's order as the step halves; the response approaches the ideal mechanism as the
+// clearance shrinks; the extremes finish without NaN; a run that cannot continue says so; runs are
+// bit-for-bit repeatable.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "mechanism/scene.hpp"
+#include "mechanism/simulate.hpp"
+
+namespace mechanism {
+namespace {
+
+// A number as a TOML value, every digit kept (std::to_string would print 5e-7 as 0.000000).
+std::string toml_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// Elastic energy stored in the contacts, for laws F = K d^n along a fixed line of action through
+// the contact (corners of the slider, journals): V = K d^(n+1) / (n+1) per penetrating site.
+double contact_energy(const Evaluation& ev, double exponent) {
+  double v = 0;
+  for (const auto& s : ev.sites) {
+    if (s.penetration > 0) v += s.stiffness * std::pow(s.penetration, exponent + 1) / (exponent + 1);
+  }
+  return v;
+}
+
+struct Drift {
+  double conservative = 0;  // max |E + V_contact - E(0) - W_drive|: zero for exact dynamics
+  double balance = 0;       // max |E - E(0) - W_drive - W_contact|: the integrated work balance
+  std::size_t contacts = 0;
+};
+
+Drift drift(double step, std::vector<std::string> overrides) {
+  overrides.insert(overrides.end(), {"joint.slider.friction.law=none", "run.duration=0.012",
+                                     "run.output_interval=1e-5", "integrator.step=" + toml_number(step)});
+  SliderCrank sys(read_scene("", overrides));
+  Drift d;
+  double c0 = NAN, b0 = NAN;
+  SimulationObserver obs;
+  obs.sample = [&](double, const State& x, const Evaluation& ev) {
+    const int n = sys.coordinate_count();
+    const double e = ev.kinetic_energy + ev.potential_energy;
+    const double c = e + contact_energy(ev, 1.5) - x[2 * n], b = e - x[2 * n] - x[2 * n + 1];
+    if (std::isnan(c0)) c0 = c, b0 = b;
+    d.conservative = std::max(d.conservative, std::abs(c - c0));
+    d.balance = std::max(d.balance, std::abs(b - b0));
+  };
+  const SimulationSummary s = simulate(sys, obs);
+  EXPECT_EQ(s.status, SimulationStatus::completed);
+  d.contacts = s.contact_events;
+  return d;
+}
+
+TEST(Simulation, EnergyIsConservedWithRestitutionOneAndNoFriction) {
+  // Two conservative contact models (the slider's corners with a constant stiffness; a journal in
+  // its bearing with Hertz's stiffness), restitution 1, no friction, the crank driven.
+  const std::vector<std::vector<std::string>> scenes = {
+      {"joint.slider.model=corners", "joint.slider.stiffness_model=given", "joint.slider.stiffness=1e10",
+       "joint.slider.contact.restitution=1"},
+      {"joint.slider.type=ideal", "joint.conrod_slider.type=clearance", "joint.conrod_slider.clearance=0.1e-3",
+       "joint.conrod_slider.contact.restitution=1"}};
+  for (const auto& scene : scenes) {
+    const Drift coarse = drift(2e-6, scene), fine = drift(5e-7, scene);
+    ASSERT_GT(coarse.contacts, 5u);  // the contacts are exercised
+    // Two halvings of the step. The work balance is integrated with the state: RK4's fourth
+    // order (a factor 256; ask for 64). The conservation of E + V also carries the contact law's
+    // d^1.5, whose second derivative jumps at onset: ask for second order (16).
+    EXPECT_LT(fine.balance, coarse.balance / 64) << scene.front() << ": " << coarse.balance << " -> " << fine.balance;
+    EXPECT_LT(fine.conservative, coarse.conservative / 16)
+        << scene.front() << ": " << coarse.conservative << " -> " << fine.conservative;
+    EXPECT_LT(fine.conservative, 1e-5);  // J, against a kinetic energy of about 30 J
+  }
+}
+
+// Max |conrod angle - ideal conrod angle| over one period for a translational clearance c.
+double deviation_from_ideal(double clearance) {
+  const Scene scene = read_scene("", {"joint.slider.friction.law=none", "run.duration=0.012",
+                                      "joint.slider.clearance=" + toml_number(clearance)});
+  SliderCrank sys(scene);
+  const double r = scene.crank.length, l = scene.conrod.length;
+  double worst = 0;
+  SimulationObserver obs;
+  obs.sample = [&](double, const State&, const Evaluation& ev) {
+    const double ideal = std::asin(-r * std::sin(ev.crank_angle) / l);
+    worst = std::max(worst, std::abs(ev.conrod_angle - ideal));
+  };
+  EXPECT_EQ(simulate(sys, obs).status, SimulationStatus::completed);
+  return worst;
+}
+
+TEST(Simulation, ApproachesTheIdealMechanismAsClearanceShrinks) {
+  const double c[] = {0.6e-3, 0.1e-3, 0.01e-3, 0.001e-3};
+  double previous = 1e300;
+  for (double ci : c) {
+    const double d = deviation_from_ideal(ci);
+    EXPECT_LT(d, previous) << "clearance " << ci;
+    previous = d;
+  }
+}
+
+SimulationSummary run_extreme(const std::vector<std::string>& overrides) {
+  std::vector<std::string> all = {"run.duration=0.006", "run.output_interval=1e-4"};
+  all.insert(all.end(), overrides.begin(), overrides.end());
+  SliderCrank sys(read_scene("", all));
+  bool finite = true;
+  SimulationObserver obs;
+  obs.sample = [&](double, const State& x, const Evaluation&) { finite = finite && x.allFinite(); };
+  SimulationSummary s = simulate(sys, obs);
+  EXPECT_TRUE(finite);
+  return s;
+}
+
+TEST(Simulation, ExtremesFinishWithoutNaN) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"joint.slider.clearance=1e-6"},
+      {"joint.slider.clearance=2e-3"},
+      {"driver.speed_rpm=50"},
+      {"driver.speed_rpm=20000"},
+      {"joint.slider.contact.restitution=0.3", "joint.slider.contact.law=flores"},
+      {"joint.slider.contact.restitution=1"},
+      {"joint.slider.friction.law=none"},
+      {"joint.slider.friction.law=lugre_normalised"},
+      {"joint.slider.model=corners", "joint.slider.friction.law=ambrosio"},
+      {"joint.crank_conrod.type=clearance", "joint.crank_conrod.clearance=1e-6"},
+      {"integrator.method=dopri5"},
+  };
+  for (const auto& c : cases) {
+    const SimulationSummary s = run_extreme(c);
+    EXPECT_EQ(s.status, SimulationStatus::completed) << c.front() << ": " << s.message;
+    EXPECT_TRUE(std::isfinite(s.max_penetration)) << c.front();
+    EXPECT_TRUE(std::isfinite(s.energy_balance_error)) << c.front();
+  }
+}
+
+TEST(Simulation, GrazingContactAtLowSpeedStaysFinite) {
+  // At 50 rpm the slider settles onto the lower surface under gravity with impact speeds far
+  // below the velocity floor: the damping must stay finite.
+  const SimulationSummary s = run_extreme({"driver.speed_rpm=50", "run.duration=0.05", "joint.slider.friction.law=none"});
+  EXPECT_EQ(s.status, SimulationStatus::completed) << s.message;
+  EXPECT_GT(s.contact_events, 0u);
+  // Hertz's peak penetration (5 m v^2 / (4 K))^0.4 for an impact at 1 m/s (far above what gravity
+  // and the 50 rpm crank give) of 0.5 kg on the flat-face stiffness (about 6e9) is 1e-4 m.
+  EXPECT_LT(s.max_penetration, 1e-4);
+}
+
+TEST(Simulation, ReportsAStepLimitInsteadOfRunningOn) {
+  const SimulationSummary s = run_extreme({"integrator.max_steps=100"});
+  EXPECT_EQ(s.status, SimulationStatus::step_limit);
+  EXPECT_NE(s.message.find("t = "), std::string::npos);
+  EXPECT_LT(s.end_time, 0.006);
+}
+
+TEST(Simulation, RunsAreRepeatable) {
+  auto trace = [] {
+    SliderCrank sys(read_scene("", {"run.duration=0.012", "run.stroboscopic=true"}));
+    std::vector<double> y;
+    SimulationObserver obs;
+    obs.sample = [&](double, const State&, const Evaluation& ev) { y.push_back(ev.slider_pose[1]); };
+    simulate(sys, obs);
+    return y;
+  };
+  EXPECT_EQ(trace(), trace());
+}
+
+}  // namespace
+}  // namespace mechanism
