@@ -83,7 +83,7 @@ FrictionEvaluation lugre(const FrictionLawParameters& p, double normal_force, do
     if (!std::isnan(rate))
       rate = std::clamp(rate, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
   }
-  const double s = p.sigma0 * z + p.sigma1 * rate + p.sigma2 * v;
+  const double s = p.sigma0 * z + p.bristle_damping(v) * rate + p.sigma2 * v;
   out.force = p.law == FrictionLaw::lugre_absolute ? -s : -normal_force * s;
   out.deflection = z;
   out.deflection_rate = rate;
@@ -119,6 +119,7 @@ void FrictionLawParameters::validate() const {
       require_positive("stribeck_exponent", stribeck_exponent);
       require_positive("sigma0", sigma0);
       require_non_negative("sigma1", sigma1);
+      require_non_negative("sigma1_velocity", sigma1_velocity);
       require_non_negative("sigma2", sigma2);
       return;
   }
@@ -135,7 +136,7 @@ double stribeck_coefficient(const FrictionLawParameters& p, double sliding_veloc
   check_stribeck(p);
   const double ratio = std::fabs(sliding_velocity / p.stribeck_velocity);
   return p.kinetic_coefficient +
-         (p.static_coefficient - p.kinetic_coefficient) * std::exp(-std::pow(ratio, p.stribeck_exponent));
+         (p.static_coefficient - p.kinetic_coefficient) * std::exp(-(p.stribeck_exponent == 2.0 ? ratio * ratio : std::pow(ratio, p.stribeck_exponent)));
 }
 
 double ambrosio_correction(const FrictionLawParameters& p, double sliding_velocity) {
@@ -194,6 +195,12 @@ std::optional<FrictionLaw> parse_friction_law(std::string_view name) noexcept {
   for (const auto& [value, known] : kNames)
     if (known == name) return value;
   return std::nullopt;
+}
+
+double FrictionLawParameters::bristle_damping(double sliding_velocity) const {
+  if (sigma1_velocity <= 0.0) return sigma1;
+  const double r = sliding_velocity / sigma1_velocity;
+  return sigma1 * std::exp(-r * r);
 }
 
 }  // namespace mechanism

@@ -125,6 +125,8 @@ void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f, 
            "LuGre bristle stiffness (N/m absolute form, 1/m normalised form)");
   v.number(p + "sigma1", f.sigma1, Rule::non_negative,
            "LuGre bristle damping (N s/m absolute form, s/m normalised form)");
+  v.number(p + "sigma1_velocity", f.sigma1_velocity, Rule::non_negative,
+           "m/s; sigma1 fades as exp(-(v/this)^2) (Canudas de Wit 2003); 0: constant, as the seed");
   v.number(p + "sigma2", f.sigma2, Rule::non_negative, "LuGre viscous coefficient (same units as sigma1)");
   v.number(p + "ambrosio_v0", f.ambrosio_v0, Rule::positive, "m/s; Ambrosio's law: no friction below");
   v.number(p + "ambrosio_v1", f.ambrosio_v1, Rule::positive, "m/s; Ambrosio's law: full friction above");

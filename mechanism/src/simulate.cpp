@@ -234,7 +234,8 @@ SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observ
         sum.message = at_time("the step limit was reached", t);
         break;
       }
-      const bool last = h >= t_end - t;
+      // Stretch the last step by up to 1 % rather than leave a sliver below min_step (DOPRI5's rule).
+      const bool last = 1.01 * h >= t_end - t;
       double trial = last ? t_end - t : h;
       const double t0 = t;
       const StepOutcome outcome = stepper.try_step(system, t, x, trial);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Cholesky>
 
 #include "mechanism/contact_stiffness.hpp"
 #include "mechanism/kinematic_jet.hpp"
@@ -59,12 +58,12 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
 
   if (slider_clearance_) {
     const TranslationalJoint& t = s.slider_guide;
+    slider_compliance_ = material_compliance(s.slider.material.young_modulus, s.slider.material.poisson_ratio);
+    guide_compliance_ = material_compliance(t.guide.young_modulus, t.guide.poisson_ratio);
     slider_flat_stiffness_ =
         t.stiffness_model == SliderStiffness::given
             ? t.stiffness
-            : slider_face_stiffness(material_compliance(s.slider.material.young_modulus, s.slider.material.poisson_ratio),
-                                    material_compliance(t.guide.young_modulus, t.guide.poisson_ratio),
-                                    s.slider.length, s.slider.width, s.slider.length);
+            : slider_face_stiffness(slider_compliance_, guide_compliance_, s.slider.length, s.slider.width, s.slider.length);
     if (t.model == SliderContactModel::face) {
       sites_.push_back({SiteKind::slider_face_upper, -1, -1});
       sites_.push_back({SiteKind::slider_face_lower, -1, -1});
@@ -119,7 +118,7 @@ FrictionResult site_friction(const FrictionLawParameters& p, double floor, doubl
     const double z_ss = (v > 0 ? g : -g) / p.sigma0;
     z_rate = (z_ss - z) / floor;
   }
-  const double coefficient = p.sigma0 * z + p.sigma1 * z_rate + p.sigma2 * v;
+  const double coefficient = p.sigma0 * z + p.bristle_damping(v) * z_rate + p.sigma2 * v;
   return {absolute ? -coefficient : -coefficient * normal, z_rate};
 }
 
@@ -157,22 +156,24 @@ State SliderCrank::initial_state() const {
 void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
   const Scene& s = scene_;
   const int n = n_;
-  const int cols = n + 1;  // the last column is the driven crank angle
-  auto coordinate = [&](int i) { return Jet::coordinate(i, x[i], x[n + i], cols); };
-  const Jet zero = Jet::constant(0.0, cols);
+  // Column n of every jet is the driven crank angle.
+  auto coordinate = [&](int i) { return Jet::coordinate(i, x[i], x[n + i]); };
+  const Jet zero = Jet::constant(0.0);
 
   // Poses as jets, from the ground up.
-  Jet th2 = Jet::coordinate(n, s.driver.initial_angle + omega_ * t, omega_, cols);
+  Jet th2 = Jet::coordinate(n, s.driver.initial_angle + omega_ * t, omega_);
+  const JetRotation crank_rotation(th2);
   const JetPoint pivot = idx_crank_pivot_ >= 0 ? JetPoint{coordinate(idx_crank_pivot_), coordinate(idx_crank_pivot_ + 1)}
                                                : JetPoint{zero, zero};
-  const JetPoint crank_tip = offset(pivot, th2, s.crank.length, 0.0);
-  const JetPoint crank_centre = offset(pivot, th2, s.crank.mass_centre * s.crank.length, 0.0);
+  const JetPoint crank_tip = offset(pivot, crank_rotation, s.crank.length, 0.0);
+  const JetPoint crank_centre = offset(pivot, crank_rotation, s.crank.mass_centre * s.crank.length, 0.0);
   const JetPoint conrod_pin =
       idx_conrod_pin_ >= 0 ? JetPoint{coordinate(idx_conrod_pin_), coordinate(idx_conrod_pin_ + 1)} : crank_tip;
   // Dependent conrod angle: the slider pin stays on the guide line y = 0.
   const Jet th3 = idx_conrod_angle_ >= 0 ? coordinate(idx_conrod_angle_) : asin((-1.0 / s.conrod.length) * conrod_pin.y);
-  const JetPoint conrod_end = offset(conrod_pin, th3, s.conrod.length, 0.0);
-  const JetPoint conrod_centre = offset(conrod_pin, th3, s.conrod.mass_centre * s.conrod.length, 0.0);
+  const JetRotation conrod_rotation(th3);
+  const JetPoint conrod_end = offset(conrod_pin, conrod_rotation, s.conrod.length, 0.0);
+  const JetPoint conrod_centre = offset(conrod_pin, conrod_rotation, s.conrod.mass_centre * s.conrod.length, 0.0);
   JetPoint slider = conrod_end;
   if (idx_slider_x_ >= 0) slider = {coordinate(idx_slider_x_), idx_slider_y_ >= 0 ? coordinate(idx_slider_y_) : zero};
   const Jet th4 = idx_slider_angle_ >= 0 ? coordinate(idx_slider_angle_) : zero;
@@ -245,10 +246,8 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
         if (depth > 0.0) {
           se.contact_length = contact_length(s.slider.length, da, db);
           se.stiffness = tj.stiffness_model == SliderStiffness::contact_length
-                             ? slider_face_stiffness(
-                                   material_compliance(s.slider.material.young_modulus, s.slider.material.poisson_ratio),
-                                   material_compliance(tj.guide.young_modulus, tj.guide.poisson_ratio),
-                                   s.slider.length, s.slider.width, se.contact_length)
+                             ? slider_face_stiffness(slider_compliance_, guide_compliance_, s.slider.length,
+                                                     s.slider.width, se.contact_length)
                              : slider_flat_stiffness_;
           // Centroid of the penetrated region along the face (a triangle, or a trapezoid when
           // both corners penetrate): the seed's point W.
@@ -321,7 +320,7 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
     }
   }
 
-  // Equations of motion: M q_ddot = sum over bodies of J^T (F - m b).
+  // Equations of motion: M q_ddot = sum over bodies of J^T (F - m b), over the n free columns.
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_jet_columns, max_jet_columns>;
   using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_jet_columns, 1>;
   Matrix mass = Matrix::Zero(n, n);
@@ -329,25 +328,54 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
   const double g = s.gravity;
   for (int b = 0; b < 3; ++b) {
     const BodyJets& body = bodies[b];
-    const auto jx = body.centre.x.grad.head(n), jy = body.centre.y.grad.head(n), ja = body.angle.grad.head(n);
-    mass.noalias() += body.mass * (jx.transpose() * jx + jy.transpose() * jy) + body.inertia * ja.transpose() * ja;
-    force.noalias() += (loads[b].fx - body.mass * body.centre.x.bias) * jx.transpose() +
-                       (loads[b].fy - body.mass * g - body.mass * body.centre.y.bias) * jy.transpose() +
-                       (loads[b].moment - body.inertia * body.angle.bias) * ja.transpose();
+    const JetRow& jx = body.centre.x.grad;
+    const JetRow& jy = body.centre.y.grad;
+    const JetRow& ja = body.angle.grad;
+    const double fx = loads[b].fx - body.mass * body.centre.x.bias;
+    const double fy = loads[b].fy - body.mass * g - body.mass * body.centre.y.bias;
+    const double fa = loads[b].moment - body.inertia * body.angle.bias;
+    for (int i = 0; i < n; ++i) {
+      force[i] += fx * jx[i] + fy * jy[i] + fa * ja[i];
+      for (int j = 0; j <= i; ++j) {
+        mass(i, j) += body.mass * (jx[i] * jx[j] + jy[i] * jy[j]) + body.inertia * ja[i] * ja[j];
+      }
+    }
   }
-  Vector qdd(n);
-  if (n > 0) qdd = mass.llt().solve(force);
+  // Cholesky in place (M is symmetric positive definite: every coordinate moves some mass).
+  // Written out because Eigen's general routine costs more than the whole force model at n = 2.
+  Vector qdd = force;
+  for (int j = 0; j < n; ++j) {
+    double d = mass(j, j);
+    for (int k = 0; k < j; ++k) d -= mass(j, k) * mass(j, k);
+    d = std::sqrt(d);
+    mass(j, j) = d;
+    for (int i = j + 1; i < n; ++i) {
+      double v = mass(i, j);
+      for (int k = 0; k < j; ++k) v -= mass(i, k) * mass(j, k);
+      mass(i, j) = v / d;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < i; ++k) qdd[i] -= mass(i, k) * qdd[k];
+    qdd[i] /= mass(i, i);
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int k = i + 1; k < n; ++k) qdd[i] -= mass(k, i) * qdd[k];
+    qdd[i] /= mass(i, i);
+  }
   out.q_ddot.assign(qdd.data(), qdd.data() + n);
+  JetRow qdd_row = JetRow::Zero();
+  for (int i = 0; i < n; ++i) qdd_row[i] = qdd[i];
 
   double torque = 0.0, contact_power = 0.0, kinetic = 0.0, potential = 0.0;
   for (int b = 0; b < 3; ++b) {
     const BodyJets& body = bodies[b];
-    const double ax = body.centre.x.grad.head(n).dot(qdd) + body.centre.x.bias;
-    const double ay = body.centre.y.grad.head(n).dot(qdd) + body.centre.y.bias;
-    const double aa = body.angle.grad.head(n).dot(qdd) + body.angle.bias;
-    torque += body.centre.x.grad(n) * (body.mass * ax - loads[b].fx) +
-              body.centre.y.grad(n) * (body.mass * ay - loads[b].fy + body.mass * g) +
-              body.angle.grad(n) * (body.inertia * aa - loads[b].moment);
+    const double ax = body.centre.x.grad.dot(qdd_row) + body.centre.x.bias;
+    const double ay = body.centre.y.grad.dot(qdd_row) + body.centre.y.bias;
+    const double aa = body.angle.grad.dot(qdd_row) + body.angle.bias;
+    torque += body.centre.x.grad[n] * (body.mass * ax - loads[b].fx) +
+              body.centre.y.grad[n] * (body.mass * ay - loads[b].fy + body.mass * g) +
+              body.angle.grad[n] * (body.inertia * aa - loads[b].moment);
     contact_power += loads[b].fx * body.centre.x.rate + loads[b].fy * body.centre.y.rate +
                      loads[b].moment * body.angle.rate;
     kinetic += 0.5 * body.mass * (body.centre.x.rate * body.centre.x.rate + body.centre.y.rate * body.centre.y.rate) +

@@ -2,17 +2,17 @@
 // Dormand-Prince 5(4), the explicit embedded Runge-Kutta pair of J. R. Dormand and P. J. Prince,
 // "A family of embedded Runge-Kutta formulae", J. Comput. Appl. Math. 6 (1980) 19-26, as used in the
 // code DOPRI5 of Hairer, Norsett & Wanner, Solving Ordinary Differential Equations I, 2nd ed.,
-// Springer 1993 (HNW), Sec. II.5, Table 5.2 (tableau) and Sec. II.6, Table 6.2 / eq. (6.12) (dense
-// output of order 4, the coefficients of L. F. Shampine, "Some practical Runge-Kutta formulas",
-// Math. Comp. 46 (1986) 135-150).
+// Springer 1993 (HNW), Sec. II.5 (tableau, Table 5.2) and Sec. II.6 (dense output of order 4 with the
+// coefficients of L. F. Shampine, "Some practical Runge-Kutta formulas", Math. Comp. 46 (1986) 135-150).
 //
 // - Local extrapolation: the step is advanced with the 5th-order weights b; the 4th-order embedded
 //   solution only serves the error estimate err = h * sum_i (b_i - bhat_i) k_i.
 // - FSAL: the 7th stage is f(t + h, x_new), so an accepted step hands its last stage to the next
 //   step as k1: 6 evaluations of rhs per step after the first.
-// - Error norm (HNW II.4, eq. (4.11)): ||err|| = sqrt( (1/n) sum_i (err_i / sc_i)^2 ) with
+// - Error norm (HNW Sec. II.4, automatic step size control): ||err|| = sqrt( (1/n) sum_i (err_i / sc_i)^2 ) with
 //   sc_i = absolute_tolerance + relative_tolerance * max(|x_i|, |x_new_i|); accepted when <= 1.
-// - Step-size controller (HNW II.4 eq. (4.13) and IV.2 "PI control", as in DOPRI5): with
+// - Step-size controller (HNW Sec. II.4; PI control: K. Gustafsson, ACM TOMS 17 (1991) 533-554, and
+//   Hairer & Wanner, Solving ODEs II, Sec. IV.2; the constants of DOPRI5): with
 //   a = 1/5 - 0.75 beta,  h_new = h * clamp(safety * err^-a * err_old^beta, min_factor, max_factor),
 //   err_old the error of the previous accepted step (at least 1e-4). beta = 0 is the standard
 //   controller h * safety * err^(-1/5); beta = 0.04 (the default) is DOPRI5's Lund-stabilised PI
@@ -98,8 +98,8 @@ class DormandPrince54 {
   double last_error() const { return last_error_; }  // scaled error norm of the last try_step
 
  private:
-  // Published coefficients: Dormand & Prince (1980), Table 2; HNW Table 5.2 (tableau) and the
-  // DOPRI5 dense-output constants d_i (Shampine 1986). The e_i = b_i - bhat_i.
+  // Published coefficients: Dormand & Prince (1980); HNW Table 5.2 (tableau) and the DOPRI5
+  // dense-output constants d_i (Shampine 1986). The e_i = b_i - bhat_i.
   static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
   static constexpr double a21 = 1.0 / 5;
   static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
@@ -107,8 +107,7 @@ class DormandPrince54 {
   static constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
   static constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
                           a65 = -5103.0 / 18656;
-  static constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784,
-                          b6 = 11.0 / 84;
+  static constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84;
   static constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
                           e6 = 22.0 / 525, e7 = -1.0 / 40;
   static constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
@@ -143,7 +142,8 @@ class DormandPrince54 {
   bool start_valid_ = false;  // k_[acc][0] == f(t0_, x0_): re-stepping from the step start to an event
   bool work_valid_ = false;   // work()[0] == f(work_t_, work_x_): after a rejection or initial_step
   bool last_rejected_ = false;
-  double error_old_ = 1e-4;
+  static constexpr double log_error_floor = -9.210340371976184;  // log(1e-4): DOPRI5's floor on err_old
+  double log_error_old_ = log_error_floor;
   double last_error_ = std::numeric_limits<double>::quiet_NaN();
   std::size_t accepted_ = 0, rejected_ = 0, rhs_evaluations_ = 0;
 };
@@ -226,21 +226,22 @@ inline StepOutcome DormandPrince54::controlled(const S& sys, double& t, State& x
   last_error_ = err;
   if (!std::isfinite(err) || !x_new_.allFinite()) return StepOutcome::non_finite;
 
-  const double beta = options_.controller_beta;
-  const double fac11 = std::pow(err, 0.2 - 0.75 * beta);
+  // err^-a * err_old^beta as one exp of logs (cheaper than two pow); log(0) = -inf gives +inf,
+  // which the clamp turns into max_factor.
+  const double beta = options_.controller_beta, exponent = 0.2 - 0.75 * beta;
+  const double log_err = std::log(err);
   if (err <= 1.0) {
-    double factor = options_.safety / fac11;
-    if (beta != 0.0) factor *= std::pow(error_old_, beta);
-    factor = std::clamp(factor, options_.min_factor, options_.max_factor);  // err = 0 gives +inf -> max
+    double factor = options_.safety * std::exp(beta * log_error_old_ - exponent * log_err);
+    factor = std::clamp(factor, options_.min_factor, options_.max_factor);
     double h_new = std::min(h * factor, options_.max_step);
     if (last_rejected_) h_new = std::min(h_new, h);
-    error_old_ = std::max(err, 1e-4);
+    log_error_old_ = std::max(log_err, log_error_floor);
     last_rejected_ = false;
     accept(t, x, t_new);
     h = h_new;
     return StepOutcome::accepted;
   }
-  h *= std::max(options_.min_factor, options_.safety / fac11);
+  h *= std::max(options_.min_factor, options_.safety * std::exp(-exponent * log_err));
   last_rejected_ = true;
   ++rejected_;
   if (h < options_.min_step || t + h == t) return StepOutcome::step_underflow;
@@ -332,9 +333,8 @@ inline void DormandPrince54::interpolate(double t, State& out) const {
   // The nested form of the header comment, expanded into one weighted sum so that Eigen evaluates it
   // in one pass: u = x0 + A r2 + B r3 + C r4 + D r5.
   const double A = th, B = th * th1, C = th * B, D = C * th1;
-  out = (1.0 - A + B - 2.0 * C) * x0_ + (A - B + 2.0 * C) * x1_ + (h * (B - C + D * d1)) * k[0] +
-        (h * D * d3) * k[2] + (h * D * d4) * k[3] + (h * D * d5) * k[4] + (h * D * d6) * k[5] +
-        (h * (D * d7 - C)) * k[6];
+  out = (1.0 - A + B - 2.0 * C) * x0_ + (A - B + 2.0 * C) * x1_ + (h * (B - C + D * d1)) * k[0] + (h * D * d3) * k[2] +
+        (h * D * d4) * k[3] + (h * D * d5) * k[4] + (h * D * d6) * k[5] + (h * (D * d7 - C)) * k[6];
 }
 
 }  // namespace mechanism

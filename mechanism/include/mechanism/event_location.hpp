@@ -32,8 +32,8 @@ struct CrossingBracket {
 // g0 = g(t0), g1 = g(t1) of opposite signs, or one of them zero (then that end is returned at no
 // cost). Requires t0 < t1, time_tolerance > 0, everything finite; g must stay finite (else
 // InvalidParameter "g").
-CrossingBracket bracket_crossing(const std::function<double(double)>& g, double t0, double t1, double g0,
-                                 double g1, double time_tolerance);
+CrossingBracket bracket_crossing(const std::function<double(double)>& g, double t0, double t1, double g0, double g1,
+                                 double time_tolerance);
 
 // The crossing time within time_tolerance: the bracket's `after` end, the first time at which g has
 // taken g1's sign (or is zero). Stepping the state exactly there puts it just past the switching

@@ -55,6 +55,10 @@ struct FrictionLawParameters {
   double stribeck_velocity = 1e-3, stribeck_exponent = 2.0;      // v_s, gamma (blank in the seed; common values)
   double sigma0 = 1e5, sigma1 = 400.0, sigma2 = 0.0;              // absolute form: N/m, N s/m, N s/m; normalised form: 1/m, s/m, s/m
   double ambrosio_v0 = 1e-4, ambrosio_v1 = 1e-2;                  // Ambrosio 2002 dynamic-correction velocities (m/s), 0 < v0 < v1
+  // LuGre: sigma1 fades with sliding speed as sigma1 exp(-(v / v_d)^2) (Canudas de Wit 2003's remedy
+  // for the large sigma1 dz/dt transients at high speed); 0 keeps sigma1 constant, as the seed prints it.
+  double sigma1_velocity = 0.0;
+  double bristle_damping(double sliding_velocity) const;  // the sigma1 in effect at that speed
   // Checks the fields the chosen law uses (an unused field is not checked):
   //   coulomb, ambrosio: kinetic_coefficient finite >= 0; ambrosio: 0 < ambrosio_v0 < ambrosio_v1;
   //   LuGre: static_coefficient, kinetic_coefficient, stribeck_velocity, stribeck_exponent, sigma0

@@ -15,7 +15,9 @@ namespace mechanism {
 using State = Eigen::VectorXd;
 
 template <class S>
-concept OdeSystem = requires(const S& s, double t, const State& x, State& dxdt) { s.rhs(t, x, dxdt); };
+concept OdeSystem = requires(const S& s, double t, const State& x, State& dxdt) {
+  s.rhs(t, x, dxdt);
+};
 
 namespace detail {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Classical fourth-order Runge-Kutta at a fixed step (Kutta 1901; Hairer, Norsett & Wanner, Solving
-// Ordinary Differential Equations I, 2nd ed., Springer 1993, Sec. II.1, Table 1.2 right: c = (0, 1/2,
-// 1/2, 1), b = (1/6, 1/3, 1/3, 1/6)).
+// Ordinary Differential Equations I, 2nd ed., Springer 1993, Sec. II.1: c = (0, 1/2, 1/2, 1),
+// b = (1/6, 1/3, 1/3, 1/6)).
 //
 // After each step the stepper holds x0 = x(t0), f0 = f(t0, x0), x1 = x(t1), f1 = f(t1, x1) and
 // interpolates inside the step with the cubic Hermite polynomial through them (error O(h^4) per

@@ -146,6 +146,7 @@ class SliderCrank {
   bool slider_clearance_ = false;
   double omega_ = 0.0;
   double slider_flat_stiffness_ = 0.0;  // Eq. 11 at L_c = L_s, or the given value
+  double slider_compliance_ = 0.0, guide_compliance_ = 0.0;  // seed Eq. 13
   std::vector<std::string> names_;
   std::vector<std::string> journal_names_;
   std::vector<Journal> journals_;

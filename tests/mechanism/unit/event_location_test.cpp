@@ -51,9 +51,9 @@ TEST(LocateCrossing, SineAtPiBothDirections) {
   const auto s = [](double t) { return std::sin(t); };
   const auto minus_s = [](double t) { return -std::sin(t); };
   for (const double tol : {1e-6, 1e-10, 1e-13}) {
-    const auto down = located(s, 3.0, 3.5, pi, tol);        // + to -
-    const auto up = located(minus_s, 3.0, 3.5, pi, tol);    // - to +
-    const auto up2 = located(s, 6.0, 6.5, 2.0 * pi, tol);   // - to +
+    const auto down = located(s, 3.0, 3.5, pi, tol);       // + to -
+    const auto up = located(minus_s, 3.0, 3.5, pi, tol);   // - to +
+    const auto up2 = located(s, 6.0, 6.5, 2.0 * pi, tol);  // - to +
     // Bisection would need ceil(log2(0.5 / tol)) evaluations (20, 33, 43); the Illinois method
     // converges superlinearly (order ~1.44, Dowell & Jarratt 1971).
     const double bisection = std::ceil(std::log2(0.5 / tol));
@@ -209,8 +209,7 @@ Impacts bounce_adaptive(const System& sys, State x, double restitution, std::siz
     }
     const double gap1 = x[0];
     if (gap0 > 0.0 && gap1 <= 0.0) {
-      const double t_hit =
-          mechanism::locate_crossing(gap, dp.t_previous(), dp.t_current(), gap0, gap1, 1e-12);
+      const double t_hit = mechanism::locate_crossing(gap, dp.t_previous(), dp.t_current(), gap0, gap1, 1e-12);
       t = dp.t_previous();
       dp.interpolate(t, x);
       dp.step_fixed_to(sys, t, x, t_hit);  // t_hit > t_previous: gap0 > 0 there

@@ -4,25 +4,24 @@
 //    linear oscillators (and the logistic equation for the dense output); nominal orders from HNW
 //    (Hairer, Norsett & Wanner, Solving ODEs I): RK4 4, DP5 5, DP dense output 4 (local error
 //    O(h^5)), cubic Hermite O(h^4) per step;
-//  - the Arenstorf orbit returns to its initial state after its period (HNW I, Sec. II.0, eq. (0.1));
+//  - the Arenstorf orbit returns to its initial state after its period (HNW I, Sec. II.0);
 //  - FSAL: 7 stages, the last reused, so 6 evaluations per attempt (Dormand & Prince 1980);
 //  - x' = x^2, x(0) = 1 has x = 1/(1 - t), which blows up at t = 1.
-#include <cstdlib>  // before the glibc check below (__GLIBC__ comes from features.h)
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>  // before the glibc check below (__GLIBC__ comes from features.h)
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "mechanism/dormand_prince.hpp"
 #include "mechanism/error.hpp"
+#include "mechanism/event_location.hpp"
 #include "mechanism/ode.hpp"
 #include "mechanism/rk4.hpp"
 
@@ -78,9 +77,7 @@ struct Oscillator {
 struct Logistic {
   double r = 3.0;
   void rhs(double, const State& x, State& dxdt) const { dxdt[0] = r * x[0] * (1.0 - x[0]); }
-  State exact(double t, const State& x0) const {
-    return vec({1.0 / (1.0 + (1.0 / x0[0] - 1.0) * std::exp(-r * t))});
-  }
+  State exact(double t, const State& x0) const { return vec({1.0 / (1.0 + (1.0 / x0[0] - 1.0) * std::exp(-r * t))}); }
 };
 
 // Counts its own evaluations, to check the steppers' bookkeeping from outside.
@@ -263,7 +260,7 @@ TEST(DenseOutput, ExactAtTheStepEnds) {
   EXPECT_THROW(dp.interpolate(0.2, u), InvalidParameter);
 }
 
-// The restricted three-body problem of HNW I, Sec. II.0, eq. (0.1): a satellite in the rotating frame
+// The restricted three-body problem of HNW I, Sec. II.0: a satellite in the rotating frame
 // of the earth (mass 1 - mu) and the moon (mu). State (y1, y2, y1', y2').
 struct Arenstorf {
   static constexpr double mu = 0.012277471, mu1 = 1.0 - mu;
@@ -276,13 +273,13 @@ struct Arenstorf {
     dydt[3] = y[1] - 2.0 * y[2] - mu1 * y[1] / d1 - mu * y[1] / d2;
   }
 };
-// Initial values and period from HNW I, eq. (0.2).
+// Initial values and period from HNW I, Sec. II.0.
 const State kArenstorf0 = vec({0.994, 0.0, 0.0, -2.00158510637908252240537862224});
 constexpr double kArenstorfPeriod = 17.0652165601579625588917206249;
 
 struct ArenstorfRun {
-  double error;                // max |x(T) - x(0)|: the global error after one period
-  double worst_local;          // largest true local error of an accepted step, in the tolerance norm
+  double error;        // max |x(T) - x(0)|: the global error after one period
+  double worst_local;  // largest true local error of an accepted step, in the tolerance norm
   std::size_t accepted, rejected, evaluations;
 };
 
@@ -623,6 +620,11 @@ TEST(DormandPrince54, AdvanceToLandsExactlyAndHonoursMaxSteps) {
   EXPECT_EQ(limited.advance_to(sys, t2, x2, 1.0, h2), AdvanceStatus::max_steps);
   EXPECT_EQ(limited.accepted_steps(), 5u);
   EXPECT_NEAR(t2, 0.05, 1e-15);
+  // try_step caps a larger h at max_step.
+  double h3 = 1.0;
+  ASSERT_EQ(limited.try_step(sys, t2, x2, h3), StepOutcome::accepted);
+  EXPECT_NEAR(t2, 0.06, 1e-15);
+  EXPECT_LE(h3, 0.01);
 }
 
 template <class F>
@@ -694,7 +696,7 @@ TEST(Steppers, StepsDoNotAllocate) {
   Rk4 rk;
   DormandPrince54 dp;
   double t = 0.0, s = 0.0, h = 1e-3;
-  State x = kArenstorf0, y = kArenstorf0, u(4);
+  State x = kArenstorf0, y = kArenstorf0, u(4), probe(4);
   rk.step(sys, t, x, 1e-3);  // the first calls size the work vectors
   dp.step_fixed(sys, s, y, 1e-3);
   malloc_count = 0;
@@ -705,10 +707,20 @@ TEST(Steppers, StepsDoNotAllocate) {
     dp.try_step(sys, s, y, h);
     dp.interpolate(dp.t_previous(), u);
   }
+  // The event path too: a std::function holding a lambda of two references fits its small buffer,
+  // and bracket_crossing builds no message unless it throws.
+  const double mid = 0.5 * (dp.t_previous() + dp.t_current());
+  const auto g = [&probe, &dp](double time) {
+    dp.interpolate(time, probe);  // what a gap function does
+    return time - 0.5 * (dp.t_previous() + dp.t_current());
+  };
+  const double t_cross = mechanism::locate_crossing(g, dp.t_previous(), dp.t_current(), dp.t_previous() - mid,
+                                                    dp.t_current() - mid, 1e-15);
   dp.invalidate();
   dp.step_fixed(sys, s, y, 1e-3);
   counting_mallocs = false;
   EXPECT_EQ(malloc_count, 0u);
+  EXPECT_NEAR(t_cross, mid, 1e-15);
   // The counter works: an allocation inside the window is seen.
   counting_mallocs = true;
   State scratch(1000);

@@ -32,10 +32,9 @@ double plain(double t, double a0, double va, double b0, double vb) {
 
 TEST(KinematicJet, RateGradientAndBiasMatchFiniteDifferences) {
   const double a0 = 0.2, va = -1.3, b0 = 0.7, vb = 2.1;
-  const int cols = 3;
-  const Jet a = Jet::coordinate(0, a0, va, cols);
-  const Jet b = Jet::coordinate(1, b0, vb, cols);
-  const Jet crank = Jet::coordinate(2, 0.4, omega, cols);
+  const Jet a = Jet::coordinate(0, a0, va);
+  const Jet b = Jet::coordinate(1, b0, vb);
+  const Jet crank = Jet::coordinate(2, 0.4, omega);
   const Jet j = Expr<Jet, Jet>::eval(a, b, crank);
 
   const double h = 1e-4;
@@ -52,9 +51,8 @@ TEST(KinematicJet, RateGradientAndBiasMatchFiniteDifferences) {
 
 TEST(KinematicJet, OffsetOfARotatingPointHasCentripetalBias) {
   // A point at radius r on a body turning at omega: acceleration -omega^2 r toward the centre.
-  const int cols = 1;
-  const Jet angle = Jet::coordinate(0, 0.3, omega, cols);
-  const Jet zero = Jet::constant(0.0, cols);
+  const Jet angle = Jet::coordinate(0, 0.3, omega);
+  const Jet zero = Jet::constant(0.0);
   const JetPoint p = offset(JetPoint{zero, zero}, angle, 0.05, 0.0);
   EXPECT_NEAR(p.x.bias, -omega * omega * 0.05 * std::cos(0.3), 1e-14);
   EXPECT_NEAR(p.y.bias, -omega * omega * 0.05 * std::sin(0.3), 1e-14);
