@@ -13,7 +13,8 @@
 # Usage: scripts/measure_mechanism_tradeoff.sh [build-dir]
 # Environment: PERIODS (1000), SECONDS_TIMED (0.24), REPEATS (3), CLEARANCES ("0.5e-3 0.1e-3"),
 #   LIMIT (300) seconds of wall time per run: a run that needs more is reported as over the limit,
-#   FRICTION ("lugre_absolute coulomb"): the slider's friction laws to measure (the seed's first).
+#   VARIANTS ("seed sigma1_fading"): the scenes: seed (as printed), sigma1_fading (LuGre's sigma1
+#   fading above 1 mm/s, Canudas de Wit 2003), coulomb (Coulomb friction), frictionless.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -25,7 +26,18 @@ timed=${SECONDS_TIMED:-0.24}
 repeats=${REPEATS:-3}
 clearances=${CLEARANCES:-"0.5e-3 0.1e-3"}
 limit=${LIMIT:-300}
-frictions=${FRICTION:-"lugre_absolute coulomb"}
+variants=${VARIANTS:-"seed sigma1_fading"}
+
+# variant name -> its --set arguments
+variant_args() {
+  case $1 in
+    seed) ;;
+    sigma1_fading) echo "--set joint.slider.friction.sigma1_velocity=1e-3" ;;
+    coulomb) echo "--set joint.slider.friction.law=coulomb" ;;
+    frictionless) echo "--set joint.slider.friction.law=none" ;;
+    *) echo "unknown variant $1" >&2; exit 2 ;;
+  esac
+}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 out=docs/mechanism/performance.md
@@ -68,8 +80,9 @@ ks_distance() {
   echo
   echo "Made by \`scripts/measure_mechanism_tradeoff.sh\` ($(date -u +%Y-%m-%d), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'),"
   echo "Release build, one thread, load average $(cut -d' ' -f1-3 /proc/loadavg) at the start). The seed scene at 5000 rpm"
-  echo "(LuGre friction as the seed prints it, Lankarani-Nikravesh contact, the face model with the"
-  echo "contact-length stiffness), \`mechanism simulate\` with the settings below."
+  echo "(Lankarani-Nikravesh contact, the face model with the contact-length stiffness, LuGre friction as"
+  echo "the seed prints it or with the variant named in each section), \`mechanism simulate\` with the"
+  echo "settings below."
   echo
   echo "- **wall s / sim s**: wall time per simulated second, from a run of $timed s (fastest of $repeats)."
   echo "- **error over 2 periods**: max |slider_y - reference| in the first 24 ms, every 10 us, against"
@@ -83,18 +96,20 @@ ks_distance() {
   echo "(docs/mechanism/model.md)."
 } > "$work/doc.md"
 
-for f in $frictions; do
+for f in $variants; do
 for c in $clearances; do
-  scene=(--set "joint.slider.clearance=$c" --set "joint.slider.friction.law=$f" -q)
-  # Short-horizon reference and long-run reference.
-  sim "${scene[@]}" --set run.duration=0.024 --set run.output_interval=1e-5 --signals slider_y \
+  read -r -a extra <<< "$(variant_args "$f")"
+  scene=(--set "joint.slider.clearance=$c" "${extra[@]}" -q)
+  echo "references: $f c=$c" >&2
+  # Short-horizon reference and long-run reference (no time limit).
+  "$m" simulate "${scene[@]}" --set run.duration=0.024 --set run.output_interval=1e-5 --signals slider_y \
     --set integrator.step=3.125e-8 2> /dev/null | grep -v '^#' > "$work/ref_short"
-  sim "${scene[@]}" --stroboscopic --signals slider_y --set run.transient=$(awk -v p=$period 'BEGIN { print 10 * p }') \
+  "$m" simulate "${scene[@]}" --stroboscopic --signals slider_y --set run.transient=$(awk -v p=$period 'BEGIN { print 10 * p }') \
     --set run.duration=$(awk -v p=$period -v n="$periods" 'BEGIN { print (n - 0.5) * p }') --set integrator.step=2.5e-7 \
     2> /dev/null | grep -v '^#' | cut -f2 > "$work/ref_long"
   {
     echo
-    echo "## Clearance $(awk -v c="$c" 'BEGIN { print c * 1e3 }') mm, friction $f"
+    echo "## Clearance $(awk -v c="$c" 'BEGIN { print c * 1e3 }') mm, scene $f ${extra[*]:-(as printed)}"
     echo
     echo "| setting | wall s / sim s | error over 2 periods (m) | / clearance | KS distance | status |"
     echo "|---|---|---|---|---|---|"
@@ -143,7 +158,7 @@ done
 
 if command -v gnuplot > /dev/null; then
   plots=""
-  for f in $frictions; do
+  for f in $variants; do
     for c in $clearances; do
       for kind in rk4 dopri; do
         awk -v f="$f" -v c="$c" -v k="$kind" '$1 == f && $2 == c && index($3, k) == 1 { print $4, $5 }' "$work/points" > "$work/$kind-$f-$c"

@@ -1,51 +1,18 @@
 #include "plot.hpp"
 
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-
 #include "chaos/error.hpp"
+#include "gnuplot.hpp"
 
 namespace chaos::cli {
 
-namespace {
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-// Single quotes in gnuplot strings are doubled.
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-}  // namespace
-
 void render_plot(const std::string& script, const std::string& path) {
-  std::string terminal;
-  if (ends_with(path, ".png")) terminal = "pngcairo size 1000,800 font 'sans,10'";
-  else if (ends_with(path, ".svg")) terminal = "svg size 1000,800 dynamic font 'sans,10'";
-  else throw InvalidInput(ErrorCode::invalid_parameter, "--plot: the file must end in .png or .svg (got '" + path + "')");
-  const auto script_path = std::filesystem::temp_directory_path() /
-                           ("chaos-plot-" + std::to_string(std::hash<std::string>{}(path + script)) + ".gp");
-  {
-    std::ofstream out(script_path);
-    if (!out) throw InvalidInput(ErrorCode::io, "--plot: cannot write the gnuplot script " + script_path.string());
-    out << "set terminal " << terminal << "\nset output " << quoted(path) << "\n" << script << "\nunset output\n";
+  try {
+    plot_support::render(script, path);
+  } catch (const plot_support::PlotError& e) {
+    throw InvalidInput(e.kind() == plot_support::PlotError::Kind::bad_extension ? ErrorCode::invalid_parameter
+                                                                                 : ErrorCode::io,
+                       e.what());
   }
-  const std::string command = "gnuplot " + quoted(script_path.string()) + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string messages;
-  int status = -1;
-  if (pipe) {
-    char buffer[256];
-    while (std::fgets(buffer, sizeof buffer, pipe)) messages += buffer;
-    status = pclose(pipe);
-  }
-  std::filesystem::remove(script_path);
-  if (status != 0)
-    throw InvalidInput(ErrorCode::io, "--plot: gnuplot failed (is the gnuplot-nox package installed?)" +
-                                          (messages.empty() ? std::string() : ": " + messages));
 }
 
 }  // namespace chaos::cli

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -18,6 +20,7 @@
 
 #include <unistd.h>
 
+#include "gnuplot.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/signals.hpp"
@@ -86,6 +89,58 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The slider's trajectory (seed Fig. 3: its centre's height against the crank angle and its
+// path in the guide) and, for each revolute clearance joint, the journal centre's path relative
+// to the bearing inside the clearance circle (seed Fig. 13).
+struct PlotData {
+  std::vector<double> angle_deg, slider_x, slider_y;
+  std::vector<std::vector<std::array<double, 2>>> journals;
+};
+
+void plot_trajectories(const PlotData& d, const mechanism::Scene& scene, const std::vector<std::string>& journals,
+                       const std::string& path) {
+  std::ostringstream g;
+  const int panels = 2 + static_cast<int>(journals.size());
+  g << "set termoption noenhanced\nset multiplot layout " << (panels + 1) / 2 << ",2\nset grid\nunset key\n";
+  auto block = [&](const char* name, auto&& rows) {
+    g << "$" << name << " << EOD\n";
+    rows();
+    g << "EOD\n";
+  };
+  block("slider", [&] {
+    for (std::size_t i = 0; i < d.slider_y.size(); ++i)
+      g << d.angle_deg[i] << ' ' << d.slider_x[i] * 1e3 << ' ' << d.slider_y[i] * 1e3 << '\n';
+  });
+  const double c = scene.slider_guide.clearance * 1e3;
+  g << "set title 'slider height against crank angle'\nset xlabel 'crank angle (deg, mod 360)'\n"
+    << "set ylabel 'slider y (mm)'\nset xrange [0:360]\n";
+  if (scene.slider_guide.kind == mechanism::JointKind::clearance)
+    g << "set arrow from 0," << c << " to 360," << c << " nohead dt 2\nset arrow from 0," << -c << " to 360," << -c
+      << " nohead dt 2\n";
+  g << "plot $slider using 1:3 with dots\nunset arrow\nset xrange [*:*]\n";
+  g << "set title 'slider centre in the guide'\nset xlabel 'slider x (mm)'\nset ylabel 'slider y (mm)'\n"
+    << "plot $slider using 2:3 with lines\n";
+  for (std::size_t j = 0; j < journals.size(); ++j) {
+    const std::string name = "journal" + std::to_string(j);
+    block(name.c_str(), [&] {
+      for (const auto& e : d.journals[j]) g << e[0] * 1e3 << ' ' << e[1] * 1e3 << '\n';
+    });
+    const mechanism::RevoluteJoint& joint = journals[j] == "crank_ground"   ? scene.crank_ground
+                                            : journals[j] == "crank_conrod" ? scene.crank_conrod
+                                                                            : scene.conrod_slider;
+    g << "set title " << plot_support::quoted("journal centre relative to the bearing: " + journals[j]) << "\n"
+      << "set xlabel 'x (mm)'\nset ylabel 'y (mm)'\nset size ratio -1\nset parametric\nset trange [0:2*pi]\n"
+      << "plot $" << name << " using 1:2 with lines, " << joint.clearance * 1e3 << "*cos(t), " << joint.clearance * 1e3
+      << "*sin(t) lw 2 lc rgb 'black' dt 2\nunset parametric\nset size noratio\n";
+  }
+  g << "unset multiplot\n";
+  try {
+    plot_support::render(g.str(), path);
+  } catch (const plot_support::PlotError& e) {
+    throw mechanism::InvalidParameter("--plot", path, e.what());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,7 +156,7 @@ int main(int argc, char** argv) {
 
   SceneOptions sim_opts;
   bool json = false, strobe = false, quiet = false;
-  std::string out_path, signals;
+  std::string out_path, signals, plot_path;
   auto* sim = app.add_subcommand("simulate", "integrate the scene and write the chosen signals");
   add_scene_options(*sim, sim_opts);
   sim->add_flag("--stroboscopic", strobe, "write one row per crank revolution (with a revolution column) instead of the time series");
@@ -109,6 +164,8 @@ int main(int argc, char** argv) {
   sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)");
   sim->add_flag("--json", json, "write a JSON summary to standard output (the table then goes only to -o FILE)");
   sim->add_flag("-q,--quiet", quiet, "no progress bar");
+  sim->add_option("--plot", plot_path,
+                  "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg");
 
   try {
     app.parse(argc, argv);
@@ -166,13 +223,26 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < columns.size(); ++i) *out << (i || !prefix.empty() ? "\t" : "") << number(values[columns[i]]);
       *out << "\n";
     };
+    PlotData plot;
+    plot.journals.resize(system.journal_names().size());
+    auto keep_for_plot = [&](const mechanism::Evaluation& ev) {
+      if (plot_path.empty()) return;
+      plot.angle_deg.push_back(std::fmod(ev.crank_angle * 180.0 / M_PI, 360.0));
+      plot.slider_x.push_back(ev.slider_pose[0]);
+      plot.slider_y.push_back(ev.slider_pose[1]);
+      for (std::size_t j = 0; j < plot.journals.size(); ++j) plot.journals[j].push_back(ev.eccentricity[j]);
+    };
     mechanism::SimulationObserver observer;
     if (scene.run.stroboscopic) {
       observer.stroboscopic = [&](std::size_t rev, double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
         write_row(std::to_string(rev), t, x, ev);
+        keep_for_plot(ev);
       };
     } else {
-      observer.sample = [&](double t, const mechanism::State& x, const mechanism::Evaluation& ev) { write_row("", t, x, ev); };
+      observer.sample = [&](double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+        write_row("", t, x, ev);
+        keep_for_plot(ev);
+      };
     }
     ProgressBar bar(!quiet && isatty(fileno(stderr)));
     observer.progress = [&](double f) { bar(f); };
@@ -196,6 +266,7 @@ int main(int argc, char** argv) {
       j["coordinates"] = system.coordinate_names();
       std::cout << j.dump(2) << "\n";
     }
+    if (!plot_path.empty()) plot_trajectories(plot, scene, system.journal_names(), plot_path);
     if (s.status != mechanism::SimulationStatus::completed) {
       std::cerr << "mechanism: the integration stopped: " << s.message << "\n";
       return integration_failed;

@@ -478,6 +478,12 @@ std::vector<std::string> scene_warnings(const Scene& s) {
                   ": no stiction peak (the seed's Table 2 prints these values; it may be a swap)");
     }
   };
+  if (s.slider_guide.kind == JointKind::clearance && s.slider_guide.friction.has_state() &&
+      s.slider_guide.friction.sigma1 > 0 && s.slider_guide.friction.sigma1_velocity == 0.0) {
+    w.push_back("joint.slider.friction: LuGre with a constant sigma1 = " + format_number(s.slider_guide.friction.sigma1) +
+                ": its damping term kicks the slider where the normal force changes fast (docs/mechanism/model.md);"
+                " joint.slider.friction.sigma1_velocity = 1e-3 fades it with speed (Canudas de Wit 2003)");
+  }
   check("joint.slider", s.slider_guide.kind, s.slider_guide.friction);
   check("joint.crank_ground", s.crank_ground.kind, s.crank_ground.friction);
   check("joint.crank_conrod", s.crank_conrod.kind, s.crank_conrod.friction);

@@ -82,6 +82,27 @@ TEST(Simulation, EnergyIsConservedWithRestitutionOneAndNoFriction) {
   }
 }
 
+TEST(Simulation, DriveWorkEqualsEnergyChangePlusDissipation) {
+  // Restitution 0.9 and Coulomb friction: energy leaves through the contacts, and the drive's work
+  // equals the change of energy plus the dissipated energy up to the integration error, which
+  // falls with the step (second order at least: the friction force jumps where sliding reverses).
+  auto run = [](double step) {
+    SliderCrank sys(read_scene("", {"joint.slider.friction.law=coulomb", "run.duration=0.012",
+                                    "integrator.step=" + toml_number(step)}));
+    double dissipated = 0;
+    SimulationObserver obs;
+    obs.sample = [&](double, const State& x, const Evaluation&) { dissipated = -x[2 * sys.coordinate_count() + 1]; };
+    const SimulationSummary s = simulate(sys, obs);
+    EXPECT_EQ(s.status, SimulationStatus::completed);
+    return std::pair{s.energy_balance_error, dissipated};
+  };
+  const auto [coarse, lost] = run(2e-6);
+  const auto [fine, lost_fine] = run(5e-7);
+  EXPECT_GT(lost, 0.0);  // contacts with e < 1 and friction only take energy out
+  EXPECT_LT(fine, coarse / 8) << coarse << " -> " << fine;
+  EXPECT_LT(fine, 1e-6 * lost_fine + 1e-6);
+}
+
 // Max |conrod angle - ideal conrod angle| over one period for a translational clearance c.
 double deviation_from_ideal(double clearance) {
   const Scene scene = read_scene("", {"joint.slider.friction.law=none", "run.duration=0.012",

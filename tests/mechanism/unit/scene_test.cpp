@@ -91,8 +91,11 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
 }
 
 TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
-  EXPECT_EQ(scene_warnings(read_scene("")).size(), 1u);  // the seed's printed mu_s = 0.1 < mu_k = 0.11
-  EXPECT_TRUE(scene_warnings(read_scene("", {"joint.slider.friction.static_coefficient=0.12"})).empty());
+  // The seed prints mu_s = 0.1 < mu_k = 0.11 and a constant sigma1.
+  EXPECT_EQ(scene_warnings(read_scene("")).size(), 2u);
+  EXPECT_TRUE(scene_warnings(read_scene("", {"joint.slider.friction.static_coefficient=0.12",
+                                             "joint.slider.friction.sigma1_velocity=1e-3"}))
+                  .empty());
 }
 
 }  // namespace

@@ -1,0 +1,28 @@
+#pragma once
+// Plots through gnuplot (Debian's gnuplot-nox), shared by the `chaos` and `mechanism` commands
+// (an internal library of the command-line tools; neither analysis library links it). The caller
+// writes a self-contained gnuplot script with the data inline; this sets the terminal from the
+// file's extension (PNG through pngcairo, or SVG), runs gnuplot and reports failure.
+
+#include <stdexcept>
+#include <string>
+
+namespace plot_support {
+
+class PlotError : public std::runtime_error {
+ public:
+  enum class Kind { bad_extension, io, gnuplot_failed };
+  PlotError(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  Kind kind() const noexcept { return kind_; }
+
+ private:
+  Kind kind_;
+};
+
+// Runs `script` (which must not set the terminal or output) into `path` (.png or .svg).
+void render(const std::string& script, const std::string& path);
+
+// Single quotes in gnuplot strings are doubled.
+std::string quoted(const std::string& s);
+
+}  // namespace plot_support
