@@ -50,6 +50,12 @@ done
 # Stroboscopic rows: one per revolution, the first at t = 0.
 "$m" simulate -q --stroboscopic --set run.duration=0.036 --signals t,slider_y > "$work/strobe.tsv" 2> /dev/null || fail "simulate --stroboscopic"
 [[ $(grep -vc '^#' "$work/strobe.tsv") -eq 4 ]] || fail "expected 4 stroboscopic rows over 3 periods"
+# --plot draws the slider's trajectory and, with a revolute clearance joint, the journal's path.
+"$m" simulate -q --json --set run.duration=0.006 --set joint.crank_conrod.type=clearance --plot "$work/trajectory.png" > /dev/null 2>&1 \
+  || fail "simulate --plot"
+[[ -s $work/trajectory.png ]] && [[ $(head -c 4 "$work/trajectory.png" | tail -c 3) == PNG ]] || fail "--plot wrote no PNG file"
+expect 3 "must end in .png or .svg" -- simulate -q --json --set run.duration=0.001 --plot "$work/trajectory.pdf"
+
 # A run that cannot continue exits 5 with the time.
 expect 5 "step limit" -- simulate -q --set integrator.max_steps=10 --set run.duration=0.001
 
