@@ -1,7 +1,8 @@
 // chaos analyze: the embedding parameters of a series chosen and justified. The delay is the first
 // mutual-information minimum, the Theiler window the autocorrelation's 1/e time, the dimension
-// where Cao's E1 saturates, corroborated by false nearest neighbours. With no file it analyses a
-// built-in Lorenz x series, the project's default demonstration.
+// where Cao's E1 saturates, corroborated by false nearest neighbours; then, in that embedding, D2,
+// the largest Lyapunov exponent (Rosenstein) and the surrogate test for nonlinearity. With no file
+// it analyses a built-in Lorenz x series, the project's default demonstration.
 
 #include <cmath>
 
@@ -12,7 +13,10 @@
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
+#include "chaos/lyapunov.hpp"
 #include "chaos/mutual_information.hpp"
+#include "chaos/nonlinearity_test.hpp"
+#include "chaos/surrogates.hpp"
 #include "common.hpp"
 
 namespace chaos::cli {
@@ -28,6 +32,9 @@ struct AnalyzeArgs {
   std::size_t boxes = 16;
   std::size_t max_dimension = 10;
   std::size_t length = 20000;  // of the built-in series
+  std::size_t test_length = 4096;  // samples given to the nonlinearity test
+  std::size_t surrogates = 19;
+  std::uint64_t seed = 1;
 };
 
 // The built-in demonstration: Lorenz (10, 28, 8/3), x, RK4 h = 0.001 sampled every 0.01.
@@ -105,10 +112,45 @@ void run(AnalyzeArgs& args) {
   d2_options.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, 40);
   const CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, d2_options));
 
+  // The largest Lyapunov exponent (Rosenstein) and the nonlinearity test need an embedding
+  // dimension; Cao's, else the false-neighbour one, else they are not run (and say why).
+  const std::optional<std::size_t> dimension =
+      cao_result.embedding_dimension ? cao_result.embedding_dimension : fnn.embedding_dimension;
+  std::optional<LyapunovResult> lyapunov;
+  std::optional<NonlinearityTestResult> nonlinear;
+  std::optional<EndMatch> segment;
+  if (dimension) {
+    LyapunovOptions l;
+    l.dimension = *dimension;
+    l.delay = delay;
+    l.theiler = theiler;
+    // As `chaos lyapunov`: 10 autocorrelation times, at least 20 steps, at most N/10.
+    const std::size_t correlation = decay ? static_cast<std::size_t>(std::ceil(*decay)) : max_lag;
+    l.steps = std::max<std::size_t>(20, std::min(10 * correlation, x.size() / 10));
+    lyapunov = largest_lyapunov(x, l, {}, series.dt);
+
+    // The surrogate test on the first test_length samples, trimmed to their best end match (an end
+    // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
+    // (deterministic data are more predictable than their surrogates), the prediction error in the
+    // chosen embedding. Kept short so the demonstration stays quick.
+    const std::span<const double> head(x.data(), std::min(x.size(), args.test_length));
+    segment = end_match(head);
+    NonlinearityTestOptions t;
+    t.statistic = NonlinearityStatistic::prediction_error;
+    t.alternative = Alternative::smaller;
+    t.surrogates = args.surrogates;
+    t.seed = args.seed;
+    t.prediction.dimension = *dimension;
+    t.prediction.delay = delay;
+    t.prediction.theiler = theiler;
+    nonlinear = nonlinearity_test(head.subspan(segment->offset, segment->length), t);
+  }
+
   Report report("analyze", args.output);
   report.parameter("file", builtin ? std::string("(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)") : args.input.file)
       .parameter("N", x.size()).parameter("dt", series.dt).parameter("max_delay", mi_options.max_delay)
-      .parameter("boxes", args.boxes).parameter("max_dimension", args.max_dimension);
+      .parameter("boxes", args.boxes).parameter("max_dimension", args.max_dimension)
+      .parameter("test_length", args.test_length).parameter("surrogates", args.surrogates).parameter("seed", args.seed);
   std::ostream& out = report.stream();
   const auto time = [&](std::size_t samples) {
     return series.dt ? nlohmann::ordered_json(static_cast<double>(samples) * *series.dt) : nullptr;
@@ -128,6 +170,30 @@ void run(AnalyzeArgs& args) {
                                     : nlohmann::ordered_json(nullptr);
   j["d2_status"] = to_string(d2.status);
   j["d2_explanation"] = d2.explanation;
+  const auto interval = [](const std::optional<Interval>& i) {
+    return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
+  };
+  const bool per_time = series.dt.has_value();
+  if (lyapunov) {
+    j["lambda"] = optional_json(per_time ? lyapunov->lambda_per_time : lyapunov->fit.lambda);
+    j["lambda_interval"] = interval(per_time ? lyapunov->lambda_per_time_interval : lyapunov->fit.lambda_interval);
+    j["lambda_per"] = per_time ? "time" : "sample";
+    j["lambda_status"] = to_string(lyapunov->fit.status);
+    j["lambda_explanation"] = lyapunov->fit.explanation;
+  } else {
+    j["lambda"] = nullptr;
+    j["lambda_interval"] = nullptr;
+    j["lambda_per"] = per_time ? "time" : "sample";
+    j["lambda_status"] = "not_run";
+    j["lambda_explanation"] = "no embedding dimension";
+  }
+  if (nonlinear)
+    j["nonlinearity"] = {{"statistic", nonlinear->data_statistic}, {"rank", nonlinear->test.rank},
+                         {"count", nonlinear->surrogate_statistics.size()}, {"rejected", nonlinear->test.rejected},
+                         {"significance", nonlinear->test.significance}, {"offset", segment->offset},
+                         {"length", segment->length}};
+  else
+    j["nonlinearity"] = nullptr;
   j["autocorrelation"] = {{"first_zero_crossing", optional_json(zero)}, {"decorrelation_time", optional_json(decay)}};
   j["mutual_information"] = {{"delay", mi.delay}, {"information", mi.information}, {"first_minimum", optional_json(minimum)}};
   j["cao"] = {{"dimension", cao_result.dimension}, {"E1", cao_result.E1}, {"E2", cao_result.E2}};
@@ -154,6 +220,26 @@ void run(AnalyzeArgs& args) {
   out << "correlation_dimension\t" << (d2.d2 ? number(*d2.d2) : "none");
   if (d2.d2_interval) out << " in [" << number(d2.d2_interval->low) << ", " << number(d2.d2_interval->high) << "]";
   out << "\t[" << to_string(d2.status) << ": " << d2.explanation << "]\n";
+  if (lyapunov) {
+    const auto lambda = per_time ? lyapunov->lambda_per_time : lyapunov->fit.lambda;
+    const auto range = per_time ? lyapunov->lambda_per_time_interval : lyapunov->fit.lambda_interval;
+    out << "largest_lyapunov_exponent\t";
+    if (lambda)
+      out << number(*lambda) << " in [" << number(range->low) << ", " << number(range->high) << "] per "
+          << (per_time ? "time unit" : "sample");
+    else
+      out << "none";
+    out << "\t[Rosenstein, " << lyapunov->options.steps << " steps; " << to_string(lyapunov->fit.status) << ": "
+        << lyapunov->fit.explanation << "]\n";
+    out << "nonlinearity\t" << (nonlinear->test.rejected ? "rejected" : "not rejected") << ": rank "
+        << nonlinear->test.rank << " of " << nonlinear->surrogate_statistics.size() + 1 << ", significance "
+        << number(nonlinear->test.significance) << "\t[prediction error " << number(nonlinear->data_statistic)
+        << " vs " << nonlinear->surrogate_statistics.size() << " IAAFT surrogates, samples " << segment->offset << ".."
+        << segment->offset + segment->length - 1 << " (end-matched)]\n";
+  } else {
+    out << "largest_lyapunov_exponent\tnone\t[not run: no embedding dimension]\n";
+    out << "nonlinearity\tnot run\t[no embedding dimension]\n";
+  }
   out << "#\n# evidence: mutual information (nats) around the chosen delay\n# delay\tI\n";
   const std::size_t from = delay > 3 ? delay - 3 : 0;
   for (std::size_t k = from; k <= std::min(delay + 3, mi.delay.back()); ++k)
@@ -169,7 +255,8 @@ void run(AnalyzeArgs& args) {
 void register_analyze(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
   args->input.file.clear();  // no file: the built-in Lorenz series
-  CLI::App* command = app.add_subcommand("analyze", "choose and justify delay, Theiler window and embedding dimension");
+  CLI::App* command = app.add_subcommand("analyze", "choose and justify delay, Theiler window and embedding dimension; "
+                                                    "then D2, the largest Lyapunov exponent and a nonlinearity test");
   command->add_option("file", args->input.file, "input file or - for stdin (default: built-in Lorenz x series)");
   command->add_option("-c,--column", args->input.column, "column to read (1-based)")->capture_default_str();
   command->add_option("-x,--skip", args->input.skip, "data rows to skip")->capture_default_str();
@@ -181,6 +268,11 @@ void register_analyze(CLI::App& app) {
   command->add_option("-b,--boxes", args->boxes, "boxes for mutual information")->capture_default_str();
   command->add_option("-M,--max-dimension", args->max_dimension, "largest embedding dimension")->capture_default_str();
   command->add_option("--builtin-length", args->length, "length of the built-in Lorenz series")->capture_default_str();
+  command->add_option("--test-length", args->test_length, "samples given to the nonlinearity test (the first ones)")
+      ->capture_default_str();
+  command->add_option("--surrogates", args->surrogates, "surrogates of the one-sided nonlinearity test (19: 5%)")
+      ->capture_default_str();
+  command->add_option("--seed", args->seed, "seed of the surrogates")->capture_default_str();
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -1,9 +1,12 @@
 #include "common.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 
+#include "chaos/autocorrelation.hpp"
 #include "chaos/error.hpp"
 #include "chaos/norm.hpp"
 
@@ -83,6 +86,35 @@ std::string describe_dimension(const CaoResult& result) {
     return std::string("none: E2 stays within its sampling error of 1 (stochastic series)") +
            (result.e1_saturation ? "; E1 alone would settle at m = " + std::to_string(*result.e1_saturation) : "");
   return "none: E1 does not settle within the range (not saturated)";
+}
+
+std::map<std::string, double> parse_settings(const std::vector<std::string>& settings) {
+  std::map<std::string, double> out;
+  for (const auto& setting : settings) {
+    const auto eq = setting.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InvalidInput(ErrorCode::invalid_parameter, "parameter '" + setting + "' is not of the form name=value");
+    double value = 0.0;
+    try {
+      std::size_t used = 0;
+      value = std::stod(setting.substr(eq + 1), &used);
+      if (used != setting.size() - eq - 1) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw InvalidInput(ErrorCode::invalid_parameter, "parameter '" + setting + "': the value is not a number");
+    }
+    out[setting.substr(0, eq)] = value;
+  }
+  return out;
+}
+
+CorrelationTime correlation_time(std::span<const double> x) {
+  const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
+  CorrelationTime t;
+  t.decay = decorrelation_time(autocorrelation(x, max_lag));
+  t.samples = t.decay ? static_cast<std::size_t>(std::ceil(*t.decay)) : max_lag;
+  t.source = t.decay ? "autocorrelation 1/e time"
+                     : "autocorrelation stays above 1/e up to lag " + std::to_string(max_lag) + ": set to that lag";
+  return t;
 }
 
 }  // namespace chaos::cli

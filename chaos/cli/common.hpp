@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <map>
 #include <memory>
+#include <span>
 #include <type_traits>
 #include <optional>
 #include <ostream>
@@ -95,6 +97,19 @@ Norm parse_norm(const std::string& name);
 // "3", or why there is no embedding dimension (stochastic, not saturated).
 std::string describe_dimension(const CaoResult& result);
 
+// "name=value" settings (-p): refused with the offending text when malformed or not a number.
+std::map<std::string, double> parse_settings(const std::vector<std::string>& settings);
+
+// The autocorrelation time of a series as the commands use it for a default Theiler window: the
+// lag where r falls to 1/e (rounded up), or, when r stays above 1/e, the largest lag examined
+// (N/4, at most 5000). `source` says which.
+struct CorrelationTime {
+  std::size_t samples = 0;
+  std::optional<double> decay;  // the 1/e time itself, when there is one
+  std::string source;
+};
+CorrelationTime correlation_time(std::span<const double> x);
+
 // Each command registers itself on the application.
 void register_generate(CLI::App& app);
 void register_mutual(CLI::App& app);
@@ -104,5 +119,9 @@ void register_fnn(CLI::App& app);
 void register_d2(CLI::App& app);
 void register_analyze(CLI::App& app);
 void register_validate(CLI::App& app);
+void register_lyapunov(CLI::App& app);
+void register_spectrum(CLI::App& app);
+void register_surrogates(CLI::App& app);
+void register_nonlinearity(CLI::App& app);
 
 }  // namespace chaos::cli

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "chaos/autocorrelation.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
@@ -92,10 +91,9 @@ void run(D2Args& args) {
   if (args.theiler) {
     args.sums.theiler = *args.theiler;
   } else {
-    const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
-    const auto decay = decorrelation_time(autocorrelation(x, max_lag));
-    args.sums.theiler = decay ? static_cast<std::size_t>(std::ceil(*decay)) : max_lag;
-    theiler_source = decay ? "autocorrelation 1/e time" : "autocorrelation stays above 1/e: window set to the largest lag";
+    const CorrelationTime t = correlation_time(x);
+    args.sums.theiler = t.samples;
+    theiler_source = t.source;
   }
   // Radii: given, or from the data's range (TISEAN's -r range/1000; -R a quarter of the range,
   // beyond which C is near 1 and carries no scaling).

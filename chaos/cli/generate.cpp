@@ -40,20 +40,7 @@ void run(const GenerateArgs& args) {
   request.system = *kind;
   request.length = args.length;
   request.seed = args.seed;
-  for (const auto& setting : args.settings) {
-    const auto eq = setting.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InvalidInput(ErrorCode::invalid_parameter, "parameter '" + setting + "' is not of the form name=value");
-    double value = 0.0;
-    try {
-      std::size_t used = 0;
-      value = std::stod(setting.substr(eq + 1), &used);
-      if (used != setting.size() - eq - 1) throw std::invalid_argument("trailing");
-    } catch (const std::exception&) {
-      throw InvalidInput(ErrorCode::invalid_parameter, "parameter '" + setting + "': the value is not a number");
-    }
-    request.parameters[setting.substr(0, eq)] = value;
-  }
+  request.parameters = parse_settings(args.settings);
   if (args.length == 0) throw InvalidInput(ErrorCode::invalid_parameter, "length -l must be at least 1 (got 0)");
   const Trajectory trajectory = generate(request);
 

@@ -9,7 +9,7 @@
 
 int main(int argc, char** argv) {
   using namespace chaos::cli;
-  CLI::App app{"chaos: time-series analysis for chaotic data (embedding, mutual information, Cao, FNN, validation)"};
+  CLI::App app{"chaos: time-series analysis for chaotic data (embedding, mutual information, Cao, FNN, D2, Lyapunov exponents, surrogates, validation)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "chaos 0.1.0");
   register_generate(app);
@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
   register_fnn(app);
   register_d2(app);
   register_analyze(app);
+  register_lyapunov(app);
+  register_spectrum(app);
+  register_surrogates(app);
+  register_nonlinearity(app);
   register_validate(app);
   try {
     app.parse(argc, argv);

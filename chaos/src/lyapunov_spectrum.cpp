@@ -397,4 +397,46 @@ LyapunovSpectrum logistic_spectrum(const LogisticParameters& p, const MapSpectru
   return out;
 }
 
+bool has_spectrum(SystemKind system) noexcept {
+  switch (system) {
+    case SystemKind::lorenz:
+    case SystemKind::rossler:
+    case SystemKind::henon:
+    case SystemKind::logistic:
+    case SystemKind::ikeda: return true;
+    default: return false;
+  }
+}
+
+bool is_flow(SystemKind system) noexcept { return system == SystemKind::lorenz || system == SystemKind::rossler; }
+
+LyapunovSpectrum spectrum(const SpectrumRequest& request) {
+  if (!has_spectrum(request.system))
+    refuse(std::string("lyapunov spectrum: no equations for system '") + to_string(request.system) +
+           "' (spectra exist for lorenz, rossler, henon, logistic, ikeda)");
+  // The model parameters are the generator's parameters less its sampling settings.
+  std::map<std::string, double> p;
+  for (const auto& parameter : system_parameters(request.system))
+    if (parameter.name != "dt" && parameter.name != "step" && parameter.name != "transient")
+      p[parameter.name] = parameter.default_value;
+  for (const auto& [name, value] : request.parameters) {
+    if (!p.count(name)) {
+      std::string valid;
+      for (const auto& [known, unused] : p) valid += (valid.empty() ? "" : ", ") + known;
+      refuse(std::string("lyapunov spectrum: system ") + to_string(request.system) + " has no model parameter '" +
+             name + "' (valid: " + valid + ")");
+    }
+    p[name] = value;
+  }
+  switch (request.system) {
+    case SystemKind::lorenz: return lorenz_spectrum({p["sigma"], p["rho"], p["beta"]}, request.flow);
+    case SystemKind::rossler: return rossler_spectrum({p["a"], p["b"], p["c"]}, request.flow);
+    case SystemKind::henon: return henon_spectrum({p["a"], p["b"]}, request.map);
+    case SystemKind::ikeda: return ikeda_spectrum({p["mu"], p["a"], p["b"]}, request.map);
+    case SystemKind::logistic: return logistic_spectrum({p["r"]}, request.map, request.seed);
+    default: break;
+  }
+  refuse("lyapunov spectrum: unknown system");
+}
+
 }  // namespace chaos

@@ -290,6 +290,52 @@ struct KdTree::Impl {
     return count_in<Metric, D>(node.left, q, i, radius, query) + count_in<Metric, D>(node.left + 1, q, i, radius, query);
   }
 
+  // Appends the admissible points of the subtree closer than `radius`: the traversal of count_in,
+  // collecting indices instead of counting them.
+  template <class Metric, std::size_t D>
+  void collect_in(std::size_t node_id, const double* q, std::size_t i, double radius, const NeighborQuery& query,
+                  std::vector<std::size_t>& out) const {
+    const Node& node = nodes_[node_id];
+    if (all_excluded(node, i, query.theiler)) return;
+    const double near = box_distance<Metric, D>(q, node_id, radius);
+    if (!(near < radius)) return;
+    if (query.skip_zero_distance && near == 0.0 && box_is_query<Metric, D>(q, node_id)) return;
+    const bool touches = window_touches(node, i, query.theiler);
+    const bool whole = node.uniform || (!touches && (!query.skip_zero_distance || near > 0.0) &&
+                                        box_far_distance<Metric, D>(q, node_id) < radius);
+    if (whole || node.left == no_child) {
+      for (std::size_t pos = node.begin; pos < node.end; ++pos) {
+        const std::size_t j = index_[pos];
+        if (within_window(i, j, query.theiler)) continue;
+        if (whole) {
+          out.push_back(j);
+          continue;
+        }
+        const double d = point_distance<Metric, D>(q, pos, radius);
+        if (d < radius && !(query.skip_zero_distance && d == 0.0)) out.push_back(j);
+      }
+      return;
+    }
+    collect_in<Metric, D>(node.left, q, i, radius, query, out);
+    collect_in<Metric, D>(node.left + 1, q, i, radius, query, out);
+  }
+
+  // As nearest_from_leaf: the query's own leaf, then the sibling of each node on the way up. Every
+  // leaf lies in exactly one of these subtrees, and for small radii nearly all siblings are pruned
+  // by their boxes at once, so the descent from the root is skipped.
+  template <class Metric, std::size_t D>
+  void collect_from_leaf(const double* q, std::size_t i, double radius, const NeighborQuery& query,
+                         std::vector<std::size_t>& out) const {
+    std::size_t node_id = leaf_of_[i];
+    collect_in<Metric, D>(node_id, q, i, radius, query, out);
+    while (node_id != 0) {
+      const std::size_t parent = nodes_[node_id].parent;
+      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      collect_in<Metric, D>(sibling, q, i, radius, query, out);
+      node_id = parent;
+    }
+  }
+
   // Runs f.template operator()<Metric, D>() with the norm and, for common dimensions, D = dim.
   template <class F>
   auto dispatch(F&& f) const {
@@ -458,6 +504,7 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 const DelayEmbedding& KdTree::points() const noexcept { return impl_->points; }
 Norm KdTree::norm() const noexcept { return impl_->norm; }
+std::span<const std::size_t> KdTree::leaf_order() const noexcept { return impl_->index_; }
 
 std::optional<Neighbor> KdTree::nearest(std::size_t i, const NeighborQuery& query) const {
   const Impl& t = *impl_;
@@ -480,6 +527,20 @@ std::size_t KdTree::count_within(std::size_t i, double radius, const NeighborQue
   return t.with_query(i, [&](const double* q) {
     return t.dispatch([&]<class Metric, std::size_t D>() { return t.count_in<Metric, D>(0, q, i, radius, query); });
   });
+}
+
+void KdTree::within(std::size_t i, double radius, std::vector<std::size_t>& out, const NeighborQuery& query) const {
+  const Impl& t = *impl_;
+  check_index(i, t.points.size());
+  check_radius(radius);
+  out.clear();
+  t.with_query(i, [&](const double* q) {
+    return t.dispatch([&]<class Metric, std::size_t D>() {
+      t.collect_from_leaf<Metric, D>(q, i, radius, query, out);
+      return 0;
+    });
+  });
+  std::sort(out.begin(), out.end());  // leaf order -> index order: a canonical answer
 }
 
 std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,
@@ -506,6 +567,19 @@ std::size_t count_within_brute_force(const DelayEmbedding& points, std::size_t i
     if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++count;
   }
   return count;
+}
+
+std::vector<std::size_t> within_brute_force(const DelayEmbedding& points, std::size_t i, double radius, Norm norm,
+                                            const NeighborQuery& query) {
+  check_index(i, points.size());
+  check_radius(radius);
+  std::vector<std::size_t> out;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (within_window(i, j, query.theiler)) continue;
+    const double d = points.distance(i, j, norm);
+    if (d < radius && !(query.skip_zero_distance && d == 0.0)) out.push_back(j);
+  }
+  return out;
 }
 
 }  // namespace chaos

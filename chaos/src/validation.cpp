@@ -6,12 +6,16 @@
 #include <sstream>
 #include <tuple>
 
+#include "numeric.hpp"
+
 #include "chaos/cao.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
+#include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_spectrum.hpp"
 #include "chaos/mutual_information.hpp"
 
 namespace chaos {
@@ -128,6 +132,82 @@ std::string describe(const std::optional<std::size_t>& v, const char* none) {
   return v ? std::to_string(*v) : std::string(none);
 }
 
+// Spectra from the equations: no series; the row's parameters are the model parameters and the
+// conditions the integration settings (time, step, interval, transient for flows; iterations,
+// interval, transient for maps).
+void validate_spectrum(const Reference& ref, const Conditions& c, ValidationResult& result, std::ostringstream& text) {
+  const auto system = system_from_name(ref.system);
+  if (!system) throw InvalidInput(ErrorCode::parse, ref.id + ": unknown system '" + ref.system + "'");
+  SpectrumRequest request;
+  request.system = *system;
+  request.parameters = ref.parameters;
+  request.seed = c.count("seed", 1);
+  const auto real = [&](const char* key, double fallback) {
+    const std::string value = c.text(key, "");
+    return value.empty() ? fallback : parse_number(value, ref.id + ": condition " + key);
+  };
+  if (is_flow(*system)) {
+    request.flow.step = real("step", request.flow.step);
+    request.flow.renormalisation_interval = real("interval", request.flow.renormalisation_interval);
+    request.flow.transient = real("transient", request.flow.transient);
+    request.flow.time = real("time", request.flow.time);
+  } else {
+    request.map.renormalisation_interval = c.count("interval", request.map.renormalisation_interval);
+    request.map.transient = c.count("transient", request.map.transient);
+    request.map.iterations = c.count("iterations", request.map.iterations);
+  }
+  const LyapunovSpectrum s = spectrum(request);
+  text << "exponents";
+  for (const double e : s.exponents) text << " " << detail::format_number(e);
+  text << ", sum " << detail::format_number(s.sum) << ", D_KY " << s.kaplan_yorke_dimension << " over "
+         << s.averaging_length << (is_flow(*system) ? " time units" : " iterations");
+  if (ref.quantity == "lyapunov_spectrum.exponent") {
+    const std::size_t index = c.count("index", 1);
+    if (index < 1 || index > s.exponents.size())
+      throw InvalidInput(ErrorCode::parse, ref.id + ": condition index must be 1.." + std::to_string(s.exponents.size()));
+    result.measured = s.exponents[index - 1];
+  } else if (ref.quantity == "lyapunov_spectrum.sum") {
+    result.measured = s.sum;
+  } else if (ref.quantity == "lyapunov_spectrum.kaplan_yorke_dimension") {
+    result.measured = s.kaplan_yorke_dimension;
+  } else {
+    throw InvalidInput(ErrorCode::parse, ref.id + ": unknown quantity " + ref.quantity);
+  }
+}
+
+// The largest exponent from the series: conditions method (rosenstein | kantz), tau, m, w, steps,
+// eps (Kantz; default range/1000), references (0: all). Per time unit when the row samples a flow
+// (its parameters give dt), per iteration otherwise.
+void validate_lyapunov(const Reference& ref, const Conditions& c, const std::vector<double>& x, ValidationResult& result,
+                       std::ostringstream& text) {
+  LyapunovOptions options;
+  const std::string method = c.text("method", "rosenstein");
+  if (method == "kantz") options.method = LyapunovMethod::kantz;
+  else if (method != "rosenstein") throw InvalidInput(ErrorCode::parse, ref.id + ": unknown method " + method);
+  options.delay = delay_of(c, x);
+  options.dimension = c.count("m", options.dimension);
+  options.theiler = c.count("w", 0);
+  options.steps = c.count("steps", options.steps);
+  options.reference_points = c.count("references", 0);
+  if (const std::string eps = c.text("eps", ""); !eps.empty()) options.radius = parse_number(eps, ref.id + ": condition eps");
+  std::optional<double> dt;
+  if (const auto it = ref.parameters.find("dt"); it != ref.parameters.end()) dt = it->second;
+  const LyapunovResult r = largest_lyapunov(x, options, {}, dt);
+  text << method << ", tau = " << options.delay << ", status " << to_string(r.fit.status);
+  if (r.fit.lambda)
+    text << ", lambda = " << *r.fit.lambda << " per sample in [" << r.fit.lambda_interval->low << ", "
+           << r.fit.lambda_interval->high << "] over steps " << *r.fit.first_step << ".." << *r.fit.last_step;
+  if (r.lambda_per_time) text << ", " << *r.lambda_per_time << " per time unit";
+  text << ": " << r.fit.explanation;
+  if (ref.quantity == "lyapunov.lambda") {
+    result.measured = dt ? r.lambda_per_time : r.fit.lambda;
+  } else if (ref.quantity == "lyapunov.no_linear_region") {
+    result.measured = r.fit.lambda ? 0.0 : 1.0;
+  } else {
+    throw InvalidInput(ErrorCode::parse, ref.id + ": unknown quantity " + ref.quantity);
+  }
+}
+
 }  // namespace
 
 std::vector<Reference> parse_reference_table(std::string_view text, const std::string& origin) {
@@ -181,10 +261,22 @@ ValidationResult validate(const Reference& ref) {
   const auto start = std::chrono::steady_clock::now();
   ValidationResult result{ref, std::nullopt, false, "", 0.0};
   const Conditions c{ref};
-  const std::vector<double> x = make_series(ref, c);
   std::ostringstream detail;
+  const auto finish = [&] {
+    result.passed = result.measured && *result.measured >= ref.low && *result.measured <= ref.high;
+    result.detail = detail.str();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
+  if (ref.quantity.rfind("lyapunov_spectrum.", 0) == 0) {
+    validate_spectrum(ref, c, result, detail);
+    return finish();
+  }
+  const std::vector<double> x = make_series(ref, c);
 
-  if (ref.quantity == "mutual_information.first_minimum") {
+  if (ref.quantity.rfind("lyapunov.", 0) == 0) {
+    validate_lyapunov(ref, c, x, result, detail);
+  } else if (ref.quantity == "mutual_information.first_minimum") {
     MutualInformationOptions options;
     options.boxes = c.count("boxes", options.boxes);
     options.max_delay = c.count("max_delay", options.max_delay);
@@ -258,10 +350,7 @@ ValidationResult validate(const Reference& ref) {
     throw InvalidInput(ErrorCode::parse, ref.id + ": unknown quantity " + ref.quantity);
   }
 
-  result.passed = result.measured && *result.measured >= ref.low && *result.measured <= ref.high;
-  result.detail = detail.str();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  return finish();
 }
 
 }  // namespace chaos

@@ -76,7 +76,9 @@ expect_json_keys mutual "$work/lorenz.dat" -D 30 -- delay mutual_information fir
 expect_json_keys cao "$work/henon.dat" -M 5 -- dimension E1 E2 embedding_dimension
 expect_json_keys fnn "$work/henon.dat" -M 5 -- dimension false_fraction embedding_dimension
 expect_json_keys autocorrelation "$work/lorenz.dat" -- lag autocorrelation first_zero_crossing decorrelation_time
-expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension
+expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension lambda lambda_interval lambda_status nonlinearity
+l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.35 and .lambda < 0.5), .lambda_per, .nonlinearity.rejected]')
+[[ $l == '[true,"sample",true]' ]] && pass || fail "analyze on Hénon gave $l"
 
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
 r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
@@ -92,6 +94,71 @@ for ext in png svg; do
 done
 head -c 8 "$work/d2.png" | od -An -c | grep -q "P   N   G" && pass || fail "d2.png is not a PNG"
 
+# chaos lyapunov: the JSON contract, per sample or per time unit, null for noise, refusals, plot.
+"$CHAOS" generate white_noise -l 3000 > "$work/noise.dat" || fail "generate white_noise"
+expect_json_keys lyapunov "$work/henon.dat" -- lambda lambda_interval per status divergence step local_slope terms
+l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.status, .per, (.lambda > 0.3 and .lambda < 0.5), (.divergence | length), .parameters.steps]')
+[[ $l == '["linear_region","sample",true,21,20]' ]] && pass || fail "lyapunov henon gave $l"
+l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --json | jq -c '[.status, .parameters.method, (.parameters.radius > 0)]')
+[[ $l == '["linear_region","kantz",true]' ]] && pass || fail "lyapunov --method kantz gave $l"
+l=$("$CHAOS" lyapunov "$work/henon.dat" --dt 0.5 --json | jq -c '[.per, (.lambda == .lambda_per_sample / 0.5)]')
+[[ $l == '["time",true]' ]] && pass || fail "lyapunov --dt gave $l"
+l=$("$CHAOS" lyapunov "$work/noise.dat" --json | jq -c '[.lambda, .lambda_interval, .status]')
+[[ $l == '[null,null,"no_linear_region"]' ]] && pass || fail "lyapunov on white noise gave $l"
+"$CHAOS" lyapunov "$work/noise.dat" | grep -q "^# lambda = none" && pass || fail "lyapunov text output for noise lacks 'lambda = none'"
+expect_error 3 "method must be rosenstein or kantz" -- lyapunov --method wolf "$work/henon.dat"
+expect_error 3 "too short.*N = 5.*steps = 20" -- lyapunov "$work/five.dat"
+expect_error 3 "eps must be positive.*-1" -- lyapunov --method kantz -r -1 "$work/henon.dat"
+expect_error 3 "m = 0" -- lyapunov -m 0 "$work/henon.dat"
+expect_error 3 "constant" -- lyapunov "$work/constant.dat"
+"$CHAOS" lyapunov "$work/henon.dat" --plot "$work/lyap.png" > /dev/null
+head -c 8 "$work/lyap.png" | od -An -c | grep -q "P   N   G" && pass || fail "lyapunov --plot made no PNG"
+expect_error 3 "png or .svg" -- lyapunov "$work/henon.dat" --plot "$work/lyap.pdf"
+
+# chaos spectrum SYSTEM: exponents and the Kaplan-Yorke dimension; refusals name the rule.
+expect_json_keys spectrum henon --iterations 10000 -- exponents kaplan_yorke_dimension sum
+l=$("$CHAOS" spectrum lorenz --time 100 --json | jq -c '[(.exponents | length), (.exponents[0] > 0.7 and .exponents[0] < 1.1), (.kaplan_yorke_dimension > 2 and .kaplan_yorke_dimension < 2.2)]')
+[[ $l == '[3,true,true]' ]] && pass || fail "spectrum lorenz gave $l"
+l=$("$CHAOS" spectrum henon -p b=0.2 --iterations 10000 --json | jq '.sum - (0.2 | log) | fabs < 1e-9')
+[[ $l == true ]] && pass || fail "spectrum henon -p b=0.2: sum is not ln 0.2"
+expect_error 3 "no spectrum for system 'sine'" -- spectrum sine
+expect_error 3 "no model parameter 'rh'" -- spectrum lorenz -p rh=28
+expect_error 3 "is a flow" -- spectrum lorenz --iterations 100
+expect_error 3 "is a map" -- spectrum henon --time 100
+expect_error 2 "" -- spectrum
+
+# chaos surrogates: one column per surrogate; a seed fixes them; IAAFT keeps the values exactly.
+grep -v '^#' "$work/henon.dat" | head -n 1000 > "$work/henon1000.dat"
+cols=$("$CHAOS" surrogates "$work/henon1000.dat" -n 3 | grep -v '^#' | awk -F'\t' '{print NF}' | sort -u)
+[[ $cols == 3 ]] && pass || fail "surrogates -n 3 wrote $cols columns"
+rows=$("$CHAOS" surrogates "$work/henon1000.dat" -n 2 | grep -vc '^#')
+[[ $rows == 1000 ]] && pass || fail "surrogates wrote $rows rows, expected 1000"
+a=$("$CHAOS" surrogates "$work/henon1000.dat" -n 2 --seed 7 | md5sum)
+b=$("$CHAOS" surrogates "$work/henon1000.dat" -n 2 --seed 7 | md5sum)
+c=$("$CHAOS" surrogates "$work/henon1000.dat" -n 2 --seed 8 | md5sum)
+[[ $a == "$b" && $a != "$c" ]] && pass || fail "surrogates: the same seed must repeat and another seed differ"
+if cmp -s <("$CHAOS" surrogates "$work/henon1000.dat" | grep -v '^#' | sort -g) <(sort -g "$work/henon1000.dat"); then pass
+else fail "IAAFT surrogate is not a permutation of the data"; fi
+for method in ft aaft iaaft; do
+  expect_json_keys surrogates "$work/henon1000.dat" --method $method -n 2 -- surrogates status iterations spectral_deviation
+done
+l=$("$CHAOS" surrogates "$work/henon1000.dat" --end-match --json | jq -c '[(.length < 1000), (.surrogates[0] | length) == .length]')
+[[ $l == '[true,true]' ]] && pass || fail "surrogates --end-match gave $l"
+expect_error 3 "method must be ft, aaft or iaaft" -- surrogates --method phase "$work/henon.dat"
+expect_error 3 "count must be at least 1" -- surrogates -n 0 "$work/henon.dat"
+expect_error 3 "constant" -- surrogates "$work/constant.dat"
+
+# chaos nonlinearity: the JSON contract; Hénon is rejected, white noise is not.
+expect_json_keys nonlinearity "$work/henon1000.dat" -n 19 -- statistic rank count rejected significance
+l=$("$CHAOS" nonlinearity "$work/henon1000.dat" --json | jq -c '[.rejected, .rank, .count, .significance, .statistic_name]')
+[[ $l == '[true,1,39,0.05,"prediction_error"]' ]] && pass || fail "nonlinearity on Hénon gave $l"
+l=$("$CHAOS" nonlinearity "$work/noise.dat" -l 1024 --statistic time_reversal_asymmetry --method ft --json | jq -c '[.rejected, .parameters.statistic]')
+[[ $l == '[false,"time_reversal_asymmetry"]' ]] && pass || fail "nonlinearity on white noise gave $l"
+expect_error 3 "statistic must be prediction_error or time_reversal_asymmetry" -- nonlinearity --statistic skew "$work/henon.dat"
+expect_error 3 "alternative must be" -- nonlinearity --alternative up "$work/henon.dat"
+expect_error 3 "at least 1 surrogate" -- nonlinearity -n 0 "$work/henon.dat"
+expect_error 3 "too short" -- nonlinearity -m 10 -d 10 "$work/five.dat"
+
 # A null, not a guess, when there is no minimum: a monotone ramp has no MI minimum.
 seq 1 500 > "$work/ramp.dat"
 fm=$("$CHAOS" mutual "$work/ramp.dat" -D 5 --json | jq '.first_minimum')
@@ -104,7 +171,7 @@ for key in delay min_dimension max_dimension theiler norm N; do
 done
 
 # Every command has --help.
-for cmd in generate mutual autocorrelation cao fnn d2 analyze validate; do
+for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity validate; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 

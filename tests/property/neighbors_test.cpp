@@ -2,8 +2,9 @@
 // sets (uniform noise, Hénon and Lorenz delay embeddings, and quantised series with many exact
 // ties), every dimension m = 1..10, Theiler windows 0, 1, 10, 50, skip_zero_distance on and off,
 // both norms and two leaf sizes, KdTree::nearest must return the same index and the bit-identical
-// distance as nearest_brute_force (the definition), and count_within the same count as
-// count_within_brute_force, including radii equal to an existing distance (strictness).
+// distance as nearest_brute_force (the definition), count_within the same count as
+// count_within_brute_force, and within the same points as within_brute_force, including radii
+// equal to an existing distance (strictness).
 #include "chaos/neighbors.hpp"
 
 #include <gtest/gtest.h>
@@ -55,6 +56,7 @@ std::vector<DataSet> data_sets() {
 
 TEST(KdTreeProperty, EqualsBruteForce) {
   std::size_t queries = 0, counts_checked = 0;
+  std::vector<std::size_t> found;
   for (const auto& set : data_sets()) {
     for (std::size_t m = 1; m <= 10; ++m) {
       const DelayEmbedding e(set.x, m, set.delay);
@@ -83,6 +85,16 @@ TEST(KdTreeProperty, EqualsBruteForce) {
                 const std::size_t expected = chaos::count_within_brute_force(e, i, r, norm, q);
                 ASSERT_EQ(fine.count_within(i, r, q), expected) << set.name << " m=" << m << " w=" << w << " i=" << i;
                 ASSERT_EQ(coarse.count_within(i, r, q), expected) << set.name << " m=" << m << " w=" << w << " i=" << i;
+                // The points themselves, in index order: the same set the count counts (on a
+                // third of these queries, to keep the test quick).
+                if (i % 15 != 0) continue;
+                const auto members = chaos::within_brute_force(e, i, r, norm, q);
+                ASSERT_EQ(members.size(), expected);
+                for (const KdTree* tree : {&fine, &coarse}) {
+                  tree->within(i, r, found, q);
+                  ASSERT_EQ(found, members) << set.name << " m=" << m << " w=" << w << " skip=" << skip << " i=" << i
+                                            << " r=" << r;
+                }
               }
               ++counts_checked;
             }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -135,6 +136,34 @@ TEST(KdTree, CountWithinDuplicatesAndSkipZero) {
   expect_nearest(e, Norm::max, 6, {0, true}, 0, 5.0);     // twin 7 skipped; six 2s tie, index 0
   expect_nearest(e, Norm::max, 6, {5, true}, 0, 5.0);     // w = 5 excludes 1..7 but keeps 0
   EXPECT_FALSE(tree.nearest(6, {6, false}).has_value());  // w = 6 excludes all of 0..7
+}
+
+TEST(KdTree, WithinListsTheCountedPointsInIndexOrder) {
+  // Same data as above: six 2s (0..5) and two 7s (6, 7). From point 2 with radius 1 and w = 1 the
+  // members are the twins 0, 4, 5; with radius 6 and w = 3 they are 6 and 7; skipping zero
+  // distances from point 0 leaves only the 7s; radius 0 lists nothing (strict).
+  const std::vector<double> x{2, 2, 2, 2, 2, 2, 7, 7};
+  const DelayEmbedding e(x, 1, 1);
+  std::vector<std::size_t> found{99};  // cleared by the call
+  for (std::size_t leaf : {1u, 2u, 8u}) {
+    const KdTree tree(e, Norm::max, leaf);
+    tree.within(2, 1.0, found, {1, false});
+    EXPECT_EQ(found, (std::vector<std::size_t>{0, 4, 5})) << "leaf " << leaf;
+    tree.within(2, 6.0, found, {3, false});
+    EXPECT_EQ(found, (std::vector<std::size_t>{6, 7})) << "leaf " << leaf;
+    tree.within(0, 6.0, found, {0, true});
+    EXPECT_EQ(found, (std::vector<std::size_t>{6, 7})) << "leaf " << leaf;
+    tree.within(0, 0.0, found);
+    EXPECT_TRUE(found.empty());
+  }
+  EXPECT_EQ(chaos::within_brute_force(e, 2, 1.0, Norm::max, {1, false}), (std::vector<std::size_t>{0, 4, 5}));
+  // leaf_order is a permutation of the point indices.
+  const KdTree tree(e, Norm::max, 2);
+  std::vector<std::size_t> order(tree.leaf_order().begin(), tree.leaf_order().end());
+  std::sort(order.begin(), order.end());
+  EXPECT_EQ(order, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_THROW(KdTree(e, Norm::max).within(0, NAN, found), chaos::InvalidInput);
+  EXPECT_THROW(KdTree(e, Norm::max).within(8, 1.0, found), chaos::InvalidInput);
 }
 
 TEST(KdTree, DelayGreaterThanOne) {

@@ -33,10 +33,6 @@ struct CorrelationDimensionOptions {
   void validate() const;
 };
 
-struct Interval {
-  double low = 0.0, high = 0.0;
-};
-
 struct CorrelationDimensionResult {
   std::vector<std::size_t> dimension;
   std::vector<double> radius;

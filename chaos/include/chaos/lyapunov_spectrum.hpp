@@ -14,10 +14,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <span>
+#include <string>
 #include <variant>
 #include <vector>
 
+#include "chaos/generate.hpp"
 #include "chaos/systems.hpp"
 
 namespace chaos {
@@ -90,5 +93,24 @@ LyapunovSpectrum henon_spectrum(const HenonParameters& parameters = {}, const Ma
 LyapunovSpectrum ikeda_spectrum(const IkedaParameters& parameters = {}, const MapSpectrumOptions& options = {});
 LyapunovSpectrum logistic_spectrum(const LogisticParameters& parameters = {}, const MapSpectrumOptions& options = {},
                                    std::uint64_t seed = 1);
+
+// The spectrum of a reference system named as in generate.hpp, for the command line and the
+// reference table: `parameters` overrides the model parameters by name (sigma, rho, beta for
+// Lorenz; a, b, c for Rossler; a, b for Henon; r for the logistic map; mu, a, b for Ikeda; the
+// generators' sampling settings dt, step and transient are not model parameters and are refused,
+// as is any unknown name, with the list of valid ones). `flow` is used for the flows, `map` for the
+// maps, `seed` for the logistic start. Systems without equations here (Mackey-Glass, sine, noise,
+// ...) are refused.
+struct SpectrumRequest {
+  SystemKind system = SystemKind::lorenz;
+  std::map<std::string, double> parameters;
+  FlowSpectrumOptions flow;
+  MapSpectrumOptions map;
+  std::uint64_t seed = 1;
+};
+LyapunovSpectrum spectrum(const SpectrumRequest& request);
+// The systems `spectrum` accepts, and whether each is a flow.
+bool has_spectrum(SystemKind system) noexcept;
+bool is_flow(SystemKind system) noexcept;
 
 }  // namespace chaos

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "chaos/embedding.hpp"
@@ -43,8 +44,16 @@ class KdTree {
   // Number of admissible j with distance(i, j) < radius (strict, the correlation-sum convention).
   std::size_t count_within(std::size_t i, double radius, const NeighborQuery& query = {}) const;
 
+  // The admissible j with distance(i, j) < radius, in ascending order of j, written to `out`
+  // (cleared first, so one buffer serves many queries): exactly the points count_within counts.
+  void within(std::size_t i, double radius, std::vector<std::size_t>& out, const NeighborQuery& query = {}) const;
+
   const DelayEmbedding& points() const noexcept;
   Norm norm() const noexcept;
+  // Every point index once, in the order of the tree's leaves: points close in space are close in
+  // this order, so queries made in it reuse the same nodes from cache (a batch of queries in index
+  // order jumps across the whole tree for chaotic data).
+  std::span<const std::size_t> leaf_order() const noexcept;
 
  private:
   struct Impl;
@@ -55,5 +64,7 @@ std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::s
                                             const NeighborQuery& query = {});
 std::size_t count_within_brute_force(const DelayEmbedding& points, std::size_t i, double radius,
                                      Norm norm, const NeighborQuery& query = {});
+std::vector<std::size_t> within_brute_force(const DelayEmbedding& points, std::size_t i, double radius, Norm norm,
+                                            const NeighborQuery& query = {});
 
 }  // namespace chaos

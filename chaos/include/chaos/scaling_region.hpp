@@ -17,6 +17,11 @@ namespace chaos {
 std::vector<std::optional<double>> local_slopes(std::span<const double> x, std::span<const std::optional<double>> y,
                                                 std::size_t half_width = 1);
 
+// A closed range [low, high]: the interval of an estimate, or a range of radii.
+struct Interval {
+  double low = 0.0, high = 0.0;
+};
+
 struct ScalingRegionOptions {
   // Every local slope in the region lies within tolerance * |mean slope| of the mean slope
   // (relative), or within tolerance (absolute, when relative is false).

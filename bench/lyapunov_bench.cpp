@@ -1,0 +1,66 @@
+// The largest Lyapunov exponent from a series, Rosenstein and Kantz, at N = 10^4, 10^5, 10^6,
+// single thread, inputs generated outside the timed loop:
+//   map:  Hénon x, m = 2, tau = 1, w = 0, K = 20 steps (the reference row's settings);
+//   flow: Lorenz x at dt = 0.01, m = 3, tau = 17, w = 100, K = 500 steps (the reference row's
+//         settings), Kantz with the default eps = range / 1000.
+// Each run is the whole estimate: kd-tree, neighbour searches, the divergence curve and the fit.
+// Counters: the exponent found (per sample) and the neighbours per reference point.
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <vector>
+
+#include "chaos/lyapunov.hpp"
+#include "chaos/systems.hpp"
+
+namespace {
+
+const std::vector<double>& series(bool flow, std::size_t n) {
+  static std::map<std::pair<bool, std::size_t>, std::vector<double>> cache;
+  auto it = cache.find({flow, n});
+  if (it == cache.end())
+    it = cache.emplace(std::make_pair(flow, n), flow ? chaos::lorenz(n).components[0] : chaos::henon(n).components[0]).first;
+  return it->second;
+}
+
+void largest_lyapunov(benchmark::State& state, chaos::LyapunovMethod method, bool flow) {
+  const auto& x = series(flow, static_cast<std::size_t>(state.range(0)));
+  chaos::LyapunovOptions o;
+  o.method = method;
+  if (flow) {
+    o.dimension = 3;
+    o.delay = 17;
+    o.theiler = 100;
+    o.steps = 500;
+  } else {
+    o.dimension = 2;
+    o.delay = 1;
+    o.steps = 20;
+  }
+  double lambda = 0.0, neighbours = 0.0;
+  for (auto _ : state) {
+    const auto r = chaos::largest_lyapunov(x, o);
+    lambda = r.fit.lambda.value_or(0.0);
+    neighbours = r.curve.mean_neighbours;
+    benchmark::DoNotOptimize(r.curve.divergence.data());
+  }
+  state.counters["lambda_per_sample"] = lambda;
+  state.counters["neighbours"] = neighbours;
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+BENCHMARK_CAPTURE(largest_lyapunov, rosenstein_henon, chaos::LyapunovMethod::rosenstein, false)
+    ->RangeMultiplier(10)->Range(10'000, 1'000'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(largest_lyapunov, kantz_henon, chaos::LyapunovMethod::kantz, false)
+    ->RangeMultiplier(10)->Range(10'000, 1'000'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(largest_lyapunov, rosenstein_lorenz, chaos::LyapunovMethod::rosenstein, true)
+    ->Arg(10'000)->Arg(100'000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(largest_lyapunov, kantz_lorenz, chaos::LyapunovMethod::kantz, true)
+    ->Arg(10'000)->Arg(100'000)->Unit(benchmark::kMillisecond);
+// 5 10^8 pair distances (Rosenstein) and several times that (Kantz): timed once.
+BENCHMARK_CAPTURE(largest_lyapunov, rosenstein_lorenz, chaos::LyapunovMethod::rosenstein, true)
+    ->Arg(1'000'000)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(largest_lyapunov, kantz_lorenz, chaos::LyapunovMethod::kantz, true)
+    ->Arg(1'000'000)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,146 @@
+#pragma once
+// The largest Lyapunov exponent from a scalar time series, by the divergence of neighbouring
+// trajectories in a delay embedding. Two published estimators, named for what they average:
+//
+//   Rosenstein, Collins & De Luca 1993 (Physica D 65:117): every reference point X_i is paired with
+//     its nearest neighbour X_j (|i - j| > w, the Theiler window); the curve is the mean of the LOG
+//     distances of the pairs followed for k steps,
+//       y(k) = < ln |X_{i+k} - X_{j+k}| >_i ;
+//   Kantz 1994 (Phys. Lett. A 185:77): every reference point X_i collects all points X_j with
+//     |X_i - X_j| < eps (the eps-neighbourhood U_i, |i - j| > w); the curve is the mean over
+//     reference points of the log of the MEAN distance within the neighbourhood,
+//       S(k) = < ln( (1/|U_i|) sum_{j in U_i} |X_{i+k} - X_{j+k}| ) >_i .
+//
+// Both grow as lambda_1 k while the separation is small and the direction of largest growth has
+// taken over, then saturate at the size of the attractor. The estimator returns the raw curve;
+// fitting is a separate step (fit_divergence) that finds the straight part without a hand-picked
+// range by the scaling-region machinery (scaling_region.hpp): the widest stretch of steps on which
+// the local slopes are positive and stay within a tolerance of their mean. lambda_1 is the
+// least-squares slope there, per sample, and per time unit when the sampling interval is known;
+// its interval is the range of the local slopes over the stretch. A curve that never rises, or has
+// no straight rising stretch, gets a status and no number: white noise has no linear region (its
+// curve jumps to saturation within m steps). Only positive exponents are estimated.
+//
+// Conventions (docs/lyapunov.md):
+//   - neighbours come from the kd-tree of neighbors.hpp; the Theiler window w excludes |i - j| <= w;
+//   - the pairs are followed for the same steps 0..K: reference points and neighbours are the first
+//     P = N - (m-1) tau - K embedded points, so every curve value averages the same pairs and no
+//     pair runs off the end of the series;
+//   - ties: a neighbour identical to the reference point (distance 0 at step 0, quantised data) is
+//     not a neighbour (neighbors.hpp's skip_zero_distance: nothing can diverge exponentially from 0);
+//     a zero distance at a later step has no logarithm and is left out of that step's average
+//     (Rosenstein: the pair; Kantz: the reference point when its neighbourhood's mean distance is 0),
+//     and counted. A step where nothing is left is undefined (nullopt), never -inf or NaN;
+//   - distances in the chosen norm (max by default, as everywhere in the library); the distance
+//     between X_{i+k} and X_{j+k} is that of the whole delay vectors, as TISEAN's lyap_k computes
+//     it (Hegger, Kantz & Schreiber 1999);
+//   - deterministic: the same result for any thread count (partial sums are formed over fixed
+//     blocks of reference points and added in block order).
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "chaos/norm.hpp"
+#include "chaos/scaling_region.hpp"
+
+namespace chaos {
+
+enum class LyapunovMethod { rosenstein, kantz };
+const char* to_string(LyapunovMethod method) noexcept;
+
+struct LyapunovOptions {
+  LyapunovMethod method = LyapunovMethod::rosenstein;
+  std::size_t dimension = 2;   // m
+  std::size_t delay = 1;       // tau, samples
+  std::size_t theiler = 0;     // w, samples: neighbours need |i - j| > w
+  std::size_t steps = 20;      // K: the curve covers k = 0..K samples
+  Norm norm = Norm::max;
+  // Kantz only: the neighbourhood radius eps (strict: distance < eps, the correlation-sum
+  // convention). nullopt: start from the data's range / 1000 (TISEAN lyap_k's smallest default
+  // length scale: small neighbourhoods leave the most room for growth before saturation), then,
+  // judged on at most 1000 evenly spaced reference points: double it while fewer than half of them
+  // have min_neighbours neighbours, else halve it while they have more than 20 on average and at
+  // least half keep min_neighbours (the cost grows with the neighbourhood, the precision hardly
+  // does). Reference points with fewer than min_neighbours neighbours are skipped.
+  std::optional<double> radius;
+  std::size_t min_neighbours = 1;
+  // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
+  std::size_t reference_points = 0;
+  std::size_t threads = 1;     // results are identical for any thread count
+  void validate() const;
+};
+
+// The raw divergence curve.
+struct DivergenceCurve {
+  LyapunovMethod method = LyapunovMethod::rosenstein;
+  std::vector<std::size_t> step;                  // k = 0..K
+  std::vector<std::optional<double>> divergence;  // y(k) (Rosenstein) or S(k) (Kantz), ln of data units
+  std::vector<std::size_t> terms;                 // log terms averaged at each step
+  std::vector<std::size_t> zero_distances;        // terms left out at each step (zero distance)
+  std::size_t points = 0;              // P: embedded points that can be followed for K steps
+  std::size_t reference_points = 0;    // reference points examined
+  std::size_t references_used = 0;     // with a neighbour (Rosenstein) or >= min_neighbours (Kantz)
+  double radius = 0.0;                 // Kantz: eps used; 0 for Rosenstein
+  double mean_neighbours = 0.0;        // mean neighbourhood size of the references used (1 for Rosenstein)
+  double mean_initial_distance = 0.0;  // exp of the step-0 value: typical starting separation
+};
+
+// The curve by the chosen method. Refuses (InvalidInput) non-finite or constant series, invalid
+// options, and series too short: N must be at least (m-1) tau + K + 2w + 3 so that P >= 2w + 3
+// and every reference point has admissible candidates. When no reference point finds a neighbour
+// the curve is returned empty of terms (every value nullopt) and the fit says so.
+DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options = {});
+
+enum class LyapunovStatus {
+  linear_region,     // lambda from the fitted straight stretch
+  no_linear_region,  // no stretch of min_steps steps whose positive local slopes agree within the tolerance
+  not_diverging,     // no local slope is positive: the curve does not rise, no exponential divergence
+  no_neighbours,     // no reference point had a neighbour: nothing to fit
+};
+const char* to_string(LyapunovStatus status) noexcept;
+
+struct LyapunovFitOptions {
+  // The straight stretch is the widest run of steps whose local slopes (least-squares slopes
+  // through 2 half_width + 1 steps) are all positive and lie within tolerance * mean of their
+  // mean, over at least min_steps steps. 0 selects the automatic value, which scales with the curve's length K:
+  // half_width = max(2, K / 25), min_steps = 3 half_width + 1 (one and a half local-slope windows).
+  double tolerance = 0.1;
+  std::size_t half_width = 0;
+  std::size_t min_steps = 0;
+  void validate() const;
+};
+
+struct LyapunovFit {
+  LyapunovStatus status = LyapunovStatus::no_neighbours;
+  std::size_t half_width = 0, min_steps = 0;         // the values used
+  std::vector<std::optional<double>> local_slope;    // per step, per sample
+  std::optional<std::size_t> first_step, last_step;  // the straight stretch, inclusive
+  std::optional<double> lambda;                      // per sample (per iteration for maps)
+  std::optional<Interval> lambda_interval;           // range of the local slopes over the stretch
+  std::string explanation;                           // one sentence a user can read
+};
+
+LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options = {});
+
+struct LyapunovResult {
+  DivergenceCurve curve;
+  LyapunovFit fit;
+  LyapunovOptions options;                  // the settings used (radius filled in for Kantz)
+  std::optional<double> dt;                 // sampling interval, when known
+  std::optional<double> lambda_per_time;    // fit.lambda / dt
+  std::optional<Interval> lambda_per_time_interval;
+};
+
+// Curve and fit in one call; `dt` (when known) converts to time units.
+LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options = {},
+                                const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
+// The same with the method fixed.
+LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options = {},
+                                           const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
+LyapunovResult largest_lyapunov_kantz(std::span<const double> x, LyapunovOptions options = {},
+                                      const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
+
+}  // namespace chaos

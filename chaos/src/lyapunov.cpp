@@ -1,0 +1,403 @@
+#include "chaos/lyapunov.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "chaos/embedding.hpp"
+#include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
+#include "chaos/series.hpp"
+#include "numeric.hpp"
+
+namespace chaos {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
+
+// Reference points are handled in blocks of this many, whatever the thread count; each block's
+// partial sums are added in block order, so the result does not depend on the threads. Blocks are
+// processed in rounds of at most round_blocks, which bounds the memory of the partial sums.
+constexpr std::size_t block_size = 512;
+constexpr std::size_t round_blocks = 256;
+
+// Kantz's default radius keeps the mean neighbourhood at or below this many points.
+constexpr double default_neighbours = 20.0;
+
+struct Partial {
+  std::vector<double> sum;
+  std::vector<std::size_t> terms, zeros;
+  std::size_t used = 0;
+  double neighbours = 0.0;
+  explicit Partial(std::size_t steps) : sum(steps + 1, 0.0), terms(steps + 1, 0), zeros(steps + 1, 0) {}
+  void clear() {
+    std::fill(sum.begin(), sum.end(), 0.0);
+    std::fill(terms.begin(), terms.end(), 0);
+    std::fill(zeros.begin(), zeros.end(), 0);
+    used = 0;
+    neighbours = 0.0;
+  }
+  void add(const Partial& p) {
+    for (std::size_t k = 0; k < sum.size(); ++k) {
+      sum[k] += p.sum[k];
+      terms[k] += p.terms[k];
+      zeros[k] += p.zeros[k];
+    }
+    used += p.used;
+    neighbours += p.neighbours;
+  }
+};
+
+// The distances |X_{i+k} - X_{j+k}|, k = 0..steps, of a pair of delay vectors, into d. The
+// per-sample differences e_t = |y_{i+t} - y_{j+t}| are formed once and each distance combines m of
+// them, coordinate by coordinate in the order DelayEmbedding::distance uses (so the values are the
+// same to the last bit); the loops over k are contiguous and vectorise, where reading every
+// distance through the view would touch m strided samples per step.
+struct PairDistances {
+  std::vector<double> e, d;
+  void compute(std::span<const double> y, std::size_t i, std::size_t j, std::size_t m, std::size_t tau,
+               std::size_t steps, Norm norm) {
+    const std::size_t samples = steps + 1 + (m - 1) * tau;
+    e.resize(samples);
+    d.assign(steps + 1, 0.0);
+    const double* a = y.data() + i;
+    const double* b = y.data() + j;
+    for (std::size_t t = 0; t < samples; ++t) e[t] = std::abs(a[t] - b[t]);
+    for (std::size_t l = 0; l < m; ++l) {
+      const double* el = e.data() + l * tau;
+      if (norm == Norm::max)
+        for (std::size_t k = 0; k <= steps; ++k) d[k] = std::max(d[k], el[k]);
+      else
+        for (std::size_t k = 0; k <= steps; ++k) d[k] += el[k] * el[k];
+    }
+    if (norm == Norm::euclidean)
+      for (std::size_t k = 0; k <= steps; ++k) d[k] = std::sqrt(d[k]);
+  }
+};
+
+// Work space of one thread.
+struct Scratch {
+  PairDistances pair;
+  std::vector<std::size_t> neighbourhood;
+  std::vector<double> mean;
+};
+
+// Runs work(reference index, partial, scratch) for every reference point, in blocks, on `threads`
+// threads, and adds the blocks' partial sums in block order. An exception in a worker is
+// rethrown here after every thread has stopped.
+template <class Work>
+Partial for_each_reference(const std::vector<std::size_t>& references, std::size_t steps, std::size_t threads,
+                           const Work& work) {
+  const std::size_t blocks = (references.size() + block_size - 1) / block_size;
+  std::vector<Partial> partials(std::min(blocks, round_blocks), Partial(steps));
+  Partial total(steps);
+  for (std::size_t first = 0; first < blocks; first += round_blocks) {
+    const std::size_t count = std::min(round_blocks, blocks - first);
+    for (std::size_t b = 0; b < count; ++b) partials[b].clear();
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    const auto run = [&] {
+      try {
+        Scratch scratch;
+        for (std::size_t b; (b = next.fetch_add(1)) < count;) {
+          const std::size_t begin = (first + b) * block_size;
+          const std::size_t end = std::min(references.size(), begin + block_size);
+          for (std::size_t r = begin; r < end; ++r) work(references[r], partials[b], scratch);
+        }
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_lock);
+        if (!failure) failure = std::current_exception();
+        next.store(count);  // the others stop after their current block
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run);
+    run();
+    for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    for (std::size_t b = 0; b < count; ++b) total.add(partials[b]);
+  }
+  return total;
+}
+
+std::vector<std::size_t> reference_indices(std::size_t points, std::size_t wanted) {
+  const std::size_t n = wanted == 0 ? points : std::min(wanted, points);
+  std::vector<std::size_t> out(n);
+  for (std::size_t r = 0; r < n; ++r)
+    // Evenly spaced over 0..points-1, exact in integers and all distinct (r < n <= points, so
+    // r * points fits in 64 bits for any series that fits in memory).
+    out[r] = r * points / n;
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(LyapunovMethod method) noexcept {
+  switch (method) {
+    case LyapunovMethod::rosenstein: return "rosenstein";
+    case LyapunovMethod::kantz: return "kantz";
+  }
+  return "unknown";
+}
+
+const char* to_string(LyapunovStatus status) noexcept {
+  switch (status) {
+    case LyapunovStatus::linear_region: return "linear_region";
+    case LyapunovStatus::no_linear_region: return "no_linear_region";
+    case LyapunovStatus::not_diverging: return "not_diverging";
+    case LyapunovStatus::no_neighbours: return "no_neighbours";
+  }
+  return "unknown";
+}
+
+void LyapunovOptions::validate() const {
+  if (dimension < 1) refuse("Lyapunov exponent: embedding dimension m must be at least 1 (got m = 0)");
+  if (delay < 1) refuse("Lyapunov exponent: delay tau must be at least 1 sample (got tau = 0)");
+  if (steps < 1) refuse("Lyapunov exponent: the divergence must be followed for at least 1 step (got steps = 0)");
+  if (threads < 1) refuse("Lyapunov exponent: threads must be at least 1 (got 0)");
+  if (radius && !(std::isfinite(*radius) && *radius > 0.0))
+    refuse("Lyapunov exponent (Kantz): the neighbourhood radius eps must be positive and finite (got eps = " +
+           detail::format_number(*radius) + ")");
+  if (min_neighbours < 1) refuse("Lyapunov exponent (Kantz): min_neighbours must be at least 1 (got 0)");
+}
+
+void LyapunovFitOptions::validate() const {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    refuse("Lyapunov fit: tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+  if (min_steps == 1) refuse("Lyapunov fit: a linear region needs at least 2 steps (got min_steps = 1)");
+}
+
+DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
+  options.validate();
+  const std::string what = std::string("largest Lyapunov exponent (") + to_string(options.method) + ")";
+  require_finite(x, what);
+  require_not_constant(x, what);
+  const std::size_t m = options.dimension, tau = options.delay, steps = options.steps, w = options.theiler;
+  // P = N - (m-1) tau - K points have all K future steps; P >= 2w + 3 leaves every reference point
+  // at least one candidate outside its Theiler window.
+  const std::size_t span = detail::mul_sat(m - 1, tau);
+  const std::size_t minimum = detail::add_sat(detail::add_sat(span, steps), detail::add_sat(detail::mul_sat(2, w), 3));
+  require_length(x, minimum, what,
+                 "N >= (m-1) tau + steps + 2 w + 3 with m = " + std::to_string(m) + ", tau = " + std::to_string(tau) +
+                     ", steps = " + std::to_string(steps) + ", w = " + std::to_string(w) +
+                     ", so that every reference point can be followed for all steps and has a candidate outside "
+                     "the Theiler window");
+
+  // An exact power-of-two rescaling keeps Euclidean sums of squares finite for any magnitude;
+  // ln d then shifts by exponent * ln 2, added back at the end.
+  const int exponent = detail::scale_exponent(x);
+  const std::vector<double> y = detail::scaled_by_power_of_two(x, exponent);
+  const double log_scale = exponent * std::log(2.0);
+
+  const std::size_t points = x.size() - span - steps;
+  const DelayEmbedding candidates(y, m, tau, points);  // reference points and neighbours
+  const KdTree tree(candidates, options.norm);
+  const NeighborQuery query{w, true};
+  // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
+  // nodes (in index order a chaotic series jumps across the whole tree at every query, and the
+  // searches wait on memory). The order is fixed by the data, so the sums stay deterministic.
+  std::vector<std::size_t> references;
+  {
+    std::vector<char> chosen(points, 0);
+    for (const std::size_t i : reference_indices(points, options.reference_points)) chosen[i] = 1;
+    for (const std::size_t i : tree.leaf_order())
+      if (chosen[i]) references.push_back(i);
+  }
+
+  DivergenceCurve curve;
+  curve.method = options.method;
+  curve.points = points;
+  curve.reference_points = references.size();
+  Partial total(steps);
+  if (options.method == LyapunovMethod::rosenstein) {
+    total = for_each_reference(references, steps, options.threads, [&](std::size_t i, Partial& p, Scratch& s) {
+      const auto neighbour = tree.nearest(i, query);
+      if (!neighbour) return;
+      ++p.used;
+      p.neighbours += 1.0;
+      s.pair.compute(y, i, neighbour->index, m, tau, steps, options.norm);
+      for (std::size_t k = 0; k <= steps; ++k) {
+        const double d = s.pair.d[k];
+        if (d > 0.0) {
+          p.sum[k] += std::log(d);
+          ++p.terms[k];
+        } else {
+          ++p.zeros[k];
+        }
+      }
+    });
+  } else {
+    double eps = 0.0;
+    if (options.radius) {
+      eps = std::ldexp(*options.radius, -exponent);
+    } else {
+      // range / 1000, then adjusted on at most 1000 evenly spaced reference points: doubled while
+      // fewer than half of them have min_neighbours neighbours (a curve from a few rare close
+      // returns is not representative of the attractor), else halved while they have more than
+      // default_neighbours on average and would keep that coverage (the cost grows with the
+      // neighbourhood, the precision hardly does: the average over reference points dominates;
+      // and a smaller eps leaves more room for growth). Powers of two keep eps exactly
+      // range / 1000 * 2^h.
+      const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+      eps = (*hi - *lo) / 1000.0;
+      const std::vector<std::size_t> sample = reference_indices(points, std::min<std::size_t>(1000, points));
+      struct Census {
+        double mean = 0.0, covered = 0.0;  // mean neighbours, fraction with min_neighbours
+      };
+      const auto census = [&](double r) {
+        Census c;
+        for (const std::size_t i : sample) {
+          const std::size_t count = tree.count_within(i, r, query);
+          c.mean += static_cast<double>(count);
+          c.covered += count >= options.min_neighbours ? 1.0 : 0.0;
+        }
+        c.mean /= static_cast<double>(sample.size());
+        c.covered /= static_cast<double>(sample.size());
+        return c;
+      };
+      Census c = census(eps);
+      for (int doublings = 0; c.covered < 0.5 && doublings < 60; ++doublings) c = census(eps *= 2.0);
+      for (int halvings = 0; c.mean > default_neighbours && halvings < 60; ++halvings) {
+        const Census smaller = census(eps / 2.0);
+        if (smaller.covered < 0.5) break;
+        eps /= 2.0;
+        c = smaller;
+      }
+    }
+    curve.radius = std::ldexp(eps, exponent);
+    total = for_each_reference(references, steps, options.threads, [&](std::size_t i, Partial& p, Scratch& s) {
+      tree.within(i, eps, s.neighbourhood, query);
+      if (s.neighbourhood.size() < options.min_neighbours || s.neighbourhood.empty()) return;
+      ++p.used;
+      p.neighbours += static_cast<double>(s.neighbourhood.size());
+      s.mean.assign(steps + 1, 0.0);
+      for (const std::size_t j : s.neighbourhood) {
+        s.pair.compute(y, i, j, m, tau, steps, options.norm);
+        for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.pair.d[k];
+      }
+      for (std::size_t k = 0; k <= steps; ++k) {
+        // The sum of distances is 0 only if every one is: then the mean has no logarithm.
+        if (s.mean[k] > 0.0) {
+          p.sum[k] += std::log(s.mean[k] / static_cast<double>(s.neighbourhood.size()));
+          ++p.terms[k];
+        } else {
+          ++p.zeros[k];
+        }
+      }
+    });
+  }
+  curve.step.resize(steps + 1);
+  curve.divergence.resize(steps + 1);
+  for (std::size_t k = 0; k <= steps; ++k) {
+    curve.step[k] = k;
+    if (total.terms[k] > 0) curve.divergence[k] = total.sum[k] / static_cast<double>(total.terms[k]) + log_scale;
+  }
+  curve.terms = std::move(total.terms);
+  curve.zero_distances = std::move(total.zeros);
+  curve.references_used = total.used;
+  curve.mean_neighbours = total.used > 0 ? total.neighbours / static_cast<double>(total.used) : 0.0;
+  if (curve.divergence[0]) curve.mean_initial_distance = std::exp(*curve.divergence[0]);
+  return curve;
+}
+
+LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options) {
+  options.validate();
+  LyapunovFit fit;
+  const std::size_t last = curve.step.empty() ? 0 : curve.step.back();
+  fit.half_width = options.half_width != 0 ? options.half_width : std::max<std::size_t>(2, last / 25);
+  fit.min_steps = options.min_steps != 0 ? options.min_steps : 3 * fit.half_width + 1;
+  const ScalingRegionOptions region_options{options.tolerance, true, fit.min_steps, fit.half_width};
+  std::vector<double> x(curve.step.size());
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = static_cast<double>(curve.step[k]);
+  fit.local_slope = local_slopes(x, curve.divergence, fit.half_width);
+  std::ostringstream why;
+  if (curve.references_used == 0) {
+    fit.status = LyapunovStatus::no_neighbours;
+    why << "none of the " << curve.reference_points << " reference points has a neighbour"
+        << (curve.method == LyapunovMethod::kantz ? " within eps" : "") << " outside the Theiler window";
+    fit.explanation = why.str();
+    return fit;
+  }
+  // Only a rising curve carries a positive exponent, and these methods estimate nothing else: the
+  // straight stretch is searched among steps with a positive local slope. (A saturated plateau
+  // whose slopes were exactly 0 would otherwise count as perfectly straight.)
+  std::vector<std::optional<double>> rising(fit.local_slope.size());
+  bool rises = false;
+  for (std::size_t k = 0; k < rising.size(); ++k)
+    if (fit.local_slope[k] && *fit.local_slope[k] > 0.0) {
+      rising[k] = fit.local_slope[k];
+      rises = true;
+    }
+  if (!rises) {
+    fit.status = LyapunovStatus::not_diverging;
+    why << "no local slope of the divergence curve is positive: no exponential divergence";
+    fit.explanation = why.str();
+    return fit;
+  }
+  const auto region = find_scaling_region(x, {rising}, region_options);
+  if (!region) {
+    fit.status = LyapunovStatus::no_linear_region;
+    why << "no stretch of at least " << fit.min_steps << " steps has positive local slopes within "
+        << options.tolerance * 100 << "% of their mean: the divergence curve has no linear region";
+    fit.explanation = why.str();
+    return fit;
+  }
+  fit.first_step = curve.step[region->first];
+  fit.last_step = curve.step[region->last];
+  const double slope = fit_slope(x, curve.divergence, region->first, region->last).value_or(region->slope);
+  if (!(slope > 0.0)) {  // local slopes all positive but the least-squares line is not: refuse to guess
+    fit.status = LyapunovStatus::not_diverging;
+    why << "the straightest stretch (steps " << *fit.first_step << ".." << *fit.last_step << ") has slope "
+        << slope << " <= 0: no exponential divergence";
+    fit.first_step.reset();
+    fit.last_step.reset();
+    fit.explanation = why.str();
+    return fit;
+  }
+  fit.status = LyapunovStatus::linear_region;
+  fit.lambda = slope;
+  fit.lambda_interval = Interval{std::min(region->slope_min, slope), std::max(region->slope_max, slope)};
+  why << "local slopes agree within " << options.tolerance * 100 << "% over steps " << *fit.first_step << ".."
+      << *fit.last_step;
+  fit.explanation = why.str();
+  return fit;
+}
+
+LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options,
+                                const LyapunovFitOptions& fit, std::optional<double> dt) {
+  if (dt && !(std::isfinite(*dt) && *dt > 0.0))
+    refuse("Lyapunov exponent: the sampling interval dt must be positive and finite (got dt = " +
+           detail::format_number(*dt) + ")");
+  fit.validate();
+  LyapunovResult result;
+  result.curve = divergence_curve(x, options);
+  result.fit = fit_divergence(result.curve, fit);
+  result.options = options;
+  if (options.method == LyapunovMethod::kantz) result.options.radius = result.curve.radius;
+  result.dt = dt;
+  if (dt && result.fit.lambda) {
+    result.lambda_per_time = *result.fit.lambda / *dt;
+    result.lambda_per_time_interval = Interval{result.fit.lambda_interval->low / *dt, result.fit.lambda_interval->high / *dt};
+  }
+  return result;
+}
+
+LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options,
+                                           const LyapunovFitOptions& fit, std::optional<double> dt) {
+  options.method = LyapunovMethod::rosenstein;
+  return largest_lyapunov(x, options, fit, dt);
+}
+
+LyapunovResult largest_lyapunov_kantz(std::span<const double> x, LyapunovOptions options,
+                                      const LyapunovFitOptions& fit, std::optional<double> dt) {
+  options.method = LyapunovMethod::kantz;
+  return largest_lyapunov(x, options, fit, dt);
+}
+
+}  // namespace chaos

@@ -1,0 +1,527 @@
+// The largest Lyapunov exponent from a series (chaos/lyapunov.hpp). Expected values come from:
+//   - the definitions of Rosenstein et al. 1993 and Kantz 1994 as written in lyapunov.hpp, coded
+//     here a second time by brute force (every pair examined, sums in index order): the library's
+//     kd-tree version must agree on Hénon, Lorenz and quantised data, every norm, window and subset;
+//   - hand-worked cases: a geometric series x_n = a^n, on which every separation grows by exactly a
+//     per step (slope ln a), and a four-sample series worked out in the comments, with ties;
+//   - constructed divergence curves whose straight part is known by construction (the fit);
+//   - the documented refusals and conventions (per time unit = per sample / dt; thread count and
+//     block size do not change a bit).
+#include "chaos/lyapunov.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "chaos/embedding.hpp"
+#include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
+#include "chaos/systems.hpp"
+
+namespace {
+
+using chaos::LyapunovMethod;
+using chaos::LyapunovOptions;
+using chaos::LyapunovStatus;
+using chaos::Norm;
+
+struct BruteCurve {
+  std::vector<std::optional<double>> y;
+  std::vector<std::size_t> terms, zeros;
+  std::size_t used = 0;
+};
+
+double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std::size_t m, std::size_t tau, Norm norm) {
+  double acc = 0.0;
+  for (std::size_t l = 0; l < m; ++l) {
+    const double d = std::abs(x[i + l * tau] - x[j + l * tau]);
+    acc = norm == Norm::max ? std::max(acc, d) : acc + d * d;
+  }
+  return norm == Norm::max ? acc : std::sqrt(acc);
+}
+
+// The definitions, by brute force: reference points and neighbours among the first
+// P = N - (m-1) tau - K points; neighbours need |i - j| > w and a positive distance; the nearest
+// one (smallest index among equals) for Rosenstein, all closer than eps for Kantz.
+BruteCurve brute_force(const std::vector<double>& x, const LyapunovOptions& o) {
+  const std::size_t m = o.dimension, tau = o.delay, K = o.steps;
+  const std::size_t p = x.size() - (m - 1) * tau - K;
+  const std::size_t n = o.reference_points == 0 ? p : std::min(o.reference_points, p);
+  const double eps = o.radius.value_or(0.0);
+  BruteCurve c;
+  std::vector<double> sum(K + 1, 0.0);
+  c.terms.assign(K + 1, 0);
+  c.zeros.assign(K + 1, 0);
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = r * p / n;
+    std::vector<std::size_t> partners;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < p; ++j) {
+      if ((i > j ? i - j : j - i) <= o.theiler) continue;
+      const double d = distance(x, i, j, m, tau, o.norm);
+      if (d == 0.0) continue;
+      if (o.method == LyapunovMethod::kantz) {
+        if (d < eps) partners.push_back(j);
+      } else if (d < best) {
+        best = d;
+        partners = {j};
+      }
+    }
+    if (partners.empty() || partners.size() < (o.method == LyapunovMethod::kantz ? o.min_neighbours : 1)) continue;
+    ++c.used;
+    for (std::size_t k = 0; k <= K; ++k) {
+      if (o.method == LyapunovMethod::rosenstein) {
+        const double d = distance(x, i + k, partners[0] + k, m, tau, o.norm);
+        if (d > 0.0) {
+          sum[k] += std::log(d);
+          ++c.terms[k];
+        } else {
+          ++c.zeros[k];
+        }
+      } else {
+        double mean = 0.0;
+        for (const std::size_t j : partners) mean += distance(x, i + k, j + k, m, tau, o.norm);
+        if (mean > 0.0) {
+          sum[k] += std::log(mean / static_cast<double>(partners.size()));
+          ++c.terms[k];
+        } else {
+          ++c.zeros[k];
+        }
+      }
+    }
+  }
+  for (std::size_t k = 0; k <= K; ++k)
+    c.y.push_back(c.terms[k] > 0 ? std::optional<double>(sum[k] / static_cast<double>(c.terms[k])) : std::nullopt);
+  return c;
+}
+
+void expect_matches_definition(const std::vector<double>& x, const LyapunovOptions& o, const std::string& label) {
+  const chaos::DivergenceCurve got = chaos::divergence_curve(x, o);
+  // Kantz's default radius has its own test (KantzDefaultRadiusRule); here the definition is
+  // evaluated at the radius the library chose.
+  LyapunovOptions with_radius = o;
+  if (o.method == LyapunovMethod::kantz) with_radius.radius = got.radius;
+  const BruteCurve want = brute_force(x, with_radius);
+  ASSERT_EQ(got.step.size(), o.steps + 1) << label;
+  EXPECT_EQ(got.references_used, want.used) << label;
+  EXPECT_EQ(got.terms, want.terms) << label;
+  EXPECT_EQ(got.zero_distances, want.zeros) << label;
+  for (std::size_t k = 0; k <= o.steps; ++k) {
+    EXPECT_EQ(got.step[k], k);
+    ASSERT_EQ(got.divergence[k].has_value(), want.y[k].has_value()) << label << " k=" << k;
+    // Sums in blocks versus one running sum, and ln(d 2^-e) + e ln 2 versus ln d: rounding only.
+    if (want.y[k]) {
+      EXPECT_NEAR(*got.divergence[k], *want.y[k], 1e-12 * (1.0 + std::abs(*want.y[k]))) << label << " k=" << k;
+    }
+  }
+}
+
+std::vector<double> quantised(std::vector<double> x, double q) {
+  for (double& v : x) v = q * std::round(v / q);
+  return x;
+}
+
+TEST(LargestLyapunov, RosensteinEqualsTheDefinition) {
+  const auto henon = chaos::henon(700).components[0];
+  const auto lorenz = chaos::lorenz(900).components[0];
+  const auto rounded = quantised(lorenz, 1.0);  // many exact ties, zero distances at later steps
+  struct Case {
+    const char* name;
+    const std::vector<double>* x;
+    std::size_t m, tau, w, steps, references;
+    Norm norm;
+  };
+  const std::vector<Case> cases{
+      {"henon m2", &henon, 2, 1, 0, 15, 0, Norm::max},         {"henon m3 w5", &henon, 3, 1, 5, 10, 0, Norm::euclidean},
+      {"henon subset", &henon, 2, 2, 3, 12, 97, Norm::max},    {"lorenz", &lorenz, 3, 8, 20, 60, 0, Norm::max},
+      {"lorenz euclid", &lorenz, 4, 5, 40, 30, 200, Norm::euclidean},
+      {"lorenz rounded", &rounded, 3, 8, 20, 60, 0, Norm::max}, {"rounded m1", &rounded, 1, 1, 0, 20, 0, Norm::max},
+  };
+  for (const auto& c : cases) {
+    LyapunovOptions o;
+    o.dimension = c.m;
+    o.delay = c.tau;
+    o.theiler = c.w;
+    o.steps = c.steps;
+    o.reference_points = c.references;
+    o.norm = c.norm;
+    expect_matches_definition(*c.x, o, c.name);
+  }
+  // The rounded series really exercises the tie rules: zero distances at later steps.
+  LyapunovOptions o;
+  o.dimension = 1;
+  o.steps = 20;
+  const auto curve = chaos::divergence_curve(rounded, o);
+  std::size_t zeros = 0;
+  for (const auto z : curve.zero_distances) zeros += z;
+  EXPECT_GT(zeros, 0u);
+}
+
+TEST(LargestLyapunov, KantzEqualsTheDefinition) {
+  const auto henon = chaos::henon(700).components[0];
+  const auto lorenz = chaos::lorenz(900).components[0];
+  const auto rounded = quantised(henon, 0.05);
+  struct Case {
+    const char* name;
+    const std::vector<double>* x;
+    std::size_t m, tau, w, steps, references, min_neighbours;
+    std::optional<double> radius;
+    Norm norm;
+  };
+  const std::vector<Case> cases{
+      {"henon default eps", &henon, 2, 1, 0, 15, 0, 1, std::nullopt, Norm::max},
+      {"henon eps 0.05", &henon, 2, 1, 2, 12, 0, 1, 0.05, Norm::euclidean},
+      {"henon min 3", &henon, 3, 1, 0, 10, 150, 3, 0.1, Norm::max},
+      {"lorenz", &lorenz, 3, 8, 20, 50, 0, 1, 1.0, Norm::max},
+      {"henon rounded", &rounded, 2, 1, 0, 15, 0, 1, 0.12, Norm::max},
+  };
+  for (const auto& c : cases) {
+    LyapunovOptions o;
+    o.method = LyapunovMethod::kantz;
+    o.dimension = c.m;
+    o.delay = c.tau;
+    o.theiler = c.w;
+    o.steps = c.steps;
+    o.reference_points = c.references;
+    o.min_neighbours = c.min_neighbours;
+    o.radius = c.radius;
+    o.norm = c.norm;
+    expect_matches_definition(*c.x, o, c.name);
+  }
+}
+
+// Mean neighbour count and the fraction of reference points with at least one neighbour, over
+// the 1000 evenly spaced reference points i = r P / 1000 of lyapunov.hpp's default-radius rule,
+// counted with the kd-tree (tested equal to brute force in tests/property/neighbors_test.cpp).
+struct Census {
+  double mean = 0.0, covered = 0.0;
+};
+Census census(const std::vector<double>& x, const LyapunovOptions& o, double r) {
+  const std::size_t p = x.size() - (o.dimension - 1) * o.delay - o.steps;
+  const chaos::DelayEmbedding points(x, o.dimension, o.delay, p);
+  const chaos::KdTree tree(points, Norm::max);
+  Census c;
+  for (std::size_t k = 0; k < 1000; ++k) {
+    const std::size_t n = tree.count_within(k * p / 1000, r, {o.theiler, true});
+    c.mean += static_cast<double>(n) / 1000.0;
+    c.covered += n >= 1 ? 1.0 / 1000.0 : 0.0;
+  }
+  return c;
+}
+
+double power_of_two_steps(const std::vector<double>& x, double eps) {
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double ratio = eps / ((*hi - *lo) / 1000.0);
+  const double h = std::round(std::log2(ratio));
+  EXPECT_EQ(ratio, std::exp2(h)) << "eps is not range / 1000 times a power of two";
+  return h;
+}
+
+TEST(LargestLyapunov, KantzDefaultRadiusRule) {
+  // Halving: Hénon with N = 6 10^4 has about 26 neighbours within range / 1000, so eps is halved
+  // until the mean is at most 20 (coverage stays near 1).
+  auto x = chaos::henon(60'000).components[0];
+  LyapunovOptions o;
+  o.method = LyapunovMethod::kantz;
+  o.steps = 5;
+  double eps = chaos::divergence_curve(x, o).radius;
+  EXPECT_LE(power_of_two_steps(x, eps), -1.0);
+  EXPECT_LE(census(x, o, eps).mean, 20.0);
+  EXPECT_GT(census(x, o, 2.0 * eps).mean, 20.0);
+  EXPECT_GE(census(x, o, eps).covered, 0.5);
+  // Doubling: Lorenz x with N = 10^4, m = 3, tau = 17, w = 100: within range / 1000 most reference
+  // points have no neighbour, so eps is doubled until at least half of them have one.
+  x = chaos::lorenz(10'000).components[0];
+  o.dimension = 3;
+  o.delay = 17;
+  o.theiler = 100;
+  o.steps = 500;
+  eps = chaos::divergence_curve(x, o).radius;
+  EXPECT_GE(power_of_two_steps(x, eps), 1.0);
+  EXPECT_GE(census(x, o, eps).covered, 0.5);
+  EXPECT_LT(census(x, o, eps / 2.0).covered, 0.5);
+}
+
+TEST(LargestLyapunov, GeometricSeriesGrowsByExactlyLnAPerStep) {
+  // x_n = 1.5^n: every separation |x_{i+k} - x_{j+k}| = 1.5^k |x_i - x_j|, so both curves rise by
+  // exactly ln 1.5 per step (Rosenstein: each log; Kantz: the log of each neighbourhood's mean),
+  // the local slopes are all ln 1.5 and the linear region is the whole curve.
+  std::vector<double> x(60);
+  for (std::size_t n = 0; n < x.size(); ++n) x[n] = std::pow(1.5, static_cast<double>(n));
+  for (const auto method : {LyapunovMethod::rosenstein, LyapunovMethod::kantz}) {
+    LyapunovOptions o;
+    o.method = method;
+    o.steps = 20;
+    o.theiler = 2;
+    o.radius = 1e30;  // Kantz: every admissible point is a neighbour
+    const auto r = chaos::largest_lyapunov(x, o, {}, 0.5);
+    for (std::size_t k = 0; k <= o.steps; ++k)
+      EXPECT_NEAR(*r.curve.divergence[k] - *r.curve.divergence[0], static_cast<double>(k) * std::log(1.5), 1e-12)
+          << to_string(method) << " k=" << k;
+    ASSERT_EQ(r.fit.status, LyapunovStatus::linear_region) << r.fit.explanation;
+    EXPECT_NEAR(*r.fit.lambda, std::log(1.5), 1e-12);
+    EXPECT_EQ(*r.fit.first_step, 0u);
+    EXPECT_EQ(*r.fit.last_step, 20u);
+    EXPECT_NEAR(r.fit.lambda_interval->low, std::log(1.5), 1e-12);
+    EXPECT_NEAR(r.fit.lambda_interval->high, std::log(1.5), 1e-12);
+    // Per time unit: per sample / dt, here dt = 0.5.
+    EXPECT_DOUBLE_EQ(*r.lambda_per_time, *r.fit.lambda / 0.5);
+    EXPECT_DOUBLE_EQ(r.lambda_per_time_interval->high, r.fit.lambda_interval->high / 0.5);
+  }
+}
+
+TEST(LargestLyapunov, HandWorkedTies) {
+  // x = 0 1 5 5, m = 1, K = 1, w = 0: P = 3 reference points 0, 1, 5 (indices 0..2).
+  const std::vector<double> x{0, 1, 5, 5};
+  LyapunovOptions o;
+  o.dimension = 1;
+  o.steps = 1;
+  // Rosenstein: 0 -> nearest 1 (d 1), then |1 - 5| = 4; 1 -> nearest 0 (d 1, ties go to the
+  // smaller index), then |5 - 1| = 4; 5 -> nearest 1 (d 4; its twin at index 3 is not a
+  // candidate: it has no future), then |5 - 5| = 0, left out and counted.
+  auto c = chaos::divergence_curve(x, o);
+  EXPECT_NEAR(*c.divergence[0], std::log(4.0) / 3.0, 1e-15);
+  EXPECT_NEAR(*c.divergence[1], std::log(4.0), 1e-15);
+  EXPECT_EQ(c.terms, (std::vector<std::size_t>{3, 2}));
+  EXPECT_EQ(c.zero_distances, (std::vector<std::size_t>{0, 1}));
+  // Kantz, eps = 10: 0 has {1, 5}: mean 3, then (4 + 4)/2 = 4; 1 has {0, 5}: 2.5, then (4 + 0)/2;
+  // 5 has {0, 1}: 4.5, then (4 + 0)/2. A zero inside a neighbourhood only lowers its mean.
+  o.method = LyapunovMethod::kantz;
+  o.radius = 10.0;
+  c = chaos::divergence_curve(x, o);
+  EXPECT_NEAR(*c.divergence[0], (std::log(3.0) + std::log(2.5) + std::log(4.5)) / 3.0, 1e-15);
+  EXPECT_NEAR(*c.divergence[1], (std::log(4.0) + 2.0 * std::log(2.0)) / 3.0, 1e-15);
+  EXPECT_NEAR(c.mean_neighbours, 2.0, 1e-15);
+  // eps = 4.5: 0 has {1}: 1, then 4; 1 has {0, 5}: 2.5, then 2; 5 has {1}: 4, then 0 (every
+  // distance zero: no logarithm, left out and counted).
+  o.radius = 4.5;
+  c = chaos::divergence_curve(x, o);
+  EXPECT_NEAR(*c.divergence[0], (std::log(1.0) + std::log(2.5) + std::log(4.0)) / 3.0, 1e-15);
+  EXPECT_NEAR(*c.divergence[1], (std::log(4.0) + std::log(2.0)) / 2.0, 1e-15);
+  EXPECT_EQ(c.terms, (std::vector<std::size_t>{3, 2}));
+  EXPECT_EQ(c.zero_distances, (std::vector<std::size_t>{0, 1}));
+  // eps = 0.5: nobody has a neighbour; every value is undefined and the fit says so.
+  o.radius = 0.5;
+  const auto r = chaos::largest_lyapunov(x, o);
+  for (const auto& v : r.curve.divergence) EXPECT_FALSE(v.has_value());
+  EXPECT_EQ(r.fit.status, LyapunovStatus::no_neighbours);
+  EXPECT_FALSE(r.fit.lambda.has_value());
+}
+
+TEST(LargestLyapunov, QuantisedDataGiveNoInfinityOrNaN) {
+  // Hénon rounded to 0.01 and Lorenz rounded to integers: the nearest neighbour at a positive
+  // distance and the leave-out rule keep every value finite (Kantz with eps = 1.5 quanta: the
+  // neighbours are the points exactly one quantum away in some coordinate).
+  struct Set {
+    std::vector<double> x;
+    double quantum;
+    std::size_t delay;
+  };
+  const std::vector<Set> sets{{quantised(chaos::henon(3000).components[0], 0.01), 0.01, 1},
+                              {quantised(chaos::lorenz(3000).components[0], 1.0), 1.0, 8}};
+  for (const auto& set : sets)
+    for (const auto method : {LyapunovMethod::rosenstein, LyapunovMethod::kantz}) {
+      LyapunovOptions o;
+      o.method = method;
+      o.dimension = 3;
+      o.delay = set.delay;
+      o.steps = 40;
+      o.radius = 1.5 * set.quantum;
+      const auto r = chaos::largest_lyapunov(set.x, o);
+      EXPECT_GT(r.curve.references_used, 0u);
+      for (const auto& v : r.curve.divergence) EXPECT_TRUE(!v || std::isfinite(*v));
+      for (const auto& v : r.fit.local_slope) EXPECT_TRUE(!v || std::isfinite(*v));
+      EXPECT_TRUE(!r.fit.lambda || std::isfinite(*r.fit.lambda));
+    }
+}
+
+TEST(LargestLyapunov, ThreadsDoNotChangeABit) {
+  // Partial sums are formed per block of 512 reference points and added in block order, in rounds
+  // of 256 blocks: N = 3000 is one round of 6 blocks, N = 1.4 10^5 two rounds.
+  for (const auto& [n, method] : {std::pair{3000u, LyapunovMethod::rosenstein}, std::pair{3000u, LyapunovMethod::kantz},
+                                  std::pair{140'000u, LyapunovMethod::rosenstein}}) {
+    const auto x = chaos::henon(n).components[0];
+    LyapunovOptions o;
+    o.method = method;
+    o.steps = n > 3000 ? 3 : 15;
+    const auto one = chaos::divergence_curve(x, o);
+    // Every block counted: on Hénon every one of the P = N - (m-1) tau - K = N - 1 - K reference
+    // points has a neighbour.
+    if (method == LyapunovMethod::rosenstein) {
+      EXPECT_EQ(one.terms[0], n - 1 - o.steps);
+    }
+    for (const std::size_t threads : n > 3000 ? std::vector<std::size_t>{3} : std::vector<std::size_t>{2, 3, 8}) {
+      o.threads = threads;
+      const auto many = chaos::divergence_curve(x, o);
+      ASSERT_EQ(many.divergence.size(), one.divergence.size());
+      for (std::size_t k = 0; k < one.divergence.size(); ++k) EXPECT_EQ(*many.divergence[k], *one.divergence[k]);
+      EXPECT_EQ(many.terms, one.terms);
+    }
+  }
+}
+
+TEST(LargestLyapunov, WhiteNoiseGivesNoExponent) {
+  // Independent samples have no exponential divergence: the curve jumps to its saturation level
+  // within m steps and stays flat, so no stretch has local slopes within 10% of a positive mean.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const auto x = chaos::white_noise(4000, seed).components[0];
+    for (const auto method : {LyapunovMethod::rosenstein, LyapunovMethod::kantz}) {
+      LyapunovOptions o;
+      o.method = method;
+      const auto r = chaos::largest_lyapunov(x, o);
+      EXPECT_FALSE(r.fit.lambda.has_value()) << "seed " << seed << " " << to_string(method) << ": " << *r.fit.lambda;
+      EXPECT_NE(r.fit.status, LyapunovStatus::linear_region);
+    }
+  }
+}
+
+chaos::DivergenceCurve constructed(const std::vector<std::optional<double>>& y) {
+  chaos::DivergenceCurve c;
+  for (std::size_t k = 0; k < y.size(); ++k) c.step.push_back(k);
+  c.divergence = y;
+  c.terms.assign(y.size(), 1);
+  c.zero_distances.assign(y.size(), 0);
+  c.references_used = 1;
+  c.reference_points = 1;
+  return c;
+}
+
+TEST(FitDivergence, StraightPartOfConstructedCurves) {
+  // A line of slope 0.3 up to step 15, then flat at its value there (K = 40, so half width 2 and
+  // at least 7 steps). Local slopes are exactly 0.3 up to step 13 (their 5-step windows lie on the
+  // line); at 14 the window reaches the plateau (slope 0.24, 20% low); the plateau's slopes are 0,
+  // which does not rise and is never a candidate (though perfectly straight and wider). Region
+  // 0..13, lambda 0.3.
+  std::vector<std::optional<double>> y;
+  for (std::size_t k = 0; k <= 40; ++k) y.push_back(-5.0 + 0.3 * static_cast<double>(std::min<std::size_t>(k, 15)));
+  auto fit = chaos::fit_divergence(constructed(y));
+  ASSERT_EQ(fit.status, LyapunovStatus::linear_region) << fit.explanation;
+  EXPECT_EQ(fit.half_width, 2u);
+  EXPECT_EQ(fit.min_steps, 7u);
+  EXPECT_EQ(*fit.first_step, 0u);
+  EXPECT_EQ(*fit.last_step, 13u);
+  EXPECT_NEAR(*fit.lambda, 0.3, 1e-12);
+  EXPECT_NEAR(*fit.local_slope[14], 0.24, 1e-12);
+
+  // A hole (an undefined step 10) splits the line: a region is contiguous and defined, and the
+  // side after the hole (11..13) is shorter than 7 steps, so the region is 0..9.
+  y[10] = std::nullopt;
+  fit = chaos::fit_divergence(constructed(y));
+  ASSERT_EQ(fit.status, LyapunovStatus::linear_region);
+  EXPECT_EQ(*fit.first_step, 0u);
+  EXPECT_EQ(*fit.last_step, 9u);
+  EXPECT_NEAR(*fit.lambda, 0.3, 1e-12);
+
+  // Falling: no local slope is positive: not diverging, no number.
+  std::vector<std::optional<double>> down;
+  for (std::size_t k = 0; k <= 30; ++k) down.push_back(-0.3 * static_cast<double>(k));
+  fit = chaos::fit_divergence(constructed(down));
+  EXPECT_EQ(fit.status, LyapunovStatus::not_diverging);
+  EXPECT_FALSE(fit.lambda.has_value());
+
+  // Flat with an irregular ripple: local slopes scatter around 0, never within 10% of their mean.
+  std::vector<std::optional<double>> flat;
+  for (std::size_t k = 0; k <= 30; ++k) flat.push_back(0.01 * std::sin(2.3 * static_cast<double>(k * k)));
+  fit = chaos::fit_divergence(constructed(flat));
+  EXPECT_EQ(fit.status, LyapunovStatus::no_linear_region);
+  EXPECT_FALSE(fit.lambda.has_value());
+
+  // Nobody had a neighbour.
+  auto empty = constructed(std::vector<std::optional<double>>(21));
+  empty.references_used = 0;
+  EXPECT_EQ(chaos::fit_divergence(empty).status, LyapunovStatus::no_neighbours);
+
+  // Explicit settings replace the automatic ones; a long curve widens the automatic half width.
+  chaos::LyapunovFitOptions wide;
+  wide.half_width = 3;
+  wide.min_steps = 12;
+  fit = chaos::fit_divergence(constructed(y), wide);
+  EXPECT_EQ(fit.half_width, 3u);
+  EXPECT_EQ(fit.min_steps, 12u);
+  std::vector<std::optional<double>> long_line;
+  for (std::size_t k = 0; k <= 500; ++k) long_line.push_back(0.01 * static_cast<double>(k));
+  fit = chaos::fit_divergence(constructed(long_line));
+  EXPECT_EQ(fit.half_width, 20u);  // 500 / 25
+  EXPECT_EQ(fit.min_steps, 61u);
+  EXPECT_NEAR(*fit.lambda, 0.01, 1e-12);
+}
+
+template <class F>
+void expect_refusal(F&& f, chaos::ErrorCode code, const std::vector<std::string>& fragments) {
+  try {
+    f();
+    ADD_FAILURE() << "accepted";
+  } catch (const chaos::InvalidInput& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    for (const auto& fragment : fragments)
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what() << " lacks '" << fragment << "'";
+  }
+}
+
+TEST(LargestLyapunov, Refusals) {
+  using chaos::ErrorCode;
+  const auto x = chaos::henon(200).components[0];
+  const auto run = [&](LyapunovOptions o) { return [&x, o] { chaos::largest_lyapunov(x, o); }; };
+  LyapunovOptions o;
+  // N >= (m-1) tau + K + 2w + 3: with m = 3, tau = 10, K = 100, w = 40 that is 203 > 200.
+  o.dimension = 3;
+  o.delay = 10;
+  o.steps = 100;
+  o.theiler = 40;
+  expect_refusal(run(o), ErrorCode::too_short, {"N = 200", "203", "m = 3", "tau = 10", "steps = 100", "w = 40"});
+  o.theiler = 38;  // 199 <= 200: accepted
+  EXPECT_NO_THROW(chaos::largest_lyapunov(x, o));
+  o = {};
+  o.dimension = 0;
+  expect_refusal(run(o), ErrorCode::invalid_parameter, {"m = 0"});
+  o = {};
+  o.delay = 0;
+  expect_refusal(run(o), ErrorCode::invalid_parameter, {"tau = 0"});
+  o = {};
+  o.steps = 0;
+  expect_refusal(run(o), ErrorCode::invalid_parameter, {"steps = 0"});
+  o = {};
+  o.threads = 0;
+  expect_refusal(run(o), ErrorCode::invalid_parameter, {"threads"});
+  o = {};
+  o.min_neighbours = 0;
+  expect_refusal(run(o), ErrorCode::invalid_parameter, {"min_neighbours"});
+  for (const double eps : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    o = {};
+    o.method = LyapunovMethod::kantz;
+    o.radius = eps;
+    expect_refusal(run(o), ErrorCode::invalid_parameter, {"eps"});
+  }
+  std::vector<double> bad = x;
+  bad[17] = std::nan("");
+  expect_refusal([&] { chaos::largest_lyapunov(bad, {}); }, ErrorCode::non_finite, {"sample 17"});
+  const std::vector<double> constant(500, 2.5);
+  expect_refusal([&] { chaos::largest_lyapunov(constant, {}); }, ErrorCode::constant, {"constant"});
+  expect_refusal([&] { chaos::largest_lyapunov(x, {}, {}, 0.0); }, ErrorCode::invalid_parameter, {"dt"});
+  chaos::LyapunovFitOptions fit;
+  fit.tolerance = 0.0;
+  expect_refusal([&] { chaos::largest_lyapunov(x, {}, fit); }, ErrorCode::invalid_parameter, {"tolerance"});
+  fit = {};
+  fit.min_steps = 1;
+  expect_refusal([&] { chaos::largest_lyapunov(x, {}, fit); }, ErrorCode::invalid_parameter, {"min_steps = 1"});
+}
+
+TEST(LargestLyapunov, NamedEntryPointsSetTheMethod) {
+  const auto x = chaos::henon(2000).components[0];
+  LyapunovOptions o;
+  o.method = LyapunovMethod::kantz;
+  EXPECT_EQ(chaos::largest_lyapunov_rosenstein(x, o).curve.method, LyapunovMethod::rosenstein);
+  o.method = LyapunovMethod::rosenstein;
+  const auto k = chaos::largest_lyapunov_kantz(x, o);
+  EXPECT_EQ(k.curve.method, LyapunovMethod::kantz);
+  ASSERT_TRUE(k.options.radius.has_value());  // the radius used is recorded
+  EXPECT_EQ(*k.options.radius, k.curve.radius);
+  EXPECT_STREQ(chaos::to_string(LyapunovMethod::kantz), "kantz");
+  EXPECT_STREQ(chaos::to_string(LyapunovStatus::no_linear_region), "no_linear_region");
+}
+
+}  // namespace
