@@ -418,7 +418,7 @@ void check_consistency(const Scene& s) {
         std::tuple{"joint.crank_conrod", s.crank_conrod.kind, &s.crank_conrod.friction, s.crank_conrod.bristle_time_floor},
         std::tuple{"joint.conrod_slider", s.conrod_slider.kind, &s.conrod_slider.friction, s.conrod_slider.bristle_time_floor}}) {
     if (kind == JointKind::clearance && lugre(*f) && s.integrator.method == IntegratorMethod::rk4 &&
-        s.integrator.step > 2.5 * floor) {
+        s.integrator.step > 2.5 * floor * (1 + 1e-12)) {
       throw InvalidParameter("integrator.step", format_number(s.integrator.step),
                              "must be <= 2.5 x " + std::string(name) + ".friction.bristle_time_floor (" +
                                  format_number(floor) +
