@@ -143,16 +143,23 @@ for c in $clearances; do
     # The long run only when the timing run says it fits in the limit.
     projected=$(awk -v w="$best" -v t="$timed" -v n="$periods" -v p=$period 'BEGIN { printf "%.0f", w / t * (n + 10) * p }')
     : > "$work/long"
+    long_rc=skipped
     if ((projected <= limit)); then
+      long_rc=0
       sim "${scene[@]}" "${a[@]}" --stroboscopic --signals slider_y --set run.transient=$(awk -v p=$period 'BEGIN { print 10 * p }') \
-        --set run.duration=$(awk -v p=$period -v n="$periods" 'BEGIN { print (n - 0.5) * p }') 2> /dev/null | grep -v '^#' | cut -f2 > "$work/long" || true
+        --set run.duration=$(awk -v p=$period -v n="$periods" 'BEGIN { print (n - 0.5) * p }') > "$work/long.raw" 2> "$work/long.err" || long_rc=$?
+      grep -v '^#' "$work/long.raw" | cut -f2 > "$work/long" || true
     fi
     err=$(max_difference "$work/ref_short" "$work/short")
     rel=$(awk -v e="$err" -v c="$c" 'BEGIN { printf "%.3g", e / c }')
-    if [[ -s $work/long && $(wc -l < "$work/long") -ge $periods ]]; then
+    if [[ $long_rc == 0 && $(wc -l < "$work/long") -ge $periods ]]; then
       ks=$(ks_distance "$work/ref_long" "$work/long")
+    elif [[ $long_rc == skipped ]]; then
+      ks="not run: needs ~${projected} s (limit ${limit} s)"
+    elif [[ $long_rc == 124 ]]; then
+      ks="cut at the ${limit} s limit"
     else
-      ks="needs ~${projected} s"
+      ks="stopped: $(grep -o 'stopped: .*' "$work/long.err" | head -1 | sed 's/^stopped: //')"
     fi
     per=$(awk -v w="$best" -v t="$timed" 'BEGIN { printf "%.3f", w / t }')
     echo "| $label | $per | $err | $rel | $ks | $status |" >> "$work/doc.md"
