@@ -33,7 +33,9 @@ void render(const std::string& script, const std::string& path) {
   {
     std::ofstream out(script_path);
     if (!out) throw PlotError(PlotError::Kind::io, "--plot: cannot write the gnuplot script " + script_path.string());
-    out << "set terminal " << terminal << "\nset output " << quoted(path) << "\n" << script << "\nunset output\n";
+    // Plain text everywhere: names such as not_saturated or crank_conrod are not subscripts.
+    out << "set terminal " << terminal << "\nset termoption noenhanced\nset output " << quoted(path) << "\n"
+        << script << "\nunset output\n";
   }
   const std::string command = "gnuplot " + quoted(script_path.string()) + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");

@@ -101,7 +101,7 @@ void plot_trajectories(const PlotData& d, const mechanism::Scene& scene, const s
                        const std::string& path) {
   std::ostringstream g;
   const int panels = 2 + static_cast<int>(journals.size());
-  g << "set termoption noenhanced\nset multiplot layout " << (panels + 1) / 2 << ",2\nset grid\nunset key\n";
+  g << "set multiplot layout " << (panels + 1) / 2 << ",2\nset grid\nunset key\n";
   auto block = [&](const char* name, auto&& rows) {
     g << "$" << name << " << EOD\n";
     rows();
