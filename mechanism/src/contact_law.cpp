@@ -1,23 +1,18 @@
 #include "mechanism/contact_law.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <utility>
 
+#include "checks.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
 
-namespace {
+using detail::text;
 
-// Shortest round-trip text of a value, for the message of InvalidParameter.
-std::string text(double v) {
-  std::array<char, 32> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
+namespace {
 
 constexpr std::array<std::pair<NormalContactLaw, std::string_view>, 6> kNames{{
     {NormalContactLaw::hertz, "hertz"},

@@ -1,28 +1,16 @@
 #include "mechanism/contact_stiffness.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <string>
 
+#include "checks.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
 
-namespace {
-
-std::string text(double v) {
-  std::array<char, 32> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
-// Written so that NaN and infinities fail.
-void require_positive(const char* key, double v) {
-  if (!(std::isfinite(v) && v > 0.0)) throw InvalidParameter(key, text(v), "must be finite and > 0");
-}
-
-}  // namespace
+using detail::require_positive;
+using detail::text;
 
 double material_compliance(double young_modulus, double poisson_ratio) {
   require_positive("young_modulus", young_modulus);

@@ -2,31 +2,22 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
 
+#include "checks.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
 
+using detail::require_non_negative;
+using detail::require_positive;
+using detail::text;
+
 namespace {
 
-std::string text(double v) {
-  std::array<char, 32> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
-// The comparisons are written so that NaN fails them.
-void require_positive(const char* key, double v) {
-  if (!(std::isfinite(v) && v > 0.0)) throw InvalidParameter(key, text(v), "must be finite and > 0");
-}
-void require_non_negative(const char* key, double v) {
-  if (!(std::isfinite(v) && v >= 0.0)) throw InvalidParameter(key, text(v), "must be finite and >= 0");
-}
 
 void check_stribeck(const FrictionLawParameters& p) {
   require_non_negative("static_coefficient", p.static_coefficient);

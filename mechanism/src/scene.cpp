@@ -4,6 +4,7 @@
 
 #include "mechanism/scene.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -82,15 +83,20 @@ template <>
 struct EnumNames<IntegratorMethod> {
   static constexpr std::string_view names[] = {"rk4", "dopri5"};
 };
+// The laws' names are theirs (contact_law.hpp, friction_law.hpp): read them, do not repeat them.
+template <class E, std::size_t N>
+std::array<std::string_view, N> names_from_to_string() {
+  std::array<std::string_view, N> names;
+  for (std::size_t i = 0; i < N; ++i) names[i] = to_string(static_cast<E>(i));
+  return names;
+}
 template <>
 struct EnumNames<NormalContactLaw> {
-  static constexpr std::string_view names[] = {"hertz",  "hunt_crossley", "lankarani_nikravesh",
-                                               "flores", "hu_guo",        "gonthier"};
+  static inline const auto names = names_from_to_string<NormalContactLaw, 6>();
 };
 template <>
 struct EnumNames<FrictionLaw> {
-  static constexpr std::string_view names[] = {"none", "coulomb", "ambrosio", "lugre_absolute",
-                                               "lugre_normalised"};
+  static inline const auto names = names_from_to_string<FrictionLaw, 5>();
 };
 
 template <class E>
