@@ -90,6 +90,20 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"driver.speed_rpm=nan"}).find("driver.speed_rpm"), std::string::npos);
 }
 
+TEST(Scene, AcceptsEveryLawByItsOwnName) {
+  // The scene reads the law names from the law modules; every law must be reachable from a scene.
+  for (auto law : {NormalContactLaw::hertz, NormalContactLaw::hunt_crossley, NormalContactLaw::lankarani_nikravesh,
+                   NormalContactLaw::flores, NormalContactLaw::hu_guo, NormalContactLaw::gonthier}) {
+    const Scene s = read_scene("", {"joint.slider.contact.law=" + std::string(to_string(law))});
+    EXPECT_EQ(s.slider_guide.contact.law, law);
+  }
+  for (auto law : {FrictionLaw::none, FrictionLaw::coulomb, FrictionLaw::ambrosio, FrictionLaw::lugre_absolute,
+                   FrictionLaw::lugre_normalised}) {
+    const Scene s = read_scene("", {"joint.slider.friction.law=" + std::string(to_string(law))});
+    EXPECT_EQ(s.slider_guide.friction.law, law);
+  }
+}
+
 TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
   // The seed prints mu_s = 0.1 < mu_k = 0.11 and a constant sigma1.
   EXPECT_EQ(scene_warnings(read_scene("")).size(), 2u);
