@@ -2,6 +2,7 @@
 // effective-restitution table and the Hertz closed forms of ../shared/docs/reference-values.md
 // (re-derived below where possible), plus the clamp, the velocity floor, the parameter checks and
 // finiteness at extreme inputs.
+#include "mechanism/expect_invalid.hpp"
 #include "mechanism/contact_law.hpp"
 
 #include <gtest/gtest.h>
@@ -220,16 +221,7 @@ TEST(ContactLaw, NanStatePropagates) {
   EXPECT_TRUE(std::isnan(mechanism::normal_force(p, 1e10, 1e-6, 0.1, kNan)));
 }
 
-template <class F>
-void expect_invalid(const std::string& key, F&& f) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception for " << key;
-  } catch (const InvalidParameter& error) {
-    EXPECT_EQ(error.key(), key);
-    EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
-  }
-}
+using mechanism::testing::expect_invalid;
 
 TEST(ContactLaw, InvalidParametersThrowNamingTheKey) {
   EXPECT_NO_THROW(ContactLawParameters{}.validate());

@@ -1,6 +1,7 @@
 // Contact stiffness: the seed's Eq. (11)-(13) and Flores' journal-bearing stiffness, against the
 // values of ../shared/docs/reference-values.md, hand-evaluated cases of Eq. (12), the limits and
 // monotonicity of Eq. (11), and the parameter checks.
+#include "mechanism/expect_invalid.hpp"
 #include "mechanism/contact_stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -21,16 +22,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Steel as in reference-values.md: E = 207 GPa, nu = 0.3.
 const double kSteel = mechanism::material_compliance(207e9, 0.3);
 
-template <class F>
-void expect_invalid(const std::string& key, F&& f) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception for " << key;
-  } catch (const InvalidParameter& error) {
-    EXPECT_EQ(error.key(), key);
-    EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
-  }
-}
+using mechanism::testing::expect_invalid;
 
 // Eq. (13): (1 - 0.09) / 207e9.
 TEST(ContactStiffness, MaterialCompliance) {

@@ -2,6 +2,7 @@
 // forms: the steady-sliding limit, the exact bristle update against a fine RK4 of its ODE written
 // here, its stability where explicit Euler diverges, presliding, and stick-slip of a block pulled
 // through a spring (an integrator written here, advancing z with the exact update each step).
+#include "mechanism/expect_invalid.hpp"
 #include "mechanism/friction_law.hpp"
 
 #include <gtest/gtest.h>
@@ -35,16 +36,7 @@ double g_of(const FrictionLawParameters& p, double normal_force, double v) {
   return p.law == FrictionLaw::lugre_absolute ? normal_force * mu : mu;
 }
 
-template <class F>
-void expect_invalid(const std::string& key, F&& f) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception for " << key;
-  } catch (const InvalidParameter& error) {
-    EXPECT_EQ(error.key(), key);
-    EXPECT_NE(std::string(error.what()).find(key), std::string::npos) << error.what();
-  }
-}
+using mechanism::testing::expect_invalid;
 
 TEST(FrictionLaw, CoulombOpposesSlidingAndIsZeroAtRest) {
   const auto p = with_law(FrictionLaw::coulomb);
