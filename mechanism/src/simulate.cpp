@@ -35,7 +35,6 @@ class HybridLoop {
     transient_ = s.run.transient;
     out_dt_ = s.run.output_interval;
     period_ = s.driver.period();
-    stroboscopic_ = s.run.stroboscopic || static_cast<bool>(obs_.stroboscopic);
     // Time-series rows at transient + k dt; revolutions at whole periods from the transient on.
     next_out_ = 0;
     next_rev_ = static_cast<std::size_t>(std::ceil(transient_ / period_ - 1e-9));
@@ -50,14 +49,14 @@ class HybridLoop {
     energy0_ = ev_.kinetic_energy + ev_.potential_energy;
     penetration_prev_.resize(sys_.site_count());
     for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
-    emit_due(0.0, 0.0, x, true);
+    emit_due(0.0, x, true);
     State x0 = x;
     sys_.commit(ev_, onset_rate_, x0);
   }
 
   // After an accepted step from t0 to t1 (x is the state at t1).
   void after_step(double t0, double t1, State& x) {
-    emit_due(t0, t1, x, false);
+    emit_due(t1, x, false);
     sys_.evaluate(t1, x, ev_);
     const int n = sys_.coordinate_count();
     const double balance =
@@ -103,8 +102,9 @@ class HybridLoop {
     return rate > 0.0 ? rate : std::numeric_limits<double>::quiet_NaN();
   }
 
-  // Emits the time-series rows and revolutions due in (t0, t1] (or at t1 = 0 on start).
-  void emit_due(double t0, double t1, const State& x1, bool at_start) {
+  // Emits the time-series rows and revolutions due up to t1 (inside the step just taken, or at
+  // t = 0 on start).
+  void emit_due(double t1, const State& x1, bool at_start) {
     const double eps = 1e-9 * std::max(out_dt_ > 0 ? out_dt_ : period_, 1e-12);
     if (obs_.sample && out_dt_ > 0.0) {
       for (;;) {
@@ -116,7 +116,7 @@ class HybridLoop {
         ++sum_.samples;
       }
     }
-    if (stroboscopic_ && obs_.stroboscopic) {
+    if (obs_.stroboscopic) {
       for (;;) {
         const double t = static_cast<double>(next_rev_) * period_;
         if (t > t_end_ + eps) break;
@@ -127,7 +127,6 @@ class HybridLoop {
         ++sum_.stroboscopic_samples;
       }
     }
-    (void)t0;
   }
 
   template <class F>
@@ -148,7 +147,6 @@ class HybridLoop {
   const SimulationObserver& obs_;
   SimulationSummary& sum_;
   double t_end_ = 0, transient_ = 0, out_dt_ = 0, period_ = 0;
-  bool stroboscopic_ = false;
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
   std::vector<double> penetration_prev_, onset_rate_;

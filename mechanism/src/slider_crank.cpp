@@ -440,13 +440,6 @@ void SliderCrank::rhs(double t, const State& x, State& dxdt) const {
   }
 }
 
-void SliderCrank::penetrations(double t, const State& x, std::vector<double>& out) const {
-  thread_local Evaluation ev;
-  evaluate(t, x, ev);
-  out.resize(sites_.size());
-  for (std::size_t i = 0; i < sites_.size(); ++i) out[i] = ev.sites[i].penetration;
-}
-
 bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {
   bool latched = false;
   for (std::size_t i = 0; i < sites_.size(); ++i) {

@@ -38,8 +38,8 @@ struct SimulationSummary {
 struct SimulationObserver {
   // A time-series row every run.output_interval after the transient.
   std::function<void(double t, const State& x, const Evaluation& ev)> sample;
-  // Once per crank revolution after the transient, at the initial crank angle (when
-  // run.stroboscopic, or whenever this is set).
+  // Once per crank revolution after the transient, at the initial crank angle, whenever this is
+  // set (`mechanism simulate` sets it for run.stroboscopic).
   std::function<void(std::size_t revolution, double t, const State& x, const Evaluation& ev)> stroboscopic;
   // Fraction of the simulated time done, called about every percent.
   std::function<void(double fraction)> progress;

@@ -113,9 +113,6 @@ class SliderCrank {
   // Full evaluation at (t, x) with the current memory.
   void evaluate(double t, const State& x, Evaluation& out) const;
 
-  // Penetration of each site (its event function: contact onset where it crosses 0 upward).
-  void penetrations(double t, const State& x, std::vector<double>& out) const;
-
   // After an accepted step ending at state x, given the evaluation there made with the step's
   // memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
   // located onset time for sites that started touching during the step, NaN or absent otherwise),
