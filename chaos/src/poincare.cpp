@@ -2,20 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "chaos/error.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
 namespace {
-
-std::string str(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // Lagrange weights of the cubic through nodes -1, 0, 1, 2 at parameter s in [0, 1].
 void cubic_weights(double s, double w[4]) {
@@ -50,7 +44,7 @@ std::vector<double> stroboscopic_section(std::span<const double> series, std::si
 
 HyperplaneSection hyperplane_section(const std::vector<std::vector<double>>& components, double dt,
                                      const HyperplaneOptions& o) {
-  if (!(dt > 0.0) || !std::isfinite(dt)) throw InvalidInput(ErrorCode::invalid_parameter, "hyperplane section: dt = " + str(dt) + " must be > 0");
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw InvalidInput(ErrorCode::invalid_parameter, "hyperplane section: dt = " + detail::format_number(dt) + " must be > 0");
   if (o.component >= components.size()) {
     throw InvalidInput(ErrorCode::invalid_parameter, "hyperplane section: component " + std::to_string(o.component) +
                                                          " does not exist (" + std::to_string(components.size()) + " given)");
@@ -125,7 +119,7 @@ std::size_t distinct_values(std::span<const double> values, double tolerance) {
 Histogram probability_density(std::span<const double> values, std::size_t bins, double low, double high) {
   if (bins == 0) throw InvalidInput(ErrorCode::invalid_parameter, "probability density: bins must be >= 1");
   if (!(low < high) || !std::isfinite(low) || !std::isfinite(high)) {
-    throw InvalidInput(ErrorCode::invalid_parameter, "probability density: the range [" + str(low) + ", " + str(high) +
+    throw InvalidInput(ErrorCode::invalid_parameter, "probability density: the range [" + detail::format_number(low) + ", " + detail::format_number(high) +
                                                          "] must be finite with low < high");
   }
   if (values.empty()) throw InvalidInput(ErrorCode::empty, "probability density: no values");

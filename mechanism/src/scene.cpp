@@ -5,7 +5,6 @@
 #include "mechanism/scene.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -15,6 +14,7 @@
 
 #include <toml++/toml.h>
 
+#include "checks.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
@@ -52,9 +52,7 @@ bool satisfies(Rule r, double v) {
 }
 
 std::string format_number(double v) {
-  char buf[64];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, end);
+  std::string s = detail::text(v);
   // TOML needs a '.' or an exponent to read a float back as a float.
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   return s;
