@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "mechanism/expect_invalid.hpp"
 #include "mechanism/dormand_prince.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/event_location.hpp"
@@ -627,16 +628,7 @@ TEST(DormandPrince54, AdvanceToLandsExactlyAndHonoursMaxSteps) {
   EXPECT_LE(h3, 0.01);
 }
 
-template <class F>
-void expect_invalid(const F& f, const std::string& key) {
-  try {
-    f();
-    ADD_FAILURE() << "no InvalidParameter for " << key;
-  } catch (const InvalidParameter& e) {
-    EXPECT_EQ(e.key(), key);
-    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-  }
-}
+using mechanism::testing::expect_invalid;
 
 TEST(AdaptiveOptions, ValidationNamesTheKey) {
   EXPECT_NO_THROW(AdaptiveOptions{}.validate());
@@ -645,21 +637,21 @@ TEST(AdaptiveOptions, ValidationNamesTheKey) {
     change(o);
     return o;
   };
-  expect_invalid([&] { DormandPrince54(with([](auto& o) { o.relative_tolerance = 0.0; })); }, "relative_tolerance");
-  expect_invalid([&] { with([](auto& o) { o.relative_tolerance = -1e-6; }).validate(); }, "relative_tolerance");
-  expect_invalid([&] { with([](auto& o) { o.absolute_tolerance = 0.0; }).validate(); }, "absolute_tolerance");
-  expect_invalid([&] { with([](auto& o) { o.absolute_tolerance = -1.0; }).validate(); }, "absolute_tolerance");
-  expect_invalid([&] { with([](auto& o) { o.absolute_tolerance = NAN; }).validate(); }, "absolute_tolerance");
-  expect_invalid([&] { with([](auto& o) { o.min_step = 0.1, o.max_step = 0.01; }).validate(); }, "min_step");
-  expect_invalid([&] { with([](auto& o) { o.min_step = 0.0; }).validate(); }, "min_step");
-  expect_invalid([&] { with([](auto& o) { o.max_step = -1.0; }).validate(); }, "max_step");
-  expect_invalid([&] { with([](auto& o) { o.initial_step = -0.1; }).validate(); }, "initial_step");
-  expect_invalid([&] { with([](auto& o) { o.initial_step = 1e-20; }).validate(); }, "initial_step");
-  expect_invalid([&] { with([](auto& o) { o.max_steps = 0; }).validate(); }, "max_steps");
-  expect_invalid([&] { with([](auto& o) { o.safety = 1.5; }).validate(); }, "safety");
-  expect_invalid([&] { with([](auto& o) { o.min_factor = 1.0; }).validate(); }, "min_factor");
-  expect_invalid([&] { with([](auto& o) { o.max_factor = 0.5; }).validate(); }, "max_factor");
-  expect_invalid([&] { with([](auto& o) { o.controller_beta = 0.3; }).validate(); }, "controller_beta");
+  expect_invalid("relative_tolerance", [&] { DormandPrince54(with([](auto& o) { o.relative_tolerance = 0.0; })); });
+  expect_invalid("relative_tolerance", [&] { with([](auto& o) { o.relative_tolerance = -1e-6; }).validate(); });
+  expect_invalid("absolute_tolerance", [&] { with([](auto& o) { o.absolute_tolerance = 0.0; }).validate(); });
+  expect_invalid("absolute_tolerance", [&] { with([](auto& o) { o.absolute_tolerance = -1.0; }).validate(); });
+  expect_invalid("absolute_tolerance", [&] { with([](auto& o) { o.absolute_tolerance = NAN; }).validate(); });
+  expect_invalid("min_step", [&] { with([](auto& o) { o.min_step = 0.1, o.max_step = 0.01; }).validate(); });
+  expect_invalid("min_step", [&] { with([](auto& o) { o.min_step = 0.0; }).validate(); });
+  expect_invalid("max_step", [&] { with([](auto& o) { o.max_step = -1.0; }).validate(); });
+  expect_invalid("initial_step", [&] { with([](auto& o) { o.initial_step = -0.1; }).validate(); });
+  expect_invalid("initial_step", [&] { with([](auto& o) { o.initial_step = 1e-20; }).validate(); });
+  expect_invalid("max_steps", [&] { with([](auto& o) { o.max_steps = 0; }).validate(); });
+  expect_invalid("safety", [&] { with([](auto& o) { o.safety = 1.5; }).validate(); });
+  expect_invalid("min_factor", [&] { with([](auto& o) { o.min_factor = 1.0; }).validate(); });
+  expect_invalid("max_factor", [&] { with([](auto& o) { o.max_factor = 0.5; }).validate(); });
+  expect_invalid("controller_beta", [&] { with([](auto& o) { o.controller_beta = 0.3; }).validate(); });
   // The message gives the value and the rule.
   try {
     with([](auto& o) { o.min_step = 0.5, o.max_step = 0.25; }).validate();
@@ -674,18 +666,18 @@ TEST(Steppers, ZeroOrNegativeStepIsRefused) {
   double t = 0.0;
   State x = vec({1.0, 0.0});
   Rk4 rk;
-  expect_invalid([&] { rk.step(sys, t, x, 0.0); }, "h");
-  expect_invalid([&] { rk.step(sys, t, x, -0.1); }, "h");
-  expect_invalid([&] { rk.step(sys, t, x, std::numeric_limits<double>::infinity()); }, "h");
+  expect_invalid("h", [&] { rk.step(sys, t, x, 0.0); });
+  expect_invalid("h", [&] { rk.step(sys, t, x, -0.1); });
+  expect_invalid("h", [&] { rk.step(sys, t, x, std::numeric_limits<double>::infinity()); });
   DormandPrince54 dp;
   double h = 0.0;
-  expect_invalid([&] { dp.try_step(sys, t, x, h); }, "h");
+  expect_invalid("h", [&] { dp.try_step(sys, t, x, h); });
   h = std::numeric_limits<double>::quiet_NaN();
-  expect_invalid([&] { dp.try_step(sys, t, x, h); }, "h");
-  expect_invalid([&] { dp.step_fixed(sys, t, x, 0.0); }, "h");
-  expect_invalid([&] { dp.step_fixed_to(sys, t, x, t); }, "t_end");
+  expect_invalid("h", [&] { dp.try_step(sys, t, x, h); });
+  expect_invalid("h", [&] { dp.step_fixed(sys, t, x, 0.0); });
+  expect_invalid("t_end", [&] { dp.step_fixed_to(sys, t, x, t); });
   h = 0.0;
-  expect_invalid([&] { dp.advance_to(sys, t, x, 1.0, h); }, "h");
+  expect_invalid("h", [&] { dp.advance_to(sys, t, x, 1.0, h); });
   EXPECT_EQ(t, 0.0);
   EXPECT_EQ(dp.rhs_evaluations() + rk.rhs_evaluations(), 0u);
 }
