@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "mechanism/dormand_prince.hpp"
+#include "mechanism/error.hpp"
 #include "mechanism/event_location.hpp"
 #include "mechanism/rk4.hpp"
 
@@ -164,10 +165,20 @@ std::string at_time(const char* what, double t) {
 }  // namespace
 
 SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observer) {
+  return simulate(system, system.initial_state(), observer);
+}
+
+SimulationSummary simulate(SliderCrank& system, const State& start, const SimulationObserver& observer) {
   const auto wall0 = std::chrono::steady_clock::now();
   const Scene& scene = system.scene();
+  if (start.size() != system.state_size())
+    throw InvalidParameter("start state", std::to_string(start.size()) + " values",
+                           "must have the system's state size " + std::to_string(system.state_size()));
+  if (!start.allFinite()) throw InvalidParameter("start state", "non-finite values", "every value must be finite");
   SimulationSummary sum;
-  State x = system.initial_state();
+  State x = start;
+  const int n = system.coordinate_count();
+  x[2 * n] = x[2 * n + 1] = 0.0;  // the energy balance starts here
   double t = 0.0;
   double last_progress = -1.0;
   auto report_progress = [&](double t_now, double t_end) {
@@ -262,6 +273,7 @@ SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observ
     loop.finish();
   }
   sum.end_time = t;
+  sum.final_state = x;
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return sum;
 }

@@ -33,6 +33,7 @@ struct SimulationSummary {
   double energy_balance_relative = 0.0;
   std::size_t samples = 0;
   std::size_t stroboscopic_samples = 0;
+  State final_state;  // the state at end_time (a parameter continuation starts the next run from it)
 };
 
 struct SimulationObserver {
@@ -47,5 +48,11 @@ struct SimulationObserver {
 
 // Runs the scene of `system` from its initial state (seed Eq. 29).
 SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observer = {});
+
+// Runs it from `start` at t = 0 (a state of system.state_size() finite values, e.g. another run's
+// final_state: parameter continuation). The work accumulators restart at zero, so the energy
+// balance is checked from there on; a site already penetrating at the start latches its current
+// penetration rate as its impact velocity.
+SimulationSummary simulate(SliderCrank& system, const State& start, const SimulationObserver& observer = {});
 
 }  // namespace mechanism

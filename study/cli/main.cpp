@@ -1,0 +1,197 @@
+// The `study` command: the seed paper's parameter studies over the simulator, with the chaos
+// analysis of each point (docs/study.md).
+//   study sweep [scene.toml] [--set k=v]... [--axis key=from:to:count]... -o DIR [--resume] ...
+//   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
+// Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output,
+// 5 the sweep finished but some points' simulations did not complete (their status says why).
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include <unistd.h>
+
+#include "mechanism/error.hpp"
+#include "mpi_session.hpp"
+#include "plots.hpp"
+#include "study/error.hpp"
+#include "study/run_sweep.hpp"
+
+namespace {
+
+enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_request = 3, io_error = 4, points_failed = 5 };
+
+// Points done out of this run's share, with the remaining time from this run's rate.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+  void operator()(const study::SweepProgress& p) {
+    if (!enabled_ || p.to_do == 0) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double f = static_cast<double>(p.done) / static_cast<double>(p.to_do);
+    const int width = 40, filled = static_cast<int>(f * width);
+    const double remaining = p.done ? elapsed * static_cast<double>(p.to_do - p.done) / static_cast<double>(p.done) : 0.0;
+    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << p.done << "/"
+              << p.to_do << " points  " << std::fixed << std::setprecision(0) << remaining << " s left " << std::flush;
+    shown_ = true;
+  }
+  ~ProgressBar() {
+    if (shown_) std::cerr << "\n";
+  }
+
+ private:
+  bool enabled_, shown_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw study::StudyError("scene", path, "cannot be opened (missing or unreadable file)");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  study::cli::MpiSession mpi(argc, argv);
+  const bool root = mpi.rank() == 0;
+  CLI::App app{"study: parameter sweeps of the slider-crank simulator with the chaos analysis of each point"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "study 0.1.0");
+
+  study::SweepSpec spec;
+  std::string scene_file, initial = "fresh", out_dir, signals = "slider_y,slider_vy";
+  std::vector<std::string> axes;
+  bool resume = false, quiet = false;
+  std::size_t threads = 0;
+  auto* sweep = app.add_subcommand("sweep", "run a one- or two-dimensional sweep over scene keys into a result directory");
+  sweep->add_option("scene", scene_file, "scene file (TOML); without one, the built-in seed scene");
+  sweep->add_option("--set", spec.overrides, "override a scene key for every point: --set joint.slider.friction.sigma1_velocity=1e-3");
+  sweep->add_option("--axis", axes, "a swept key: key=from:to:count or key=v1,v2,... (at most two; the first varies fastest)");
+  sweep->add_option("--initial", initial, "fresh (the seed's Eq. 29 at every point) or continuation (from the previous point's final state along the first axis)")
+      ->check(CLI::IsMember({"fresh", "continuation"}));
+  sweep->add_option("--periods", spec.periods, "crank revolutions per point, transient included (the seed: 1000)");
+  sweep->add_option("--keep", spec.keep, "stroboscopic revolutions kept at the end of each point (the seed: 500 for the PDF, 50 plotted)");
+  sweep->add_option("--signals", signals, "comma-separated signals sampled once per kept revolution (mechanism simulate's names)");
+  sweep->add_flag("--analysis", spec.analyse, "also analyse slider_y over the last --analysis-periods revolutions: MI delay, Cao E1/E2, D2");
+  sweep->add_option("--analysis-periods", spec.analysis.periods, "revolutions analysed (the seed: 5)");
+  sweep->add_option("--analysis-interval", spec.analysis.interval, "s between samples of the analysed series");
+  sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay searched, samples");
+  sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
+  sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
+  sweep->add_option("-o,--output", out_dir, "result directory (docs/study.md lists its files)")->required();
+  sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
+  sweep->add_flag("-q,--quiet", quiet, "no progress bar");
+
+  study::cli::PlotRequest plot;
+  auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
+  study::cli::add_plot_options(*plot_cmd, plot);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (root) app.exit(e);
+    return e.get_exit_code() == 0 ? ok : usage_error;
+  }
+  try {
+    if (plot_cmd->parsed()) {
+      if (root) study::cli::draw(plot);
+      return ok;
+    }
+    if (!scene_file.empty()) {
+      spec.scene_text = read_text(scene_file);
+      spec.scene_source = scene_file;
+    }
+    std::vector<study::Axis> parsed;
+    for (const auto& a : axes) parsed.push_back(study::parse_axis(a));
+    spec.grid = study::Grid(std::move(parsed));
+    spec.initial = initial == "fresh" ? study::InitialConditions::fresh : study::InitialConditions::continuation;
+    spec.signals.clear();
+    std::stringstream list(signals);
+    for (std::string s; std::getline(list, s, ',');)
+      if (!s.empty()) spec.signals.push_back(s);
+    spec.validate();
+    if (root)
+      for (const auto& w : mechanism::scene_warnings(study::point_scene(spec, 0))) std::cerr << "study: warning: " << w << "\n";
+
+    // Rank 0 creates the directory; the others open it once it exists (as a resume of the same spec).
+    // Every collective call is reached by every rank: a rank's failure is reported, not thrown past them.
+    std::unique_ptr<study::ResultStore> store;
+    auto open_store = [&](bool as_resume) {
+      try {
+        store = std::make_unique<study::ResultStore>(out_dir, spec, as_resume);
+        return true;
+      } catch (const std::exception& e) {
+        std::cerr << "study: " << e.what() << "\n";
+        return false;
+      }
+    };
+    if (!mpi.all_succeeded(root ? open_store(resume) : true)) return invalid_request;
+    if (!mpi.all_succeeded(root ? true : open_store(true))) return invalid_request;
+
+    study::SweepExecution exec;
+    exec.rank = mpi.rank();
+    exec.ranks = mpi.size();
+    exec.threads = threads ? threads : std::max<std::size_t>(1, std::thread::hardware_concurrency() / mpi.size());
+    ProgressBar bar(root && !quiet && isatty(fileno(stderr)));
+    exec.progress = [&](const study::SweepProgress& p) { bar(p); };
+    const auto wall0 = std::chrono::steady_clock::now();
+    bool mine = true;
+    study::SweepProgress progress;
+    try {
+      progress = study::run_sweep(spec, *store, exec);
+    } catch (const std::exception& e) {
+      std::cerr << "study: error on rank " << mpi.rank() << ": " << e.what() << "\n";
+      mine = false;
+    }
+    if (!mpi.all_succeeded(mine)) return mine ? internal_error : invalid_request;
+    const std::size_t computed = mpi.sum(progress.done), resumed = mpi.sum(progress.skipped);
+    if (!root) return ok;
+    store->assemble();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    // Failed points counted from the assembled table, so every rank's failures are included.
+    std::size_t failed = 0;
+    {
+      std::ifstream in(store->dir() / "points.tsv");
+      const std::size_t status_column = 1 + spec.grid.axes().size();
+      for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream f(line);
+        std::string field;
+        for (std::size_t k = 0; k <= status_column; ++k) std::getline(f, field, '\t');
+        if (field != "completed") ++failed;
+      }
+    }
+    nlohmann::json summary = {{"directory", store->dir().string()},
+                              {"points", spec.grid.size()},
+                              {"computed", computed},
+                              {"resumed_from_disk", resumed},
+                              {"failed", failed},
+                              {"threads", exec.threads},
+                              {"ranks", mpi.size()},
+                              {"wall_seconds", wall}};
+    std::cout << summary.dump(2) << "\n";
+    return failed ? points_failed : ok;
+  } catch (const study::StudyError& e) {
+    std::cerr << "study: " << e.what() << "\n";
+    return invalid_request;
+  } catch (const mechanism::InvalidParameter& e) {
+    std::cerr << "study: invalid scene: " << e.what() << "\n";
+    return invalid_request;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "study: " << e.what() << "\n";
+    return io_error;
+  } catch (const std::exception& e) {
+    std::cerr << "study: internal error: " << e.what() << "\n";
+    return internal_error;
+  }
+}

@@ -1,0 +1,245 @@
+#include "plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "chaos/poincare.hpp"
+#include "gnuplot.hpp"
+#include "study/error.hpp"
+
+namespace study::cli {
+
+namespace {
+
+// An assembled table: the column names from its last '#' line, the rows as numbers ('-' is NaN,
+// a missing value the plots leave out) and the text columns kept aside by name.
+struct Table {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  std::vector<std::vector<std::string>> text;
+  std::size_t column(const std::string& name, const std::string& file) const {
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) {
+      std::string all;
+      for (const auto& n : names) all += " " + n;
+      throw StudyError(file, name, "is not a column; it has:" + all);
+    }
+    return static_cast<std::size_t>(it - names.begin());
+  }
+};
+
+Table read_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw StudyError("study plot", path, "cannot be read (run `study sweep` into this directory first)");
+  Table t;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::stringstream s(line[0] == '#' ? line.substr(1) : line);
+    for (std::string x; std::getline(s, x, '\t');) f.push_back(x);
+    if (line[0] == '#') {
+      if (line.rfind("# point", 0) == 0) {
+        f[0] = "point";
+        t.names = f;
+      }
+      continue;
+    }
+    std::vector<double> row;
+    for (const auto& x : f) {
+      char* end = nullptr;
+      const double v = std::strtod(x.c_str(), &end);
+      row.push_back(end != x.c_str() && *end == '\0' ? v : std::nan(""));
+    }
+    t.rows.push_back(std::move(row));
+    t.text.push_back(std::move(f));
+  }
+  if (t.names.empty()) throw StudyError("study plot", path, "has no '# point' header line: not a study table");
+  return t;
+}
+
+std::string label(const std::string& given, const std::string& fallback) { return given.empty() ? fallback : given; }
+
+// Axis keys are the columns between "point" and the first non-axis column of points.tsv.
+std::vector<std::string> axis_keys(const Table& samples) {
+  std::vector<std::string> keys;
+  for (std::size_t k = 1; k < samples.names.size() && samples.names[k] != "revolution" && samples.names[k] != "status"; ++k)
+    keys.push_back(samples.names[k]);
+  return keys;
+}
+
+// Groups row indices by the second axis value (one group when there is none).
+std::map<double, std::vector<std::size_t>> by_second_axis(const Table& t, const std::vector<std::string>& keys) {
+  std::map<double, std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) groups[keys.size() > 1 ? t.rows[i][2] : 0.0].push_back(i);
+  return groups;
+}
+
+std::string panel_title(const std::vector<std::string>& keys, double value, const PlotRequest& r) {
+  if (keys.size() < 2) return r.title;
+  std::ostringstream s;
+  s << (r.title.empty() ? "" : r.title + ", ") << keys[1] << " = " << value;
+  return s.str();
+}
+
+std::string multiplot(std::size_t panels) {
+  if (panels <= 1) return "";
+  const std::size_t columns = panels <= 2 ? panels : 2;
+  return "set multiplot layout " + std::to_string((panels + columns - 1) / columns) + "," + std::to_string(columns) + "\n";
+}
+
+}  // namespace
+
+void add_plot_options(CLI::App& cmd, PlotRequest& r) {
+  cmd.add_option("dir", r.dir, "result directory of `study sweep`")->required();
+  cmd.add_option("--figure", r.figure, "bifurcation, density, portrait, d2, e2 or d2map")
+      ->required()
+      ->check(CLI::IsMember({"bifurcation", "density", "portrait", "d2", "e2", "d2map"}));
+  cmd.add_option("-o,--output", r.output, "FILE.png or FILE.svg")->required();
+  cmd.add_option("--signal", r.signal, "the sampled signal plotted (bifurcation, density; portrait's horizontal axis)");
+  cmd.add_option("--signal2", r.signal2, "portrait's vertical axis");
+  cmd.add_option("--last", r.last, "bifurcation: the last N kept revolutions of each point (the seed: 50)");
+  cmd.add_option("--bins", r.bins, "density: equal-width bins over the pooled range of the signal");
+  cmd.add_option("--x-scale", r.x_scale, "multiply the horizontal values (1e3: m to mm)");
+  cmd.add_option("--y-scale", r.y_scale, "multiply the vertical values");
+  cmd.add_option("--z-scale", r.z_scale, "portrait: multiply --signal2's values");
+  cmd.add_option("--x-label", r.x_label, "horizontal axis label");
+  cmd.add_option("--y-label", r.y_label, "vertical axis label");
+  cmd.add_option("--title", r.title, "figure title");
+}
+
+void draw(const PlotRequest& r) {
+  std::ostringstream g;
+  g << "set grid\nunset key\n";
+  const std::string samples_path = r.dir + "/samples.tsv", analysis_path = r.dir + "/analysis.tsv";
+  if (r.figure == "bifurcation" || r.figure == "density" || r.figure == "portrait") {
+    const Table t = read_table(samples_path);
+    const auto keys = axis_keys(t);
+    const std::size_t y = t.column(r.signal, samples_path), rev = t.column("revolution", samples_path);
+    if (keys.empty() && r.figure != "portrait")
+      throw StudyError("--figure", r.figure, "needs a sweep with at least one axis");
+    if (r.figure == "portrait") {
+      const std::size_t z = t.column(r.signal2, samples_path);
+      std::map<double, std::vector<std::size_t>> points;
+      for (std::size_t i = 0; i < t.rows.size(); ++i) points[t.rows[i][0]].push_back(i);
+      g << multiplot(points.size());
+      for (const auto& [p, rows] : points) {
+        std::ostringstream title;
+        title << r.title;
+        for (std::size_t k = 0; k < keys.size(); ++k) title << (k || !r.title.empty() ? ", " : "") << keys[k] << " = " << t.rows[rows[0]][1 + k];
+        g << "set title " << plot_support::quoted(title.str() + " (" + std::to_string(rows.size()) + " points)") << "\n"
+          << "set xlabel " << plot_support::quoted(label(r.x_label, r.signal)) << "\nset ylabel "
+          << plot_support::quoted(label(r.y_label, r.signal2)) << "\n$p << EOD\n";
+        for (std::size_t i : rows) g << t.rows[i][y] * r.x_scale << ' ' << t.rows[i][z] * r.z_scale << '\n';
+        g << "EOD\nplot $p using 1:2 with dots lc rgb 'black'\n";
+      }
+    } else {
+      const auto groups = by_second_axis(t, keys);
+      g << multiplot(groups.size());
+      double max_rev = 0;
+      for (const auto& row : t.rows) max_rev = std::max(max_rev, row[rev]);
+      for (const auto& [value, rows] : groups) {
+        g << "set title " << plot_support::quoted(panel_title(keys, value, r)) << "\nset xlabel "
+          << plot_support::quoted(label(r.x_label, keys[0])) << "\n";
+        if (r.figure == "bifurcation") {
+          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\n$b << EOD\n";
+          for (std::size_t i : rows)
+            if (t.rows[i][rev] > max_rev - static_cast<double>(r.last))
+              g << t.rows[i][1] * r.x_scale << ' ' << t.rows[i][y] * r.y_scale << '\n';
+          g << "EOD\nplot $b using 1:2 with points pt 7 ps 0.2 lc rgb 'black'\n";
+        } else {
+          // One histogram per first-axis value over the pooled range of this panel.
+          std::map<double, std::vector<double>> values;
+          double lo = INFINITY, hi = -INFINITY;
+          for (std::size_t i : rows) {
+            values[t.rows[i][1]].push_back(t.rows[i][y]);
+            lo = std::min(lo, t.rows[i][y]);
+            hi = std::max(hi, t.rows[i][y]);
+          }
+          if (!(hi > lo)) hi = lo + 1e-12 * std::max(1.0, std::abs(lo)) + 1e-300;  // a constant signal: one thin bin
+          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\nset view map\n"
+            << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n$d << EOD\n";
+          for (const auto& [x, v] : values) {
+            const chaos::Histogram h = chaos::probability_density(v, r.bins, lo, hi);
+            for (std::size_t b = 0; b < r.bins; ++b)
+              g << x * r.x_scale << ' ' << 0.5 * (h.edges[b] + h.edges[b + 1]) * r.y_scale << ' '
+                << h.density[b] / r.y_scale << '\n';
+            g << '\n';
+          }
+          g << "EOD\nsplot $d using 1:2:3 with pm3d\n";
+        }
+      }
+    }
+  } else {
+    const Table t = read_table(analysis_path);
+    const auto keys = axis_keys(t);
+    if (keys.empty()) throw StudyError("--figure", r.figure, "needs a sweep with at least one axis");
+    const std::size_t d2 = t.column("d2", analysis_path), lo = t.column("d2_low", analysis_path),
+                      hi = t.column("d2_high", analysis_path), e2 = t.column("e2_deviation", analysis_path);
+    const std::size_t shown = r.figure == "e2" ? e2 : d2;
+    const bool any = std::any_of(t.rows.begin(), t.rows.end(), [&](const auto& row) { return !std::isnan(row[shown]); });
+    if (!any) {
+      // A legitimate outcome (no point reached a saturated D2): an empty frame that says so.
+      g << "set title " << plot_support::quoted(label(r.title, r.figure)) << "\nset label "
+        << plot_support::quoted("no point has a value: analysis.tsv's status and d2_status columns say why")
+        << " at graph 0.5,0.5 center\nplot [0:1][0:1] NaN notitle\n";
+    } else if (r.figure == "d2map") {
+      if (keys.size() < 2) throw StudyError("--figure", "d2map", "needs a two-axis sweep");
+      g << "set view map\nset xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+        << plot_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel 'D2'\nset palette rgbformulae 33,13,10\n"
+        << "set title " << plot_support::quoted(label(r.title, "correlation dimension D2 (blank: no saturated D2)")) << "\n$m << EOD\n";
+      const auto groups = by_second_axis(t, keys);
+      for (const auto& [value, rows] : groups) {
+        for (std::size_t i : rows)
+          g << t.rows[i][1] * r.x_scale << ' ' << value * r.y_scale << ' ' << (std::isnan(t.rows[i][d2]) ? std::string("NaN") : std::to_string(t.rows[i][d2])) << '\n';
+        g << '\n';
+      }
+      g << "EOD\nsplot $m using 1:2:3 with pm3d\n";
+    } else {
+      const auto groups = by_second_axis(t, keys);
+      std::size_t missing = 0;
+      for (const auto& row : t.rows) missing += std::isnan(row[r.figure == "d2" ? d2 : e2]) ? 1 : 0;
+      g << "set xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+        << plot_support::quoted(label(r.y_label, r.figure == "d2" ? "D2" : "max |E2(m) - 1|")) << "\n"
+        << "set title " << plot_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
+                                                (missing ? " (" + std::to_string(missing) + " points without a value)" : ""))
+        << "\n";
+      if (keys.size() > 1) g << "set key outside right\n";
+      std::string plot_line = "plot ";
+      std::size_t k = 0;
+      for (const auto& [value, rows] : groups) {
+        const std::string block = "$g" + std::to_string(k);
+        g << block << " << EOD\n";
+        for (std::size_t i : rows) {
+          if (std::isnan(t.rows[i][r.figure == "d2" ? d2 : e2])) continue;
+          g << t.rows[i][1] * r.x_scale << ' ';
+          if (r.figure == "d2") g << t.rows[i][d2] << ' ' << t.rows[i][lo] << ' ' << t.rows[i][hi] << '\n';
+          else g << t.rows[i][e2] << '\n';
+        }
+        g << "EOD\n";
+        std::ostringstream name;
+        name << (keys.size() > 1 ? keys[1] + " = " : std::string()) << value;
+        const bool empty = std::all_of(rows.begin(), rows.end(), [&](std::size_t i) { return std::isnan(t.rows[i][shown]); });
+        if (empty) {
+          ++k;
+          continue;
+        }
+        plot_line += std::string(plot_line == "plot " ? "" : ", ") + block + (r.figure == "d2" ? " using 1:2:3:4 with yerrorlines" : " using 1:2 with linespoints") +
+                     " title " + plot_support::quoted(name.str());
+        ++k;
+      }
+      g << plot_line << "\n";
+    }
+  }
+  if (g.str().find("set multiplot") != std::string::npos) g << "unset multiplot\n";
+  try {
+    plot_support::render(g.str(), r.output);
+  } catch (const plot_support::PlotError& e) {
+    throw StudyError("--output", r.output, e.what());
+  }
+}
+
+}  // namespace study::cli

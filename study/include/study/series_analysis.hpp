@@ -1,0 +1,46 @@
+#pragma once
+// The seed's correlation-dimension pipeline (its Section 7, Fig. 7) on one scalar series, with the
+// chaos library's estimators and their honest "no answer" results:
+//   delay      the first minimum of the mutual information (Fraser & Swinney 1986), none if it
+//              has no minimum up to max_delay (then nothing below is computed);
+//   theiler    the autocorrelation's 1/e time (at least the delay), as `chaos analyze`;
+//   Cao        E1(m), E2(m) for m = 1..max_dimension (Cao 1997) and E1's saturation dimension;
+//   D2         correlation sums for m = 1..max_dimension with the automatic scaling region
+//              (chaos/correlation_dimension.hpp): saturated with its interval, or the reason not.
+// A constant series (a slider resting on the guide) is reported as such, with no estimates.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace study {
+
+struct AnalysisOptions {
+  std::size_t periods = 5;        // crank revolutions analysed, at the end of the run (the seed: 5)
+  double interval = 1e-5;         // s between samples of the analysed series
+  std::size_t max_delay = 100;    // mutual-information delays searched, samples
+  std::size_t boxes = 16;         // mutual-information histogram bins per axis
+  std::size_t max_dimension = 12; // Cao and D2 up to this m (the seed's Fig. 7d: 1..12)
+  std::size_t radii = 40;         // D2 radii, log-spaced from range/1000 to range/4
+};
+
+struct SeriesAnalysis {
+  std::string status;             // "ok", or why the pipeline stopped
+  std::size_t samples = 0;
+  double interval = 0.0;
+  std::optional<std::size_t> delay;   // samples
+  std::size_t theiler = 0;            // samples
+  std::vector<std::size_t> dimension; // Cao's m
+  std::vector<double> E1, E2;
+  std::optional<std::size_t> embedding_dimension;  // Cao's E1 saturation (none: not saturated or stochastic)
+  double e2_deviation = 0.0;          // max |E2(m) - 1|: 0 for a stochastic series (Cao 1997)
+  std::string d2_status = "not computed";  // saturated | not_saturated | no_scaling_region
+  std::optional<double> d2, d2_low, d2_high;
+  std::vector<std::optional<double>> d2_by_dimension;  // per m = 1..max_dimension
+};
+
+SeriesAnalysis analyse_series(std::span<const double> series, double interval, const AnalysisOptions& options);
+
+}  // namespace study

@@ -1,0 +1,52 @@
+#pragma once
+// What a sweep computes, stated once (the protocol of docs/study.md):
+//   - every point's scene is the base scene (a file, or the built-in seed scene), the --set
+//     overrides, then the point's axis values;
+//   - initial conditions: `fresh` starts every point from the seed's Eq. 29 (the points are
+//     independent); `continuation` starts each point from the final state of the previous point
+//     on the first axis (a chain per value of the second axis; the first point of a chain is fresh);
+//   - each point runs `periods` crank revolutions; the first periods - keep are the transient;
+//     the stroboscopic samples (once per revolution, at the initial crank angle) of the last `keep`
+//     revolutions are kept: the seed keeps 1000 periods, plots the last 50 and builds the PDF from
+//     the last 500;
+//   - optionally the chaos analysis of the slider's vertical displacement over the last
+//     analysis.periods revolutions, sampled every analysis.interval (series_analysis.hpp).
+// The spec's canonical text (`describe`) heads every output file and identifies a result directory
+// on resume.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mechanism/scene.hpp"
+#include "study/grid.hpp"
+#include "study/series_analysis.hpp"
+
+namespace study {
+
+enum class InitialConditions { fresh, continuation };
+const char* to_string(InitialConditions ic) noexcept;
+
+struct SweepSpec {
+  std::string scene_text;                 // TOML of the base scene (empty: the built-in seed scene)
+  std::string scene_source = "built-in seed scene";
+  std::vector<std::string> overrides;     // --set key=value, before the axis values
+  Grid grid;
+  InitialConditions initial = InitialConditions::fresh;
+  std::size_t periods = 1000;             // revolutions per point, transient included
+  std::size_t keep = 500;                 // stroboscopic revolutions kept, at the end
+  std::vector<std::string> signals{"slider_y", "slider_vy"};  // sampled at each kept revolution
+  bool analyse = false;
+  AnalysisOptions analysis;
+
+  // Refuses keep = 0, keep > periods, analysis periods > periods, an empty signal list, and an axis
+  // key or value the scene refuses (checked by building every point's scene).
+  void validate() const;
+  // Canonical text: one "key = value" line per setting, the resolved base scene last.
+  std::string describe() const;
+};
+
+// The scene of point p, validated by the mechanism library.
+mechanism::Scene point_scene(const SweepSpec& spec, std::size_t point);
+
+}  // namespace study

@@ -1,0 +1,70 @@
+#include "study/point.hpp"
+
+#include <algorithm>
+
+#include "mechanism/signals.hpp"
+#include "mechanism/slider_crank.hpp"
+
+namespace study {
+
+PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism::State* start) {
+  PointResult r;
+  r.point = point;
+  r.coordinates = spec.grid.coordinates(point);
+  mechanism::Scene scene = point_scene(spec, point);
+  const double period = scene.driver.period();
+  const std::size_t transient = spec.periods - spec.keep;
+  // Outputs start at the end of the transient; the analysed series is the last analysis.periods
+  // revolutions, so it may begin inside the transient when it is longer than `keep`.
+  const std::size_t first_output =
+      spec.analyse ? std::min(transient, spec.periods - spec.analysis.periods) : transient;
+  scene.run.transient = static_cast<double>(first_output) * period;
+  scene.run.duration = static_cast<double>(spec.periods - first_output) * period;
+  scene.run.stroboscopic = true;
+  scene.run.output_interval = spec.analyse ? spec.analysis.interval : 0.0;
+  mechanism::SliderCrank system(scene);
+
+  const auto table = mechanism::signal_table(system);
+  std::vector<std::size_t> columns;
+  for (const std::string& s : spec.signals)
+    columns.push_back(static_cast<std::size_t>(std::find(table.names.begin(), table.names.end(), s) - table.names.begin()));
+  const std::size_t y_column =
+      static_cast<std::size_t>(std::find(table.names.begin(), table.names.end(), "slider_y") - table.names.begin());
+
+  std::vector<double> values;
+  std::vector<double> series;
+  const double analysis_start = static_cast<double>(spec.periods - spec.analysis.periods) * period;
+  mechanism::SimulationObserver observer;
+  // The run ends at a whole revolution, so its last stroboscopic sample falls at the end time; a
+  // revolution is kept when it lies in the last `keep` of the spec.periods revolutions after t = 0.
+  observer.stroboscopic = [&](std::size_t revolution, double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+    if (revolution <= transient || revolution > spec.periods) return;
+    mechanism::signal_values(system, t, x, ev, values);
+    std::vector<double> row{static_cast<double>(revolution), t};
+    for (std::size_t c : columns) row.push_back(values[c]);
+    r.samples.push_back(std::move(row));
+  };
+  if (spec.analyse) {
+    observer.sample = [&](double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+      if (t < analysis_start - 1e-9 * period) return;
+      mechanism::signal_values(system, t, x, ev, values);
+      series.push_back(values[y_column]);
+    };
+  }
+  const bool continued = start && start->size() == system.state_size();
+  r.summary = continued ? mechanism::simulate(system, *start, observer) : mechanism::simulate(system, observer);
+  if (start && !continued && r.summary.message.empty())
+    r.summary.message = "started fresh: the previous point's state has another size";
+  if (spec.analyse) {
+    if (r.summary.status == mechanism::SimulationStatus::completed) {
+      r.analysis = analyse_series(series, spec.analysis.interval, spec.analysis);
+    } else {
+      SeriesAnalysis a;
+      a.status = std::string("not analysed: the simulation ended with ") + mechanism::to_string(r.summary.status);
+      r.analysis = a;
+    }
+  }
+  return r;
+}
+
+}  // namespace study

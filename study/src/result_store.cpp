@@ -1,0 +1,218 @@
+#include "study/result_store.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "study/error.hpp"
+
+namespace study {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
+std::string optional_number(const std::optional<double>& v) { return v ? number(*v) : "-"; }
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw StudyError("file", path.string(), "cannot be read");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\t' || c == '\n') c = ' ';
+  return s;
+}
+
+std::vector<std::string> split_tabs(const std::string& line) {
+  std::vector<std::string> f;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= line.size(); ++i)
+    if (i == line.size() || line[i] == '\t') {
+      f.push_back(line.substr(start, i - start));
+      start = i + 1;
+    }
+  return f;
+}
+
+std::string join_from(const std::vector<std::string>& f, std::size_t first) {
+  std::string s;
+  for (std::size_t i = first; i < f.size(); ++i) s += (i > first ? "\t" : "") + f[i];
+  return s;
+}
+
+std::string commented(const std::string& text) {
+  std::istringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);) out += "# " + line + "\n";
+  return out;
+}
+
+// The first line where two texts differ, for the resume refusal.
+std::string first_difference(const std::string& a, const std::string& b) {
+  std::istringstream ia(a), ib(b);
+  std::string la, lb;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(ia, la)), gb = static_cast<bool>(std::getline(ib, lb));
+    if (!ga && !gb) return "";
+    if (!ga || !gb || la != lb) return "'" + (ga ? la : std::string("(end)")) + "' was '" + (gb ? lb : std::string("(end)")) + "'";
+  }
+}
+
+}  // namespace
+
+void write_atomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
+  {
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw StudyError("output", tmp.string(), "cannot be written");
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 &&
+                    ::fsync(fileno(f)) == 0;
+    std::fclose(f);
+    if (!ok) throw StudyError("output", tmp.string(), "could not be written completely (disk full?)");
+  }
+  fs::rename(tmp, path);
+}
+
+ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume)
+    : dir_(std::move(dir)), spec_(spec), header_(spec.describe()) {
+  const fs::path spec_file = dir_ / "spec.txt";
+  if (fs::exists(spec_file)) {
+    if (!resume)
+      throw StudyError("-o", dir_.string(),
+                       "already holds a sweep; add --resume to continue it, or choose a new directory");
+    const std::string old = read_file(spec_file);
+    if (old != header_)
+      throw StudyError("--resume", dir_.string(),
+                       "the directory holds another sweep; first difference: " + first_difference(header_, old));
+  } else if (fs::exists(dir_) && !fs::is_directory(dir_)) {
+    throw StudyError("-o", dir_.string(), "exists and is not a directory");
+  }
+  fs::create_directories(dir_ / "points");
+  if (!fs::exists(spec_file)) write_atomically(spec_file, header_);
+}
+
+fs::path ResultStore::point_path(std::size_t point) const {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06zu.tsv", point);
+  return dir_ / "points" / name;
+}
+
+bool ResultStore::finished(std::size_t point) const { return fs::exists(point_path(point)); }
+
+void ResultStore::write(const PointResult& r) const {
+  std::ostringstream o;
+  o << "# study point " << r.point << "\ncoordinates";
+  for (double c : r.coordinates) o << "\t" << exact(c);
+  const auto& s = r.summary;
+  o << "\nstatus\t" << mechanism::to_string(s.status) << "\t" << one_line(s.message) << "\n"
+    << "counters\t" << s.steps << "\t" << s.rejected_steps << "\t" << s.rhs_evaluations << "\t"
+    << number(s.max_penetration) << "\t" << s.contact_events << "\t" << number(s.energy_balance_relative) << "\t"
+    << r.samples.size() << "\n"
+    << "wall_seconds\t" << number(s.wall_seconds) << "\nfinal_state";
+  for (double v : s.final_state) o << "\t" << exact(v);
+  o << "\n";
+  if (r.analysis) {
+    const SeriesAnalysis& a = *r.analysis;
+    const std::size_t m = spec_.analysis.max_dimension;
+    auto at = [&](const std::vector<double>& v, std::size_t k) { return k < v.size() ? number(v[k]) : std::string("-"); };
+    o << "analysis\t" << one_line(a.status) << "\t" << a.samples << "\t" << number(a.interval) << "\t"
+      << (a.delay ? std::to_string(*a.delay) : "-") << "\t" << (a.delay ? number(static_cast<double>(*a.delay) * a.interval) : "-") << "\t"
+      << a.theiler << "\t" << (a.embedding_dimension ? std::to_string(*a.embedding_dimension) : "-") << "\t"
+      << (a.E2.empty() ? "-" : number(a.e2_deviation)) << "\t" << a.d2_status << "\t" << optional_number(a.d2) << "\t"
+      << optional_number(a.d2_low) << "\t" << optional_number(a.d2_high);
+    for (std::size_t k = 0; k < m; ++k) o << "\t" << at(a.E1, k);
+    for (std::size_t k = 0; k < m; ++k) o << "\t" << at(a.E2, k);
+    for (std::size_t k = 0; k < m; ++k)
+      o << "\t" << (k < a.d2_by_dimension.size() ? optional_number(a.d2_by_dimension[k]) : "-");
+    o << "\n";
+  }
+  for (const auto& row : r.samples) {
+    o << "sample\t" << static_cast<std::size_t>(row[0]);
+    for (std::size_t k = 1; k < row.size(); ++k) o << "\t" << number(row[k]);
+    o << "\n";
+  }
+  write_atomically(point_path(r.point), o.str());
+}
+
+std::optional<std::vector<double>> ResultStore::final_state(std::size_t point) const {
+  if (!finished(point)) return std::nullopt;
+  std::istringstream in(read_file(point_path(point)));
+  for (std::string line; std::getline(in, line);) {
+    const auto f = split_tabs(line);
+    if (f[0] != "final_state") continue;
+    std::vector<double> x;
+    for (std::size_t i = 1; i < f.size(); ++i) x.push_back(std::stod(f[i]));
+    return x;
+  }
+  return std::nullopt;
+}
+
+void ResultStore::assemble() const {
+  const Grid& grid = spec_.grid;
+  std::string axes_header;
+  for (const Axis& a : grid.axes()) axes_header += "\t" + a.key;
+  const std::string head = "# study sweep (docs/study.md)\n" + commented(header_);
+  std::string samples = head + "# point" + axes_header + "\trevolution\tt";
+  for (const auto& s : spec_.signals) samples += "\t" + s;
+  samples += "\n";
+  std::string points = head +
+                       "# point" + axes_header +
+                       "\tstatus\tsteps\trejected_steps\trhs_evaluations\tmax_penetration\tcontact_events"
+                       "\tenergy_balance_relative\tsamples\tmessage\n";
+  std::string analysis = head + "# '-': no value (the status column says why)\n# point" + axes_header +
+                         "\tstatus\tsamples\tinterval\tdelay_samples\tdelay_seconds\ttheiler\tcao_dimension"
+                         "\te2_deviation\td2_status\td2\td2_low\td2_high";
+  for (const char* name : {"E1_", "E2_", "D2_m"})
+    for (std::size_t k = 1; k <= spec_.analysis.max_dimension; ++k) {
+      analysis += '\t';
+      analysis += name;
+      analysis += std::to_string(k);
+    }
+  analysis += "\n";
+  std::string timing = "# wall seconds per point (the only output that differs between runs)\n# point\twall_seconds\n";
+  for (std::size_t p = 0; p < grid.size(); ++p) {
+    if (!finished(p)) throw StudyError("assemble", "point " + std::to_string(p), "is not finished");
+    std::istringstream in(read_file(point_path(p)));
+    std::string prefix = std::to_string(p);
+    for (double c : grid.coordinates(p)) {
+      prefix += '\t';
+      prefix += number(c);
+    }
+    std::map<std::string, std::vector<std::string>> fields;
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      auto f = split_tabs(line);
+      if (f[0] == "sample") {
+        samples += prefix + "\t" + join_from(f, 1) + "\n";
+      } else {
+        fields[f[0]] = f;
+      }
+    }
+    const auto& st = fields["status"];
+    const auto& cnt = fields["counters"];
+    if (st.size() < 2 || cnt.size() < 8) throw StudyError("point file", point_path(p).string(), "is damaged");
+    points += prefix + "\t" + st[1] + "\t" + join_from(cnt, 1) + "\t" + (st.size() > 2 ? st[2] : "") + "\n";
+    if (spec_.analyse && fields.count("analysis")) analysis += prefix + "\t" + join_from(fields["analysis"], 1) + "\n";
+    if (fields.count("wall_seconds")) timing += std::to_string(p) + "\t" + fields["wall_seconds"][1] + "\n";
+  }
+  write_atomically(dir_ / "samples.tsv", samples);
+  write_atomically(dir_ / "points.tsv", points);
+  if (spec_.analyse) write_atomically(dir_ / "analysis.tsv", analysis);
+  write_atomically(dir_ / "timing.tsv", timing);
+}
+
+}  // namespace study

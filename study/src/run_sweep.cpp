@@ -1,0 +1,81 @@
+#include "study/run_sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "study/error.hpp"
+
+namespace study {
+
+SweepProgress run_sweep(const SweepSpec& spec, const ResultStore& store, const SweepExecution& exec) {
+  if (exec.threads == 0) throw StudyError("--threads", "0", "at least one thread");
+  if (exec.ranks == 0 || exec.rank >= exec.ranks)
+    throw StudyError("rank", std::to_string(exec.rank), "must be below the number of ranks");
+  const Grid& grid = spec.grid;
+  const bool chains = spec.initial == InitialConditions::continuation;
+  const std::size_t unit_length = chains ? grid.chain_length() : 1;
+  const std::size_t units = grid.size() / unit_length;
+
+  // This rank's units that still have unfinished points.
+  std::vector<std::size_t> mine;
+  SweepProgress progress;
+  for (std::size_t u = exec.rank; u < units; u += exec.ranks) {
+    std::size_t unfinished = 0;
+    for (std::size_t k = 0; k < unit_length; ++k) unfinished += store.finished(u * unit_length + k) ? 0 : 1;
+    progress.skipped += unit_length - unfinished;
+    progress.to_do += unfinished;
+    if (unfinished) mine.push_back(u);
+  }
+
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;  // guards progress and the first error
+  std::exception_ptr error;
+  auto worker = [&] {
+    try {
+      for (std::size_t i = next++; i < mine.size(); i = next++) {
+        const std::size_t first = mine[i] * unit_length;
+        std::optional<mechanism::State> state;
+        for (std::size_t k = 0; k < unit_length; ++k) {
+          const std::size_t p = first + k;
+          if (store.finished(p)) {
+            // A resumed chain continues from the stored final state of its last finished point.
+            if (chains) {
+              const auto x = store.final_state(p);
+              if (x) state = Eigen::Map<const mechanism::State>(x->data(), static_cast<Eigen::Index>(x->size()));
+            }
+            continue;
+          }
+          const PointResult r = run_point(spec, p, state ? &*state : nullptr);
+          store.write(r);
+          if (chains) {
+            if (r.summary.status == mechanism::SimulationStatus::completed) {
+              state = r.summary.final_state;
+            } else {
+              state.reset();  // a failed point's state is no place to continue from
+            }
+          }
+          std::lock_guard<std::mutex> lock(mutex);
+          ++progress.done;
+          if (r.summary.status != mechanism::SimulationStatus::completed) ++progress.failed;
+          if (exec.progress) exec.progress(progress);
+        }
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!error) error = std::current_exception();
+      next = mine.size();  // stop the others after their current unit
+    }
+  };
+  const std::size_t n = std::min(exec.threads, std::max<std::size_t>(1, mine.size()));
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  return progress;
+}
+
+}  // namespace study

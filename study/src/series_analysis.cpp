@@ -1,0 +1,80 @@
+#include "study/series_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "chaos/autocorrelation.hpp"
+#include "chaos/cao.hpp"
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
+#include "chaos/mutual_information.hpp"
+
+namespace study {
+
+SeriesAnalysis analyse_series(std::span<const double> x, double interval, const AnalysisOptions& options) {
+  SeriesAnalysis r;
+  r.samples = x.size();
+  r.interval = interval;
+  if (x.size() < 4) {
+    r.status = "series too short: " + std::to_string(x.size()) + " samples";
+    return r;
+  }
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double range = *hi - *lo;
+  // A range at the level of rounding of the values is no signal to embed.
+  if (!(range > 1e-12 * std::max(std::abs(*lo), std::abs(*hi))) || range == 0.0) {
+    r.status = "constant series: no delay, embedding or dimension";
+    return r;
+  }
+  std::string stage = "mutual information";
+  try {
+    chaos::MutualInformationOptions mi;
+    mi.max_delay = std::min(options.max_delay, x.size() / 2);
+    mi.boxes = options.boxes;
+    r.delay = chaos::first_minimum(chaos::mutual_information(x, mi));
+    if (!r.delay) {
+      r.status = "no mutual-information minimum for delays 1.." + std::to_string(mi.max_delay);
+      return r;
+    }
+    stage = "autocorrelation";
+    const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
+    const auto decay = chaos::decorrelation_time(chaos::autocorrelation(x, max_lag));
+    r.theiler = std::max(*r.delay, decay ? static_cast<std::size_t>(std::ceil(*decay)) : max_lag);
+
+    stage = "Cao's method";
+    chaos::CaoOptions cao;
+    cao.delay = *r.delay;
+    cao.theiler = r.theiler;
+    cao.max_dimension = options.max_dimension;
+    const chaos::CaoResult c = chaos::cao(x, cao);
+    r.dimension = c.dimension;
+    r.E1 = c.E1;
+    r.E2 = c.E2;
+    r.embedding_dimension = c.embedding_dimension;
+    r.e2_deviation = c.max_E2_deviation;
+
+    stage = "correlation sums";
+    chaos::CorrelationSumOptions cs;
+    cs.delay = *r.delay;
+    cs.theiler = r.theiler;
+    cs.max_dimension = options.max_dimension;
+    cs.radii = chaos::log_radii(range / 1000.0, range / 4.0, options.radii);
+    const chaos::CorrelationDimensionResult d = chaos::correlation_dimension(chaos::correlation_sum(x, cs));
+    r.d2_status = chaos::to_string(d.status);
+    r.d2 = d.d2;
+    if (d.d2_interval) {
+      r.d2_low = d.d2_interval->low;
+      r.d2_high = d.d2_interval->high;
+    }
+    r.d2_by_dimension = d.d2_by_dimension;
+    r.status = "ok";
+  } catch (const std::invalid_argument& e) {
+    // The estimators refuse a series they cannot handle (too short for the embedding, ...): the
+    // point keeps what was found before and says where it stopped.
+    r.status = "stopped at " + stage + ": " + e.what();
+  }
+  return r;
+}
+
+}  // namespace study

@@ -1,0 +1,82 @@
+#include "study/sweep.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "mechanism/signals.hpp"
+#include "mechanism/slider_crank.hpp"
+#include "study/error.hpp"
+
+namespace study {
+
+const char* to_string(InitialConditions ic) noexcept {
+  return ic == InitialConditions::fresh ? "fresh" : "continuation";
+}
+
+mechanism::Scene point_scene(const SweepSpec& spec, std::size_t point) {
+  std::vector<std::string> overrides = spec.overrides;
+  for (const std::string& o : spec.grid.overrides(point)) overrides.push_back(o);
+  return mechanism::read_scene(spec.scene_text, overrides, spec.scene_source);
+}
+
+void SweepSpec::validate() const {
+  if (periods == 0) throw StudyError("--periods", "0", "a point runs at least one revolution");
+  if (keep == 0 || keep > periods)
+    throw StudyError("--keep", std::to_string(keep), "must be 1 .. --periods (" + std::to_string(periods) + ")");
+  if (analyse) {
+    if (analysis.periods == 0 || analysis.periods > periods)
+      throw StudyError("--analysis-periods", std::to_string(analysis.periods),
+                       "must be 1 .. --periods (" + std::to_string(periods) + ")");
+    if (!(analysis.interval > 0.0))
+      throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
+    if (analysis.max_dimension < 2)
+      throw StudyError("--max-dimension", std::to_string(analysis.max_dimension), "must be at least 2");
+  }
+  if (signals.empty()) throw StudyError("--signals", "(none)", "name at least one signal");
+  // Every point's scene must be valid (an axis may run into a refused value, e.g. clearance 0) and
+  // have the signals asked for (the table is the same for every point of a sweep over numbers).
+  for (std::size_t p = 0; p < grid.size(); ++p) {
+    const mechanism::Scene scene = point_scene(*this, p);
+    if (p > 0) continue;
+    const mechanism::SliderCrank system(scene);
+    const auto table = mechanism::signal_table(system);
+    for (const std::string& s : signals)
+      if (std::find(table.names.begin(), table.names.end(), s) == table.names.end()) {
+        std::string all;
+        for (const auto& n : table.names) all += " " + n;
+        throw StudyError("--signals", s, "is not a signal of this scene; it has:" + all);
+      }
+  }
+}
+
+std::string SweepSpec::describe() const {
+  std::ostringstream d;
+  d << "scene_source = " << scene_source << "\n";
+  for (const std::string& o : overrides) d << "set = " << o << "\n";
+  for (const Axis& a : grid.axes()) {
+    d << "axis = " << a.key << ":";
+    for (double v : a.values) d << " " << exact(v);
+    d << "\n";
+  }
+  d << "initial_conditions = " << to_string(initial) << "\n"
+    << "periods = " << periods << "\n"
+    << "keep = " << keep << "\n"
+    << "signals =";
+  for (const std::string& s : signals) d << " " << s;
+  d << "\n";
+  if (analyse) {
+    d << "analysis.periods = " << analysis.periods << "\n"
+      << "analysis.interval = " << exact(analysis.interval) << "\n"
+      << "analysis.max_delay = " << analysis.max_delay << "\n"
+      << "analysis.boxes = " << analysis.boxes << "\n"
+      << "analysis.max_dimension = " << analysis.max_dimension << "\n"
+      << "analysis.radii = " << analysis.radii << "\n";
+  } else {
+    d << "analysis = off\n";
+  }
+  d << "base scene (resolved, before the axis values):\n"
+    << mechanism::to_toml(mechanism::read_scene(scene_text, overrides, scene_source));
+  return d.str();
+}
+
+}  // namespace study

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# `study` as a user runs it: exit codes, messages naming the rule, the result directory's files,
+# resume after a kill, and (when built with MPI) two ranks writing the same files as one process.
+# Expected values come from the documented protocol (docs/study.md) and from the tool's own
+# single-process run.
+set -uo pipefail
+STUDY=${STUDY:?set STUDY to the study binary}
+MPI_ENABLED=${MPI_ENABLED:-0}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+expect_code() {  # expected_code description command...
+  local want=$1 what=$2; shift 2
+  "$@" >"$work/out" 2>"$work/err"; local got=$?
+  [[ $got == "$want" ]] || fail "$what: exit $got, expected $want ($(head -c 300 "$work/err"))"
+}
+expect_message() {  # pattern description
+  grep -q -- "$1" "$work/err" || fail "$2: message lacks '$1' ($(head -c 300 "$work/err"))"
+}
+fast=(--set 'joint.slider.friction.sigma1_velocity=1e-3' --set 'integrator.method="dopri5"' --set integrator.relative_tolerance=1e-5)
+
+# Bad requests: the rule named, exit 2 (usage) or 3 (refused sweep).
+expect_code 2 "no output directory" "$STUDY" sweep --axis joint.slider.clearance=1e-4:2e-4:2
+expect_code 3 "malformed axis" "$STUDY" sweep --axis joint.slider.clearance=1e-4:2e-4 -o "$work/x"
+expect_message "from:to:count" "malformed axis"
+expect_code 3 "keep above periods" "$STUDY" sweep --periods 5 --keep 6 -o "$work/x"
+expect_message "must be 1 .. --periods" "keep above periods"
+expect_code 3 "impossible clearance" "$STUDY" sweep --axis joint.slider.clearance=0,1e-4 -o "$work/x"
+expect_message "clearance" "impossible clearance"
+expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/x"
+expect_message "is not a signal" "unknown signal"
+expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
+expect_message "cannot be opened" "missing scene file"
+[[ ! -e "$work/x/points" ]] || fail "a refused sweep left a result directory"
+
+# A small sweep: four points, the files of docs/study.md, the kept revolutions.
+expect_code 0 "small sweep" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/a" -q --threads 2
+for f in spec.txt samples.tsv points.tsv timing.tsv points/000003.tsv; do [[ -s "$work/a/$f" ]] || fail "missing $f"; done
+rows=$(grep -vc '^#' "$work/a/samples.tsv")
+[[ $rows == 12 ]] || fail "samples.tsv has $rows rows, expected 4 points x 3 revolutions"
+revs=$(grep -v '^#' "$work/a/samples.tsv" | cut -f3 | sort -un | tr '\n' ' ')
+[[ $revs == "6 7 8 " ]] || fail "kept revolutions are '$revs', expected the last three of 8"
+[[ $(jq -r .computed "$work/out") == 4 ]] || fail "summary does not report 4 computed points"
+
+# The same sweep on one thread writes the same files.
+expect_code 0 "one thread" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/b" -q --threads 1
+cmp -s "$work/a/samples.tsv" "$work/b/samples.tsv" || fail "1 and 2 threads give different samples.tsv"
+
+# An existing directory is refused without --resume; a killed sweep (a point file missing, a
+# temporary file left behind) resumes, recomputes that point only and gives the same table.
+expect_code 3 "existing directory" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/b" -q
+expect_message "--resume" "existing directory"
+rm "$work/b/points/000002.tsv"; echo partial > "$work/b/points/000002.tsv.tmp.99999"
+expect_code 0 "resume" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/b" -q --resume
+[[ $(jq -r .computed "$work/out") == 1 && $(jq -r .resumed_from_disk "$work/out") == 3 ]] || fail "resume did not recompute exactly one point: $(cat "$work/out")"
+cmp -s "$work/a/samples.tsv" "$work/b/samples.tsv" || fail "a resumed sweep differs from an uninterrupted one"
+expect_code 3 "resume with another spec" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 9 --keep 3 -o "$work/b" -q --resume
+expect_message "first difference" "resume with another spec"
+
+# Analysis columns, and plots of each kind.
+expect_code 0 "analysis" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=2e-4,5e-4 --axis driver.speed_rpm=4000,5000 --periods 8 --keep 5 --analysis -o "$work/c" -q
+[[ $(grep -vc '^#' "$work/c/analysis.tsv") == 4 ]] || fail "analysis.tsv should have one row per point"
+grep -q 'delay_samples' "$work/c/analysis.tsv" || fail "analysis.tsv lacks its header"
+for fig in bifurcation density portrait d2 e2 d2map; do
+  expect_code 0 "plot $fig" "$STUDY" plot "$work/c" --figure "$fig" -o "$work/$fig.svg"
+  [[ -s "$work/$fig.svg" ]] || fail "plot $fig wrote nothing"
+done
+expect_code 3 "plot without analysis" "$STUDY" plot "$work/a" --figure d2 -o "$work/none.svg"
+expect_message "cannot be read" "plot without analysis"
+expect_code 3 "bad plot extension" "$STUDY" plot "$work/a" --figure bifurcation -o "$work/fig.pdf"
+
+# Two MPI ranks write the same files as one process.
+if [[ $MPI_ENABLED == 1 || $MPI_ENABLED == ON || $MPI_ENABLED == TRUE ]] && command -v mpirun >/dev/null; then
+  mpi=(mpirun -n 2 --oversubscribe)
+  [[ $(id -u) == 0 ]] && mpi+=(--allow-run-as-root)
+  expect_code 0 "two MPI ranks" "${mpi[@]}" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/m" -q --threads 1
+  [[ $(jq -r .ranks "$work/out") == 2 ]] || fail "mpirun -n 2 did not give two ranks: $(cat "$work/out")"
+  cmp -s "$work/a/samples.tsv" "$work/m/samples.tsv" || fail "two MPI ranks give a different samples.tsv"
+  cmp -s "$work/a/points.tsv" "$work/m/points.tsv" || fail "two MPI ranks give a different points.tsv"
+else
+  echo "note: built without MPI; the two-rank case is skipped"
+fi
+
+if (( failures )); then echo "$failures failure(s)"; exit 1; fi
+echo "all study command tests passed"
