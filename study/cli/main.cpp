@@ -1,9 +1,11 @@
 // The `study` command: the seed paper's parameter studies over the simulator, with the chaos
 // analysis of each point (docs/study.md).
 //   study sweep [scene.toml] [--set k=v]... [--axis key=from:to:count]... -o DIR [--resume] ...
+//   study pipeline [scene.toml] [--set k=v]... [--plot FILE]   (seed Fig. 7 for one scene)
 //   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
 // Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output,
-// 5 the sweep finished but some points' simulations did not complete (their status says why).
+// 5 the sweep finished but some points' simulations did not complete (their status says why), or
+// the pipeline's simulation did not complete.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -20,6 +22,7 @@
 
 #include "mechanism/error.hpp"
 #include "mpi_session.hpp"
+#include "pipeline.hpp"
 #include "plots.hpp"
 #include "study/error.hpp"
 #include "study/run_sweep.hpp"
@@ -92,6 +95,10 @@ int main(int argc, char** argv) {
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
   sweep->add_flag("-q,--quiet", quiet, "no progress bar");
 
+  study::cli::PipelineRequest pipeline;
+  auto* pipeline_cmd = app.add_subcommand("pipeline", "the correlation-dimension pipeline of one scene, with the six panels of the seed's Fig. 7");
+  study::cli::add_pipeline_options(*pipeline_cmd, pipeline);
+
   study::cli::PlotRequest plot;
   auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
   study::cli::add_plot_options(*plot_cmd, plot);
@@ -103,6 +110,10 @@ int main(int argc, char** argv) {
     return e.get_exit_code() == 0 ? ok : usage_error;
   }
   try {
+    if (pipeline_cmd->parsed()) {
+      if (!root) return ok;
+      return study::cli::run_pipeline(pipeline) ? ok : points_failed;
+    }
     if (plot_cmd->parsed()) {
       if (root) study::cli::draw(plot);
       return ok;

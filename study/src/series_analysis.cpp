@@ -32,7 +32,9 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
     chaos::MutualInformationOptions mi;
     mi.max_delay = std::min(options.max_delay, x.size() / 2);
     mi.boxes = options.boxes;
-    r.delay = chaos::first_minimum(chaos::mutual_information(x, mi));
+    const chaos::MutualInformationResult information = chaos::mutual_information(x, mi);
+    r.mutual_information = information.information;
+    r.delay = options.given_delay ? std::optional<std::size_t>(options.given_delay) : chaos::first_minimum(information);
     if (!r.delay) {
       r.status = "no mutual-information minimum for delays 1.." + std::to_string(mi.max_delay);
       return r;
@@ -60,7 +62,10 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
     cs.theiler = r.theiler;
     cs.max_dimension = options.max_dimension;
     cs.radii = chaos::log_radii(range / 1000.0, range / 4.0, options.radii);
-    const chaos::CorrelationDimensionResult d = chaos::correlation_dimension(chaos::correlation_sum(x, cs));
+    const chaos::CorrelationSumResult sums = chaos::correlation_sum(x, cs);
+    r.radius = sums.radius;
+    r.correlation_sum = sums.correlation_sum;
+    const chaos::CorrelationDimensionResult d = chaos::correlation_dimension(sums);
     r.d2_status = chaos::to_string(d.status);
     r.d2 = d.d2;
     if (d.d2_interval) {

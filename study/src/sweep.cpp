@@ -70,7 +70,8 @@ std::string SweepSpec::describe() const {
       << "analysis.max_delay = " << analysis.max_delay << "\n"
       << "analysis.boxes = " << analysis.boxes << "\n"
       << "analysis.max_dimension = " << analysis.max_dimension << "\n"
-      << "analysis.radii = " << analysis.radii << "\n";
+      << "analysis.radii = " << analysis.radii << "\n"
+      << "analysis.given_delay = " << analysis.given_delay << "\n";
   } else {
     d << "analysis = off\n";
   }

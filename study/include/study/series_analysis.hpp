@@ -24,6 +24,7 @@ struct AnalysisOptions {
   std::size_t boxes = 16;         // mutual-information histogram bins per axis
   std::size_t max_dimension = 12; // Cao and D2 up to this m (the seed's Fig. 7d: 1..12)
   std::size_t radii = 40;         // D2 radii, log-spaced from range/1000 to range/4
+  std::size_t given_delay = 0;    // > 0: use this delay instead of the MI minimum (the seed's 18)
 };
 
 struct SeriesAnalysis {
@@ -39,6 +40,11 @@ struct SeriesAnalysis {
   std::string d2_status = "not computed";  // saturated | not_saturated | no_scaling_region
   std::optional<double> d2, d2_low, d2_high;
   std::vector<std::optional<double>> d2_by_dimension;  // per m = 1..max_dimension
+  // The curves behind the numbers (seed Fig. 7 b, d, e): I(delay) for delay 0..max_delay in nats,
+  // and C(eps, m) on the radii for m = 1..max_dimension.
+  std::vector<double> mutual_information;
+  std::vector<double> radius;
+  std::vector<std::vector<double>> correlation_sum;
 };
 
 SeriesAnalysis analyse_series(std::span<const double> series, double interval, const AnalysisOptions& options);

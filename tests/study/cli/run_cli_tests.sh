@@ -70,6 +70,17 @@ expect_code 3 "plot without analysis" "$STUDY" plot "$work/a" --figure d2 -o "$w
 expect_message "cannot be read" "plot without analysis"
 expect_code 3 "bad plot extension" "$STUDY" plot "$work/a" --figure bifurcation -o "$work/fig.pdf"
 
+# The one-scene pipeline (seed Fig. 7): a JSON summary with every stage, and the six panels.
+expect_code 3 "pipeline analysing more than it runs" "$STUDY" pipeline --periods 4 --analysis-periods 5
+expect_message "must be 1 .. --periods" "pipeline analysing more than it runs"
+expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --plot "$work/fig7.svg" --series "$work/series.tsv"
+[[ $(jq -r .simulation.status "$work/out") == completed ]] || fail "pipeline simulation status: $(head -c 300 "$work/out")"
+[[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
+[[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
+[[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18
+[[ $(jq -r .analysis.delay_samples "$work/out") == 18 ]] || fail "--delay 18 not used"
+
 # Two MPI ranks write the same files as one process.
 if [[ $MPI_ENABLED == 1 || $MPI_ENABLED == ON || $MPI_ENABLED == TRUE ]] && command -v mpirun >/dev/null; then
   mpi=(mpirun -n 2 --oversubscribe)
