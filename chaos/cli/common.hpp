@@ -121,6 +121,8 @@ void register_analyze(CLI::App& app);
 void register_validate(CLI::App& app);
 void register_lyapunov(CLI::App& app);
 void register_spectrum(CLI::App& app);
+void register_section(CLI::App& app);
+void register_density(CLI::App& app);
 void register_surrogates(CLI::App& app);
 void register_nonlinearity(CLI::App& app);
 

@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   register_spectrum(app);
   register_surrogates(app);
   register_nonlinearity(app);
+  register_section(app);
+  register_density(app);
   register_validate(app);
   try {
     app.parse(argc, argv);

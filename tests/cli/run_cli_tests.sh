@@ -170,8 +170,67 @@ for key in delay min_dimension max_dimension theiler norm N; do
   grep -q "# $key = " <<<"$header" && pass || fail "cao header lacks $key"
 done
 
+# chaos section: a cubic x(t) = (t - 1.3)(t - 2.6)(t - 4.1) with y = t^2, sampled every 0.1 by awk.
+# The section's cubic through four rows reproduces a cubic exactly, so the crossings are the roots
+# (analytic): up at 1.3 and 4.1, down at 2.6, with y = t^2 there and return times their differences.
+awk 'BEGIN { for (i = 0; i <= 60; i++) { t = i * 0.1; printf "%.12g\t%.12g\t%.12g\n", t, (t - 1.3) * (t - 2.6) * (t - 4.1), t * t } }' > "$work/cubic.dat"
+got=$("$CHAOS" section "$work/cubic.dat" --time-column 1 --hyperplane 2 --level 0 --direction both | grep -v '^#')
+ok=$(awk -F'\t' 'BEGIN { split("1.3 2.6 4.1", r, " "); split("nan 1.3 1.5", d, " "); bad = 0 }
+  { n++; e = (($1 - r[n]) ^ 2 < 1e-18) && ($2 == 0) && (($3 - r[n] * r[n]) ^ 2 < 1e-18);
+    if (n == 1) e = e && $4 == "nan"; else e = e && (($4 - d[n]) ^ 2 < 1e-18);
+    if (!e) bad = 1 }
+  END { print (n == 3 && !bad) ? "yes" : "no" }' <<<"$got")
+[[ $ok == yes ]] && pass || fail "section --hyperplane on the cubic gave: $got"
+t=$("$CHAOS" section "$work/cubic.dat" --time-column 1 --hyperplane 2 --level 0 --direction down --json | jq -c '[(.time | length), (.time[0] - 2.6 | fabs < 1e-9), .return_time[0]]')
+[[ $t == '[1,true,null]' ]] && pass || fail "section --direction down gave $t, expected the one root 2.6"
+# Stroboscopic: every 20th row from row 5 (0-based) is awk's rows 6, 26, 46; the time is row x dt.
+if cmp -s <("$CHAOS" section "$work/cubic.dat" -c 2,3 --stroboscopic 20 --phase 5 | grep -v '^#' | cut -f2-) \
+          <(awk -F'\t' 'NR % 20 == 6 { printf "%s\t%s\n", $2, $3 }' "$work/cubic.dat"); then pass
+else fail "section --stroboscopic 20 --phase 5 is not every 20th row from row 5"; fi
+t=$("$CHAOS" section "$work/cubic.dat" -c 2 --stroboscopic 20 --phase 5 --dt 0.5 | grep -v '^#' | cut -f1 | paste -sd' ')
+[[ $t == "2.5 12.5 22.5" ]] && pass || fail "section stroboscopic times with --dt 0.5: $t"
+expect_json_keys section "$work/cubic.dat" --hyperplane 2 --level 0 -- time points return_time
+expect_error 3 "period must be >= 1" -- section "$work/cubic.dat" --stroboscopic 0
+expect_error 3 "phase \(3\) must be below the period \(3" -- section "$work/cubic.dat" --stroboscopic 3 --phase 3
+expect_error 3 "choose one section" -- section "$work/cubic.dat"
+expect_error 2 "" -- section "$work/cubic.dat" --stroboscopic 3 --hyperplane 2 --level 0
+expect_error 3 "hyperplane column 2 is not among the columns" -- section "$work/cubic.dat" -c 1,3 --hyperplane 2 --level 0
+expect_error 3 "needs --level" -- section "$work/cubic.dat" --hyperplane 2
+expect_error 3 "direction must be up, down or both" -- section "$work/cubic.dat" --hyperplane 2 --level 0 --direction sideways
+printf '0 1\n1 -1\n1 1\n2 -1\n' > "$work/stuck_time.dat"
+expect_error 3 "times must increase" -- section "$work/stuck_time.dat" --time-column 1 --hyperplane 2 --level 0
+expect_error 3 "word.dat:3: column 1: 'three' is not a number" -- section "$work/word.dat" --stroboscopic 2
+
+# chaos density: rows (parameter, value) -> (parameter, bin centre, density). With 4 fixed bins on
+# [0, 1] the density is count / (n x 0.25), counted here by awk from the same rows.
+printf '1 0.1\n1 0.2\n1 0.3\n1 0.9\n2 0.55\n# a comment\n2 0.6\n2 0.05\n' > "$work/pv.dat"
+expected=$(awk '!/^#/ && NF { n[$1]++; c[$1, int($2 / 0.25)]++ }
+  END { for (p = 1; p <= 2; p++) for (b = 0; b < 4; b++) printf "%d %.6f %.6f\n", p, 0.125 + 0.25 * b, c[p, b] / (n[p] * 0.25) }' "$work/pv.dat")
+got=$("$CHAOS" density "$work/pv.dat" --bins 4 --low 0 --high 1 | grep -v '^#' | awk 'NF { printf "%d %.6f %.6f\n", $1, $2, $3 }')
+[[ $got == "$expected" ]] && pass || fail "density --bins 4 gave
+$got
+expected
+$expected"
+"$CHAOS" density "$work/pv.dat" | grep -q '^# bin_rule = freedman-diaconis' && pass || fail "density: the default rule is not named in the header"
+"$CHAOS" density "$work/pv.dat" --bins 4 | grep -q '^# bin_rule = fixed: 4 bins' && pass || fail "density --bins: the rule is not named"
+# The kernel estimate integrates to 1 per parameter value (sum of density x bin width).
+s=$("$CHAOS" density "$work/pv.dat" --kde --bins 50 --json | jq -c '[(.edges[1] - .edges[0]) as $w | .density[] | (add * $w - 1 | fabs < 1e-9)]')
+[[ $s == '[true,true]' ]] && pass || fail "density --kde does not integrate to 1: $s"
+expect_json_keys density "$work/pv.dat" --kde -- parameter bin_centre edges density bandwidth kernel_mass
+expect_error 3 "bins must be >= 1" -- density "$work/pv.dat" --bins 0
+expect_error 3 "both --low and --high" -- density "$work/pv.dat" --low 0
+expect_error 3 "range \[1, 0\] must be finite with low < high" -- density "$work/pv.dat" --low 1 --high 0
+expect_error 3 "none of the 4 samples at parameter 1 lies in the range" -- density "$work/pv.dat" --low 5 --high 6
+expect_error 3 "bandwidth .* must be finite and > 0" -- density "$work/pv.dat" --kde --bandwidth 0
+expect_error 3 "add --kde" -- density "$work/pv.dat" --bandwidth 0.1
+printf '1 0.1\n1 0.2\n2 nan\n' > "$work/pv_nan.dat"
+expect_error 3 "pv_nan.dat:3: column 2: 'nan' is not finite" -- density "$work/pv_nan.dat"
+"$CHAOS" density "$work/pv.dat" --plot "$work/density.png" > /dev/null
+head -c 8 "$work/density.png" | od -An -c | grep -q "P   N   G" && pass || fail "density --plot made no PNG"
+expect_error 3 "png or .svg" -- density "$work/pv.dat" --plot "$work/density.gif"
+
 # Every command has --help.
-for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity validate; do
+for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 

@@ -12,6 +12,9 @@
 //   distinct_values       how many branches a section has: values are sorted and split where two
 //                         neighbours differ by more than a tolerance (period-k orbits give k);
 //   probability_density   a histogram normalised to unit integral over [low, high].
+//
+// The same sections for samples that arrive one at a time (a simulation's observer) are in
+// section_stream.hpp; densities over a parameter sweep (bifurcation diagrams) in bifurcation.hpp.
 
 #include <cstddef>
 #include <span>
