@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "checks.hpp"
+#include "law_kernels.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
@@ -58,21 +59,8 @@ double normal_force(const ContactLawParameters& p, double stiffness, double pene
   if (!(std::isfinite(stiffness) && stiffness >= 0.0))
     throw InvalidParameter("stiffness", text(stiffness), "must be finite and >= 0");
   if (penetration <= 0.0) return 0.0;  // NaN goes on and comes out as NaN
-  const double chi = hysteresis_factor(p.law, p.restitution);
-  // n = 1.5 (metal on metal) is by far the common case: d sqrt(d) is exact and pow is the
-  // costliest call in the simulator's right-hand side.
-  const double elastic =
-      stiffness * (p.exponent == 1.5 ? penetration * std::sqrt(penetration) : std::pow(penetration, p.exponent));
-  // Hertz or e = 1 has no rate term; a zero (or underflowed) elastic part makes the product 0 and
-  // must not meet an overflowed rate ratio (0 * inf).
-  if (chi == 0.0 || elastic == 0.0) return elastic;
-  // fmax would drop a NaN impact velocity; keep it so that it reaches the result.
-  const double latched = std::isnan(impact_velocity)
-                             ? impact_velocity
-                             : std::fmax(std::fabs(impact_velocity), p.velocity_floor);
-  const double force = elastic * (1.0 + chi * penetration_rate / latched);
-  // Contacts only push: the dissipative term may exceed the elastic one near release.
-  return force < 0.0 ? 0.0 : force;
+  return detail::normal_force_kernel(hysteresis_factor(p.law, p.restitution), p.exponent, p.velocity_floor, stiffness,
+                                     penetration, penetration_rate, impact_velocity);
 }
 
 std::string_view to_string(NormalContactLaw law) noexcept {

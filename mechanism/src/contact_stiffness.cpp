@@ -5,6 +5,7 @@
 #include <string>
 
 #include "checks.hpp"
+#include "law_kernels.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
@@ -35,12 +36,7 @@ double journal_bearing_stiffness(double sigma_bearing, double sigma_journal, dou
 
 double contact_length(double slider_length, double penetration_a, double penetration_b) {
   require_positive("slider_length", slider_length);
-  const double a = penetration_a, b = penetration_b;
-  if (std::isnan(a) || std::isnan(b)) return std::nan("");
-  if (a > 0.0 && b > 0.0) return slider_length;
-  if (a <= 0.0 && b <= 0.0) return 0.0;
-  // Exactly one is > 0, so |a - b| >= max(a, b) > 0 (also after rounding): the ratio is in (0, 1].
-  return slider_length * (std::fmax(a, b) / std::fabs(a - b));
+  return detail::contact_length_kernel(slider_length, penetration_a, penetration_b);
 }
 
 double slider_face_stiffness(double sigma_slider, double sigma_guide, double slider_length,
@@ -52,12 +48,7 @@ double slider_face_stiffness(double sigma_slider, double sigma_guide, double sli
   if (!(contact_length >= 0.0 && contact_length <= slider_length))
     throw InvalidParameter("contact_length", text(contact_length),
                            "must be in [0, slider_length = " + text(slider_length) + "]");
-  if (contact_length == 0.0) return 0.0;
-  const double area = contact_length * slider_width;  // S = L_c W (our reading of the seed)
-  // 11.15 (L_s/L_c + 15.72)^-1 written as 11.15 L_c / (L_s + 15.72 L_c): no overflow of L_s/L_c
-  // for a tiny L_c.
-  const double shape = 11.15 * contact_length / (slider_length + 15.72 * contact_length) + 0.2854;
-  return std::sqrt(area) / (sigma_slider + sigma_guide) / shape;
+  return detail::slider_face_stiffness_kernel(sigma_slider + sigma_guide, slider_length, slider_width, contact_length);
 }
 
 }  // namespace mechanism

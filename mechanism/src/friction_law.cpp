@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "checks.hpp"
+#include "law_kernels.hpp"
 #include "mechanism/error.hpp"
 
 namespace mechanism {
@@ -125,9 +126,7 @@ bool FrictionLawParameters::has_state() const { return is_lugre(law); }
 
 double stribeck_coefficient(const FrictionLawParameters& p, double sliding_velocity) {
   check_stribeck(p);
-  const double ratio = std::fabs(sliding_velocity / p.stribeck_velocity);
-  return p.kinetic_coefficient +
-         (p.static_coefficient - p.kinetic_coefficient) * std::exp(-(p.stribeck_exponent == 2.0 ? ratio * ratio : std::pow(ratio, p.stribeck_exponent)));
+  return detail::stribeck_kernel(p, sliding_velocity);
 }
 
 double ambrosio_correction(const FrictionLawParameters& p, double sliding_velocity) {
@@ -186,12 +185,6 @@ std::optional<FrictionLaw> parse_friction_law(std::string_view name) noexcept {
   for (const auto& [value, known] : kNames)
     if (known == name) return value;
   return std::nullopt;
-}
-
-double FrictionLawParameters::bristle_damping(double sliding_velocity) const {
-  if (sigma1_velocity <= 0.0) return sigma1;
-  const double r = sliding_velocity / sigma1_velocity;
-  return sigma1 * std::exp(-r * r);
 }
 
 }  // namespace mechanism

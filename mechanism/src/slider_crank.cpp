@@ -3,7 +3,8 @@
 #include <cmath>
 #include <limits>
 
-
+#include "law_kernels.hpp"
+#include "mechanism/contact_law.hpp"
 #include "mechanism/contact_stiffness.hpp"
 #include "mechanism/kinematic_jet.hpp"
 
@@ -11,9 +12,10 @@ namespace mechanism {
 
 namespace {
 
+template <int C>
 struct BodyJets {
-  JetPoint centre;
-  Jet angle;
+  BasicJetPoint<C> centre;
+  BasicJet<C> angle;
   double mass;
   double inertia;
 };
@@ -86,13 +88,22 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     journals_.push_back({&j, w, k});
     journal_names_.emplace_back(joint_names[w]);
   }
-  // LuGre sites carry their bristle deflection in the state, after the work accumulators.
+  // LuGre sites carry their bristle deflection in the state, after the work accumulators. The
+  // laws are checked here once; the right-hand side then calls their unchecked kernels.
   for (Site& site : sites_) {
-    const FrictionLawParameters& f =
-        site.kind == SiteKind::journal ? journals_[site.joint].joint->friction : s.slider_guide.friction;
+    const bool journal = site.kind == SiteKind::journal;
+    const FrictionLawParameters& f = journal ? journals_[site.joint].joint->friction : s.slider_guide.friction;
+    const ContactLawParameters& c = journal ? journals_[site.joint].joint->contact : s.slider_guide.contact;
+    f.validate();
+    c.validate();
+    site.chi = hysteresis_factor(c.law, c.restitution);
     if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
   }
   memory_.assign(sites_.size(), ContactMemory{});
+  slider_sites_ = slider_clearance_ ? (scene_.slider_guide.model == SliderContactModel::face ? 2 : 4) : 0;
+  seed_topology_ = slider_clearance_ && idx_crank_pivot_ < 0 && idx_conrod_pin_ < 0 && idx_slider_x_ < 0;
+  // Jets need n coordinate columns and the crank's; the narrowest width that fits is cheapest.
+  jet_columns_ = n_ + 1 <= 3 ? 3 : (n_ + 1 <= 5 ? 5 : max_jet_columns);
 }
 
 namespace {
@@ -105,11 +116,12 @@ namespace {
 struct FrictionResult {
   double force = 0.0, z_rate = 0.0;
 };
-FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z) {
+inline FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z) {
   if (!(normal > 0.0)) return {};
-  if (!p.has_state()) return {friction(p, normal, v, 0.0, 0.0).force, 0.0};
+  if (p.law != FrictionLaw::lugre_absolute && p.law != FrictionLaw::lugre_normalised)
+    return {friction(p, normal, v, 0.0, 0.0).force, 0.0};
   const bool absolute = p.law == FrictionLaw::lugre_absolute;
-  const double g = stribeck_coefficient(p, v) * (absolute ? normal : 1.0);
+  const double g = detail::stribeck_kernel(p, v) * (absolute ? normal : 1.0);
   const double k = p.sigma0 * std::abs(v) / g;
   double z_rate;
   if (k * floor <= 1.0) {
@@ -153,34 +165,241 @@ State SliderCrank::initial_state() const {
   return x;
 }
 
-void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
+// Everything one evaluation produces, in fixed-size storage: evaluate() copies it into an
+// Evaluation, rhs() into dxdt.
+struct SliderCrank::Result {
+  std::array<double, max_jet_columns> q_ddot;
+  std::array<SiteEvaluation, max_sites> sites;
+  std::array<std::array<double, 2>, 3> eccentricity;
+  std::array<double, 3> slider_pose, slider_velocity, slider_acceleration;
+  double crank_angle, conrod_angle, conrod_rate;
+  double driving_torque, drive_power, contact_power, kinetic_energy, potential_energy;
+  SliderConfiguration configuration;
+};
+
+namespace {
+
+// sin a and cos a. The slider's angle stays within a few milliradians (its corners are at most
+// the clearance plus a penetration away from the guide): there the Taylor series through a^9 and
+// a^10 are accurate to an ulp (the first omitted terms, a^11/11! and a^12/12!, are under 3e-19
+// relative for |a| <= 0.1; measured against long double over 1e7 angles: at most 1 ulp, and equal
+// to libm's in 99.9 %) and cost a fraction of libm's sincos; larger angles take libm.
+inline void small_angle_sincos(double a, double& s, double& c) {
+  if (!(std::fabs(a) <= 0.1)) {
+    s = std::sin(a);
+    c = std::cos(a);
+    return;
+  }
+  const double a2 = a * a;
+  s = a + a * a2 * (-1.0 / 6 + a2 * (1.0 / 120 + a2 * (-1.0 / 5040 + a2 * (1.0 / 362880))));
+  c = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24 + a2 * (-1.0 / 720 + a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800)))));
+}
+
+// Flores et al. 2008's configurations from the four corner penetrations (TL, TR, BL, BR).
+SliderConfiguration configuration_of(const double pen[4]) {
+  int count = 0;
+  for (int c = 0; c < 4; ++c) count += pen[c] > 0.0;
+  const bool tl = pen[0] > 0, tr = pen[1] > 0, bl = pen[2] > 0, br = pen[3] > 0;
+  if (count == 0) return SliderConfiguration::free_flight;
+  if (count == 1) return SliderConfiguration::one_corner;
+  if (count == 2 && ((tl && tr) || (bl && br))) return SliderConfiguration::flat;
+  if (count == 2 && ((tl && br) || (tr && bl))) return SliderConfiguration::jammed;
+  return SliderConfiguration::other;
+}
+
+}  // namespace
+
+void SliderCrank::slider_contacts(const double pose[3], const double rate[3], const State& x, Result& out,
+                                  double load[3], double corner_pen[4]) const {
   const Scene& s = scene_;
-  const int n = n_;
+  const TranslationalJoint& tj = s.slider_guide;
+  const double px = pose[0], py = pose[1];
+  // The slider angle's sine and cosine, shared by the four corners and the contact points.
+  double ca, sa;
+  small_angle_sincos(pose[2], sa, ca);
+  // Slider corners: body-frame offsets TL, TR, BL, BR.
+  const double hl = 0.5 * s.slider.length, hh = 0.5 * s.slider.height;
+  const double corner_sx[4] = {-hl, hl, -hl, hl};
+  const double corner_sy[4] = {hh, hh, -hh, -hh};
+  double corner_rate[4];
+  const double guide_half = hh + tj.clearance;
+  for (int c = 0; c < 4; ++c) {
+    const double ry = sa * corner_sx[c] + ca * corner_sy[c];
+    const double rx = ca * corner_sx[c] - sa * corner_sy[c];
+    const double vy = rate[1] + rate[2] * rx;
+    const double y = py + ry;
+    corner_pen[c] = c < 2 ? y - guide_half : -guide_half - y;
+    corner_rate[c] = c < 2 ? vy : -vy;
+  }
+
+  for (std::size_t i = 0; i < slider_sites_; ++i) {
+    const Site& site = sites_[i];
+    SiteEvaluation& se = out.sites[i];
+    se = SiteEvaluation{};
+    const ContactMemory& mem = memory_[i];
+    const bool upper = site.kind == SiteKind::slider_face_upper ||
+                       (site.kind == SiteKind::slider_corner && site.corner < 2);
+    double wx_body, depth, depth_rate;
+    if (site.kind == SiteKind::slider_corner) {
+      depth = corner_pen[site.corner];
+      depth_rate = corner_rate[site.corner];
+      wx_body = corner_sx[site.corner];
+      se.stiffness = 0.5 * slider_flat_stiffness_;
+      se.contact_length = 0.0;
+    } else {
+      const int a = upper ? 0 : 2, b = a + 1;  // left and right corner of this face
+      const double da = corner_pen[a], db = corner_pen[b];
+      const int deep = da >= db ? a : b;
+      depth = corner_pen[deep];
+      depth_rate = corner_rate[deep];
+      if (depth > 0.0) {
+        se.contact_length = detail::contact_length_kernel(s.slider.length, da, db);
+        se.stiffness = tj.stiffness_model == SliderStiffness::contact_length
+                           ? detail::slider_face_stiffness_kernel(slider_compliance_ + guide_compliance_,
+                                                                  s.slider.length, s.slider.width, se.contact_length)
+                           : slider_flat_stiffness_;
+        // Centroid of the penetrated region along the face (a triangle, or a trapezoid when
+        // both corners penetrate): the seed's point W.
+        if (da > 0.0 && db > 0.0) {
+          wx_body = -hl + s.slider.length * (da + 2.0 * db) / (3.0 * (da + db));
+        } else if (da > 0.0) {
+          wx_body = -hl + se.contact_length / 3.0;
+        } else {
+          wx_body = hl - se.contact_length / 3.0;
+        }
+      } else {
+        wx_body = 0.0;
+      }
+    }
+    se.penetration = depth;
+    se.penetration_rate = depth_rate;
+    if (depth <= 0.0) continue;
+    const double wy_body = upper ? hh : -hh;
+    const double rx = ca * wx_body - sa * wy_body, ry = sa * wx_body + ca * wy_body;
+    const double wxw = px + rx, wyw = py + ry;
+    // Velocity of the slider's material point at W.
+    const double vx = rate[0] - rate[2] * (wyw - py);
+    const double impact = mem.touching ? mem.impact_velocity : depth_rate;
+    se.normal_force = detail::normal_force_kernel(site.chi, tj.contact.exponent, tj.contact.velocity_floor,
+                                                  se.stiffness, depth, depth_rate, impact);
+    se.sliding_velocity = vx;
+    se.deflection = site.state >= 0 ? x[site.state] : 0.0;
+    const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);
+    se.friction_force = f.force;
+    se.deflection_rate = f.z_rate;
+    // Force (gx, gy) at W on the slider, and its moment about the slider's centre.
+    const double gx = f.force, gy = upper ? -se.normal_force : se.normal_force;
+    load[0] += gx;
+    load[1] += gy;
+    load[2] += (wxw - px) * gy - (wyw - py) * gx;
+  }
+}
+
+// The seed's topology (only the slider-guide joint has clearance; q = (theta3, theta4), seed Eq. 27)
+// in closed form: the same equations as the jets of compute<C, N>, whose Jacobians here are
+//   crank centre  a2 (cos th2, sin th2)                      (no q column),
+//   conrod centre l2 (cos th2, sin th2) + a3 (cos th3, sin th3)  (theta3 column a3 (-sin th3, cos th3)),
+//   slider centre the same with l3,                          slider angle theta4,
+// so M = diag(m3 a3^2 + I3 + m4 l3^2, I4) and each q_ddot is one division.
+void SliderCrank::compute_seed(double t, const State& x, Result& out) const {
+  const Scene& s = scene_;
+  const double w2 = omega_, th2 = s.driver.initial_angle + w2 * t;
+  const double th3 = x[0], th4 = x[1], w3 = x[2], w4 = x[3];
+  const double c2 = std::cos(th2), s2 = std::sin(th2), c3 = std::cos(th3), s3 = std::sin(th3);
+  const double l2 = s.crank.length, a2 = s.crank.mass_centre * l2;
+  const double l3 = s.conrod.length, a3 = s.conrod.mass_centre * l3;
+  const double m2 = s.crank.mass, m3 = s.conrod.mass, m4 = s.slider.mass;
+  const double i2 = s.crank.inertia, i3 = s.conrod.inertia, i4 = s.slider.inertia;
+  const double g = s.gravity;
+
+  // Crank tip: position, velocity and acceleration (the crank turns at constant speed).
+  const double tip_x = l2 * c2, tip_y = l2 * s2;
+  const double tip_vx = -tip_y * w2, tip_vy = tip_x * w2;
+  const double tip_ax = -tip_x * w2 * w2, tip_ay = -tip_y * w2 * w2;
+  // Conrod centre and slider centre: value, velocity, and bias acceleration (q_ddot = 0).
+  const double w3sq = w3 * w3;
+  const double conrod_y = tip_y + a3 * s3;
+  const double conrod_vx = tip_vx - a3 * s3 * w3, conrod_vy = tip_vy + a3 * c3 * w3;
+  const double conrod_bx = tip_ax - a3 * c3 * w3sq, conrod_by = tip_ay - a3 * s3 * w3sq;
+  const double slider_x = tip_x + l3 * c3, slider_y = tip_y + l3 * s3;
+  const double slider_vx = tip_vx - l3 * s3 * w3, slider_vy = tip_vy + l3 * c3 * w3;
+  const double slider_bx = tip_ax - l3 * c3 * w3sq, slider_by = tip_ay - l3 * s3 * w3sq;
+
+  double load[3] = {0.0, 0.0, 0.0};  // contact force and moment on the slider
+  double corner_pen[4];
+  const double pose[3] = {slider_x, slider_y, th4};
+  const double rate[3] = {slider_vx, slider_vy, w4};
+  slider_contacts(pose, rate, x, out, load, corner_pen);
+
+  // Generalised forces J^T (F - m b) and the diagonal mass matrix.
+  const double fx3 = -m3 * conrod_bx, fy3 = -m3 * g - m3 * conrod_by;
+  const double fx4 = load[0] - m4 * slider_bx, fy4 = load[1] - m4 * g - m4 * slider_by;
+  const double q0 = a3 * (c3 * fy3 - s3 * fx3) + l3 * (c3 * fy4 - s3 * fx4);
+  const double q1 = load[2];
+  const double qdd0 = q0 / (m3 * a3 * a3 + i3 + m4 * l3 * l3), qdd1 = q1 / i4;
+  out.q_ddot[0] = qdd0;
+  out.q_ddot[1] = qdd1;
+
+  // Accelerations, then the driving torque J_theta2^T (m a - F) with J_theta2 = (-y, x, 1) of the
+  // crank-fixed point each body hangs from.
+  const double conrod_ax = conrod_bx - a3 * s3 * qdd0, conrod_ay = conrod_by + a3 * c3 * qdd0;
+  const double slider_ax = slider_bx - l3 * s3 * qdd0, slider_ay = slider_by + l3 * c3 * qdd0;
+  const double crank_x = a2 * c2, crank_y = a2 * s2;
+  const double crank_ax = -crank_x * w2 * w2, crank_ay = -crank_y * w2 * w2;
+  const double torque = -crank_y * m2 * crank_ax + crank_x * (m2 * crank_ay + m2 * g) +
+                        -tip_y * (m3 * conrod_ax + m4 * slider_ax - load[0]) +
+                        tip_x * (m3 * conrod_ay + m3 * g + m4 * slider_ay - load[1] + m4 * g);
+
+  out.crank_angle = th2;
+  out.conrod_angle = th3;
+  out.conrod_rate = w3;
+  out.driving_torque = torque;
+  out.drive_power = torque * w2;
+  out.contact_power = load[0] * slider_vx + load[1] * slider_vy + load[2] * w4;
+  const double crank_vx = -crank_y * w2, crank_vy = crank_x * w2;
+  out.kinetic_energy = 0.5 * m2 * (crank_vx * crank_vx + crank_vy * crank_vy) + 0.5 * i2 * w2 * w2 +
+                       0.5 * m3 * (conrod_vx * conrod_vx + conrod_vy * conrod_vy) + 0.5 * i3 * w3 * w3 +
+                       0.5 * m4 * (slider_vx * slider_vx + slider_vy * slider_vy) + 0.5 * i4 * w4 * w4;
+  out.potential_energy = g * (m2 * crank_y + m3 * conrod_y + m4 * slider_y);
+  out.slider_pose = {slider_x, slider_y, th4};
+  out.slider_velocity = {slider_vx, slider_vy, w4};
+  out.slider_acceleration = {slider_ax, slider_ay, qdd1};
+  out.configuration = configuration_of(corner_pen);
+}
+
+template <int C, int N>
+void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
+  using J = BasicJet<C>;
+  using P = BasicJetPoint<C>;
+  using R = BasicJetRotation<C>;
+  const Scene& s = scene_;
+  // N >= 0: the coordinate count known at compile time, so the loops over it unroll.
+  const int n = N >= 0 ? N : n_;
   // Column n of every jet is the driven crank angle.
-  auto coordinate = [&](int i) { return Jet::coordinate(i, x[i], x[n + i]); };
-  const Jet zero = Jet::constant(0.0);
+  auto coordinate = [&](int i) { return J::coordinate(i, x[i], x[n + i]); };
+  const J zero = J::constant(0.0);
+  // p + R (ox, 0): the same arithmetic as offset(p, r, ox, 0) without the zero term (x - 0 * s = x).
+  auto along = [](const P& p, const R& r, double ox) { return P{p.x + ox * r.c, p.y + ox * r.s}; };
 
-  // Poses as jets, from the ground up.
-  Jet th2 = Jet::coordinate(n, s.driver.initial_angle + omega_ * t, omega_);
-  const JetRotation crank_rotation(th2);
-  const JetPoint pivot = idx_crank_pivot_ >= 0 ? JetPoint{coordinate(idx_crank_pivot_), coordinate(idx_crank_pivot_ + 1)}
-                                               : JetPoint{zero, zero};
-  const JetPoint crank_tip = offset(pivot, crank_rotation, s.crank.length, 0.0);
-  const JetPoint crank_centre = offset(pivot, crank_rotation, s.crank.mass_centre * s.crank.length, 0.0);
-  const JetPoint conrod_pin =
-      idx_conrod_pin_ >= 0 ? JetPoint{coordinate(idx_conrod_pin_), coordinate(idx_conrod_pin_ + 1)} : crank_tip;
+  // Poses as jets, from the ground up; one sincos per angle.
+  const J th2 = J::coordinate(n, s.driver.initial_angle + omega_ * t, omega_);
+  const R crank_rotation(th2);
+  const P pivot = idx_crank_pivot_ >= 0 ? P{coordinate(idx_crank_pivot_), coordinate(idx_crank_pivot_ + 1)} : P{zero, zero};
+  const P crank_tip = along(pivot, crank_rotation, s.crank.length);
+  const P crank_centre = along(pivot, crank_rotation, s.crank.mass_centre * s.crank.length);
+  const P conrod_pin = idx_conrod_pin_ >= 0 ? P{coordinate(idx_conrod_pin_), coordinate(idx_conrod_pin_ + 1)} : crank_tip;
   // Dependent conrod angle: the slider pin stays on the guide line y = 0.
-  const Jet th3 = idx_conrod_angle_ >= 0 ? coordinate(idx_conrod_angle_) : asin((-1.0 / s.conrod.length) * conrod_pin.y);
-  const JetRotation conrod_rotation(th3);
-  const JetPoint conrod_end = offset(conrod_pin, conrod_rotation, s.conrod.length, 0.0);
-  const JetPoint conrod_centre = offset(conrod_pin, conrod_rotation, s.conrod.mass_centre * s.conrod.length, 0.0);
-  JetPoint slider = conrod_end;
+  const J th3 = idx_conrod_angle_ >= 0 ? coordinate(idx_conrod_angle_) : asin((-1.0 / s.conrod.length) * conrod_pin.y);
+  const R conrod_rotation(th3);
+  const P conrod_end = along(conrod_pin, conrod_rotation, s.conrod.length);
+  const P conrod_centre = along(conrod_pin, conrod_rotation, s.conrod.mass_centre * s.conrod.length);
+  P slider = conrod_end;
   if (idx_slider_x_ >= 0) slider = {coordinate(idx_slider_x_), idx_slider_y_ >= 0 ? coordinate(idx_slider_y_) : zero};
-  const Jet th4 = idx_slider_angle_ >= 0 ? coordinate(idx_slider_angle_) : zero;
+  const J th4 = idx_slider_angle_ >= 0 ? coordinate(idx_slider_angle_) : zero;
 
-  const BodyJets bodies[3] = {{crank_centre, th2, s.crank.mass, s.crank.inertia},
-                              {conrod_centre, th3, s.conrod.mass, s.conrod.inertia},
-                              {slider, th4, s.slider.mass, s.slider.inertia}};
+  const BodyJets<C> bodies[3] = {{crank_centre, th2, s.crank.mass, s.crank.inertia},
+                                 {conrod_centre, th3, s.conrod.mass, s.conrod.inertia},
+                                 {slider, th4, s.slider.mass, s.slider.inertia}};
   Load loads[3];
 
   // Velocity of the material point at (px, py) of body b.
@@ -189,7 +408,7 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
       vx = vy = 0.0;  // the ground
       return;
     }
-    const BodyJets& body = bodies[b];
+    const BodyJets<C>& body = bodies[b];
     const double w = body.angle.rate;
     vx = body.centre.x.rate - w * (py - body.centre.y.value);
     vy = body.centre.y.rate + w * (px - body.centre.x.value);
@@ -199,177 +418,117 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
     loads[b].add(px, py, bodies[b].centre.x.value, bodies[b].centre.y.value, gx, gy);
   };
 
-  out.sites.resize(sites_.size());
-
-  // Slider corners: body-frame offsets TL, TR, BL, BR.
-  const double hl = 0.5 * s.slider.length, hh = 0.5 * s.slider.height;
-  const double corner_sx[4] = {-hl, hl, -hl, hl};
-  const double corner_sy[4] = {hh, hh, -hh, -hh};
-  double corner_pen[4] = {0, 0, 0, 0}, corner_rate[4] = {0, 0, 0, 0};
-  const double px = slider.x.value, py = slider.y.value, pa = th4.value;
-  const double ca = std::cos(pa), sa = std::sin(pa);
-  const double guide_half = hh + s.slider_guide.clearance;
+  double corner_pen[4] = {0, 0, 0, 0};
   if (slider_clearance_) {
-    for (int c = 0; c < 4; ++c) {
-      const double ry = sa * corner_sx[c] + ca * corner_sy[c];
-      const double rx = ca * corner_sx[c] - sa * corner_sy[c];
-      const double vy = slider.y.rate + th4.rate * rx;
-      const double y = py + ry;
-      corner_pen[c] = c < 2 ? y - guide_half : -guide_half - y;
-      corner_rate[c] = c < 2 ? vy : -vy;
-    }
+    const double pose[3] = {slider.x.value, slider.y.value, th4.value};
+    const double rate[3] = {slider.x.rate, slider.y.rate, th4.rate};
+    double load[3] = {0.0, 0.0, 0.0};
+    slider_contacts(pose, rate, x, out, load, corner_pen);
+    loads[2].fx += load[0];
+    loads[2].fy += load[1];
+    loads[2].moment += load[2];
   }
 
-  for (std::size_t i = 0; i < sites_.size(); ++i) {
+  for (std::size_t i = slider_sites_; i < sites_.size(); ++i) {
     const Site& site = sites_[i];
     SiteEvaluation& se = out.sites[i];
     se = SiteEvaluation{};
     const ContactMemory& mem = memory_[i];
-    if (site.kind == SiteKind::slider_face_upper || site.kind == SiteKind::slider_face_lower ||
-        site.kind == SiteKind::slider_corner) {
-      const TranslationalJoint& tj = s.slider_guide;
-      const bool upper = site.kind == SiteKind::slider_face_upper ||
-                         (site.kind == SiteKind::slider_corner && site.corner < 2);
-      double wx_body, depth, depth_rate;
-      if (site.kind == SiteKind::slider_corner) {
-        depth = corner_pen[site.corner];
-        depth_rate = corner_rate[site.corner];
-        wx_body = corner_sx[site.corner];
-        se.stiffness = 0.5 * slider_flat_stiffness_;
-        se.contact_length = 0.0;
-      } else {
-        const int a = upper ? 0 : 2, b = a + 1;  // left and right corner of this face
-        const double da = corner_pen[a], db = corner_pen[b];
-        const int deep = da >= db ? a : b;
-        depth = corner_pen[deep];
-        depth_rate = corner_rate[deep];
-        if (depth > 0.0) {
-          se.contact_length = contact_length(s.slider.length, da, db);
-          se.stiffness = tj.stiffness_model == SliderStiffness::contact_length
-                             ? slider_face_stiffness(slider_compliance_, guide_compliance_, s.slider.length,
-                                                     s.slider.width, se.contact_length)
-                             : slider_flat_stiffness_;
-          // Centroid of the penetrated region along the face (a triangle, or a trapezoid when
-          // both corners penetrate): the seed's point W.
-          if (da > 0.0 && db > 0.0) {
-            wx_body = -hl + s.slider.length * (da + 2.0 * db) / (3.0 * (da + db));
-          } else if (da > 0.0) {
-            wx_body = -hl + se.contact_length / 3.0;
-          } else {
-            wx_body = hl - se.contact_length / 3.0;
-          }
-        } else {
-          wx_body = 0.0;
-        }
-      }
-      se.penetration = depth;
-      se.penetration_rate = depth_rate;
-      if (depth <= 0.0) continue;
-      const double wy_body = upper ? hh : -hh;
-      const double rx = ca * wx_body - sa * wy_body, ry = sa * wx_body + ca * wy_body;
-      const double wxw = px + rx, wyw = py + ry;
-      double vx, vy;
-      point_velocity(2, wxw, wyw, vx, vy);
-      const double impact = mem.touching ? mem.impact_velocity : depth_rate;
-      se.normal_force = normal_force(tj.contact, se.stiffness, depth, depth_rate, impact);
-      se.sliding_velocity = vx;
-      se.deflection = site.state >= 0 ? x[site.state] : 0.0;
-      const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);
-      se.friction_force = f.force;
-      se.deflection_rate = f.z_rate;
-      apply(2, wxw, wyw, f.force, upper ? -se.normal_force : se.normal_force);
-    } else {
-      const Journal& jr = journals_[site.joint];
-      // Journal centre and bearing centre, and the bodies they belong to (-1: ground).
-      JetPoint jc, bc;
-      int jb, bb;
-      switch (jr.which) {
-        case 0: jc = pivot; jb = 0; bc = {zero, zero}; bb = -1; break;
-        case 1: jc = crank_tip; jb = 0; bc = conrod_pin; bb = 1; break;
-        default: jc = slider; jb = 2; bc = conrod_end; bb = 1; break;
-      }
-      const double ex = jc.x.value - bc.x.value, ey = jc.y.value - bc.y.value;
-      const double e = std::hypot(ex, ey);
-      se.penetration = e - jr.joint->clearance;
-      if (!(se.penetration > 0.0)) {
-        se.penetration_rate = e > 0.0 ? ((jc.x.rate - bc.x.rate) * ex + (jc.y.rate - bc.y.rate) * ey) / e : 0.0;
-        continue;
-      }
-      const double nx = ex / e, ny = ey / e;
-      se.penetration_rate = (jc.x.rate - bc.x.rate) * nx + (jc.y.rate - bc.y.rate) * ny;
-      // The contact point on the bearing surface.
-      const double qx = bc.x.value + jr.joint->bearing_radius * nx, qy = bc.y.value + jr.joint->bearing_radius * ny;
-      double vjx, vjy, vbx, vby;
-      point_velocity(jb, qx, qy, vjx, vjy);
-      point_velocity(bb, qx, qy, vbx, vby);
-      const double tx = -ny, ty = nx;
-      const double vt = (vjx - vbx) * tx + (vjy - vby) * ty;
-      se.stiffness = jr.stiffness;
-      const double impact = mem.touching ? mem.impact_velocity : se.penetration_rate;
-      se.normal_force = normal_force(jr.joint->contact, jr.stiffness, se.penetration, se.penetration_rate, impact);
-      se.sliding_velocity = vt;
-      se.deflection = site.state >= 0 ? x[site.state] : 0.0;
-      const FrictionResult f =
-          site_friction(jr.joint->friction, jr.joint->bristle_time_floor, se.normal_force, vt, se.deflection);
-      se.friction_force = f.force;
-      se.deflection_rate = f.z_rate;
-      // On the journal: pushed back toward the bearing centre, friction along the tangent.
-      const double gx = -se.normal_force * nx + f.force * tx, gy = -se.normal_force * ny + f.force * ty;
-      apply(jb, qx, qy, gx, gy);
-      apply(bb, qx, qy, -gx, -gy);
+    const Journal& jr = journals_[site.joint];
+    // Journal centre and bearing centre, and the bodies they belong to (-1: ground).
+    const P* jc;
+    const P* bc;
+    const P ground{zero, zero};
+    int jb, bb;
+    switch (jr.which) {
+      case 0: jc = &pivot; jb = 0; bc = &ground; bb = -1; break;
+      case 1: jc = &crank_tip; jb = 0; bc = &conrod_pin; bb = 1; break;
+      default: jc = &slider; jb = 2; bc = &conrod_end; bb = 1; break;
     }
+    const double ex = jc->x.value - bc->x.value, ey = jc->y.value - bc->y.value;
+    const double e = std::hypot(ex, ey);
+    se.penetration = e - jr.joint->clearance;
+    if (!(se.penetration > 0.0)) {
+      se.penetration_rate = e > 0.0 ? ((jc->x.rate - bc->x.rate) * ex + (jc->y.rate - bc->y.rate) * ey) / e : 0.0;
+      continue;
+    }
+    const double nx = ex / e, ny = ey / e;
+    se.penetration_rate = (jc->x.rate - bc->x.rate) * nx + (jc->y.rate - bc->y.rate) * ny;
+    // The contact point on the bearing surface.
+    const double qx = bc->x.value + jr.joint->bearing_radius * nx, qy = bc->y.value + jr.joint->bearing_radius * ny;
+    double vjx, vjy, vbx, vby;
+    point_velocity(jb, qx, qy, vjx, vjy);
+    point_velocity(bb, qx, qy, vbx, vby);
+    const double tx = -ny, ty = nx;
+    const double vt = (vjx - vbx) * tx + (vjy - vby) * ty;
+    se.stiffness = jr.stiffness;
+    const double impact = mem.touching ? mem.impact_velocity : se.penetration_rate;
+    se.normal_force = detail::normal_force_kernel(site.chi, jr.joint->contact.exponent, jr.joint->contact.velocity_floor,
+                                                  jr.stiffness, se.penetration, se.penetration_rate, impact);
+    se.sliding_velocity = vt;
+    se.deflection = site.state >= 0 ? x[site.state] : 0.0;
+    const FrictionResult f =
+        site_friction(jr.joint->friction, jr.joint->bristle_time_floor, se.normal_force, vt, se.deflection);
+    se.friction_force = f.force;
+    se.deflection_rate = f.z_rate;
+    // On the journal: pushed back toward the bearing centre, friction along the tangent.
+    const double gx = -se.normal_force * nx + f.force * tx, gy = -se.normal_force * ny + f.force * ty;
+    apply(jb, qx, qy, gx, gy);
+    apply(bb, qx, qy, -gx, -gy);
   }
 
   // Equations of motion: M q_ddot = sum over bodies of J^T (F - m b), over the n free columns.
-  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_jet_columns, max_jet_columns>;
-  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_jet_columns, 1>;
-  Matrix mass = Matrix::Zero(n, n);
-  Vector force = Vector::Zero(n);
+  double mass[max_jet_columns][max_jet_columns];
+  double force[max_jet_columns];
+  for (int i = 0; i < n; ++i) {
+    force[i] = 0.0;
+    for (int j = 0; j <= i; ++j) mass[i][j] = 0.0;
+  }
   const double g = s.gravity;
   for (int b = 0; b < 3; ++b) {
-    const BodyJets& body = bodies[b];
-    const JetRow& jx = body.centre.x.grad;
-    const JetRow& jy = body.centre.y.grad;
-    const JetRow& ja = body.angle.grad;
+    const BodyJets<C>& body = bodies[b];
+    const auto& jx = body.centre.x.grad;
+    const auto& jy = body.centre.y.grad;
+    const auto& ja = body.angle.grad;
     const double fx = loads[b].fx - body.mass * body.centre.x.bias;
     const double fy = loads[b].fy - body.mass * g - body.mass * body.centre.y.bias;
     const double fa = loads[b].moment - body.inertia * body.angle.bias;
     for (int i = 0; i < n; ++i) {
       force[i] += fx * jx[i] + fy * jy[i] + fa * ja[i];
       for (int j = 0; j <= i; ++j) {
-        mass(i, j) += body.mass * (jx[i] * jx[j] + jy[i] * jy[j]) + body.inertia * ja[i] * ja[j];
+        mass[i][j] += body.mass * (jx[i] * jx[j] + jy[i] * jy[j]) + body.inertia * ja[i] * ja[j];
       }
     }
   }
   // Cholesky in place (M is symmetric positive definite: every coordinate moves some mass).
   // Written out because Eigen's general routine costs more than the whole force model at n = 2.
-  Vector qdd = force;
+  double* qdd = out.q_ddot.data();
+  for (int i = 0; i < n; ++i) qdd[i] = force[i];
   for (int j = 0; j < n; ++j) {
-    double d = mass(j, j);
-    for (int k = 0; k < j; ++k) d -= mass(j, k) * mass(j, k);
+    double d = mass[j][j];
+    for (int k = 0; k < j; ++k) d -= mass[j][k] * mass[j][k];
     d = std::sqrt(d);
-    mass(j, j) = d;
+    mass[j][j] = d;
     for (int i = j + 1; i < n; ++i) {
-      double v = mass(i, j);
-      for (int k = 0; k < j; ++k) v -= mass(i, k) * mass(j, k);
-      mass(i, j) = v / d;
+      double v = mass[i][j];
+      for (int k = 0; k < j; ++k) v -= mass[i][k] * mass[j][k];
+      mass[i][j] = v / d;
     }
   }
   for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) qdd[i] -= mass(i, k) * qdd[k];
-    qdd[i] /= mass(i, i);
+    for (int k = 0; k < i; ++k) qdd[i] -= mass[i][k] * qdd[k];
+    qdd[i] /= mass[i][i];
   }
   for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) qdd[i] -= mass(k, i) * qdd[k];
-    qdd[i] /= mass(i, i);
+    for (int k = i + 1; k < n; ++k) qdd[i] -= mass[k][i] * qdd[k];
+    qdd[i] /= mass[i][i];
   }
-  out.q_ddot.assign(qdd.data(), qdd.data() + n);
-  JetRow qdd_row = JetRow::Zero();
+  BasicJetRow<C> qdd_row = BasicJetRow<C>::Zero();
   for (int i = 0; i < n; ++i) qdd_row[i] = qdd[i];
 
   double torque = 0.0, contact_power = 0.0, kinetic = 0.0, potential = 0.0;
   for (int b = 0; b < 3; ++b) {
-    const BodyJets& body = bodies[b];
+    const BodyJets<C>& body = bodies[b];
     const double ax = body.centre.x.grad.dot(qdd_row) + body.centre.x.bias;
     const double ay = body.centre.y.grad.dot(qdd_row) + body.centre.y.bias;
     const double aa = body.angle.grad.dot(qdd_row) + body.angle.bias;
@@ -396,47 +555,77 @@ void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
   out.kinetic_energy = kinetic;
   out.potential_energy = potential;
 
-  if (slider_clearance_) {
-    int count = 0;
-    for (double p : corner_pen) count += p > 0.0;
-    const bool tl = corner_pen[0] > 0, tr = corner_pen[1] > 0, bl = corner_pen[2] > 0, br = corner_pen[3] > 0;
-    if (count == 0) {
-      out.configuration = SliderConfiguration::free_flight;
-    } else if (count == 1) {
-      out.configuration = SliderConfiguration::one_corner;
-    } else if (count == 2 && ((tl && tr) || (bl && br))) {
-      out.configuration = SliderConfiguration::flat;
-    } else if (count == 2 && ((tl && br) || (tr && bl))) {
-      out.configuration = SliderConfiguration::jammed;
-    } else {
-      out.configuration = SliderConfiguration::other;
-    }
-  }
-  out.eccentricity.resize(journals_.size());
+  out.configuration = slider_clearance_ ? configuration_of(corner_pen) : SliderConfiguration::free_flight;
   for (std::size_t j = 0; j < journals_.size(); ++j) {
-    JetPoint jc, bc;
     switch (journals_[j].which) {
-      case 0: jc = pivot; bc = {zero, zero}; break;
-      case 1: jc = crank_tip; bc = conrod_pin; break;
-      default: jc = slider; bc = conrod_end; break;
+      case 0: out.eccentricity[j] = {pivot.x.value, pivot.y.value}; break;
+      case 1: out.eccentricity[j] = {crank_tip.x.value - conrod_pin.x.value, crank_tip.y.value - conrod_pin.y.value}; break;
+      default: out.eccentricity[j] = {slider.x.value - conrod_end.x.value, slider.y.value - conrod_end.y.value}; break;
     }
-    out.eccentricity[j] = {jc.x.value - bc.x.value, jc.y.value - bc.y.value};
   }
 }
 
+void SliderCrank::compute(double t, const State& x, Result& r, bool jets_only) const {
+  if (seed_topology_ && !jets_only) {
+    compute_seed(t, x, r);
+    return;
+  }
+  if (n_ == 2) {
+    compute_jets<3, 2>(t, x, r);
+    return;
+  }
+  switch (jet_columns_) {
+    case 3: compute_jets<3, -1>(t, x, r); break;
+    case 5: compute_jets<5, -1>(t, x, r); break;
+    default: compute_jets<max_jet_columns, -1>(t, x, r); break;
+  }
+}
+
+namespace {
+void copy_result(const auto& r, int n, std::size_t sites, std::size_t journals, Evaluation& out) {
+  out.q_ddot.assign(r.q_ddot.begin(), r.q_ddot.begin() + n);
+  out.crank_angle = r.crank_angle;
+  out.slider_pose = r.slider_pose;
+  out.slider_velocity = r.slider_velocity;
+  out.slider_acceleration = r.slider_acceleration;
+  out.conrod_angle = r.conrod_angle;
+  out.conrod_rate = r.conrod_rate;
+  out.driving_torque = r.driving_torque;
+  out.drive_power = r.drive_power;
+  out.contact_power = r.contact_power;
+  out.kinetic_energy = r.kinetic_energy;
+  out.potential_energy = r.potential_energy;
+  out.sites.assign(r.sites.begin(), r.sites.begin() + static_cast<std::ptrdiff_t>(sites));
+  out.configuration = r.configuration;
+  out.eccentricity.assign(r.eccentricity.begin(), r.eccentricity.begin() + static_cast<std::ptrdiff_t>(journals));
+}
+}  // namespace
+
+void SliderCrank::evaluate(double t, const State& x, Evaluation& out) const {
+  Result r;
+  compute(t, x, r);
+  copy_result(r, n_, sites_.size(), journals_.size(), out);
+}
+
+void SliderCrank::evaluate_with_jets(double t, const State& x, Evaluation& out) const {
+  Result r;
+  compute(t, x, r, true);
+  copy_result(r, n_, sites_.size(), journals_.size(), out);
+}
+
 void SliderCrank::rhs(double t, const State& x, State& dxdt) const {
-  thread_local Evaluation ev;  // reused: the right-hand side must not allocate per call
-  evaluate(t, x, ev);
+  Result r;  // on the stack: no allocation, nothing shared between threads
+  compute(t, x, r);
   const int n = n_;
-  dxdt.resize(state_size());
+  dxdt.resize(state_size());  // a no-op at the right size (the steppers pass it sized)
   for (int i = 0; i < n; ++i) {
     dxdt[i] = x[n + i];
-    dxdt[n + i] = ev.q_ddot[i];
+    dxdt[n + i] = r.q_ddot[i];
   }
-  dxdt[2 * n] = ev.drive_power;
-  dxdt[2 * n + 1] = ev.contact_power;
+  dxdt[2 * n] = r.drive_power;
+  dxdt[2 * n + 1] = r.contact_power;
   for (std::size_t i = 0; i < sites_.size(); ++i) {
-    if (sites_[i].state >= 0) dxdt[sites_[i].state] = ev.sites[i].deflection_rate;
+    if (sites_[i].state >= 0) dxdt[sites_[i].state] = r.sites[i].deflection_rate;
   }
 }
 

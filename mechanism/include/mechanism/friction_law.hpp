@@ -42,6 +42,7 @@
 // normal_force, sliding_velocity or z_start propagates to the result. A negative normal force
 // ("normal_force") or a negative or non-finite elapsed ("elapsed") throws.
 
+#include <cmath>
 #include <optional>
 #include <string_view>
 
@@ -58,7 +59,13 @@ struct FrictionLawParameters {
   // LuGre: sigma1 fades with sliding speed as sigma1 exp(-(v / v_d)^2) (Canudas de Wit 2003's remedy
   // for the large sigma1 dz/dt transients at high speed); 0 keeps sigma1 constant, as the seed prints it.
   double sigma1_velocity = 0.0;
-  double bristle_damping(double sliding_velocity) const;  // the sigma1 in effect at that speed
+  // The sigma1 in effect at that speed (inline: it is on the simulator's hot path).
+  double bristle_damping(double sliding_velocity) const {
+    if (sigma1_velocity <= 0.0) return sigma1;
+    const double r = sliding_velocity / sigma1_velocity;
+    const double a = r * r;
+    return a > 746.0 ? 0.0 : sigma1 * std::exp(-a);  // exp(-a) rounds to 0 beyond 746: skip libm's underflow path
+  }
   // Checks the fields the chosen law uses (an unused field is not checked):
   //   coulomb, ambrosio: kinetic_coefficient finite >= 0; ambrosio: 0 < ambrosio_v0 < ambrosio_v1;
   //   LuGre: static_coefficient, kinetic_coefficient, stribeck_velocity, stribeck_exponent, sigma0

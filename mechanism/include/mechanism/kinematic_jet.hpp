@@ -21,43 +21,58 @@
 namespace mechanism {
 
 // At most 8 free coordinates (crank pivot 2, conrod end 2, conrod angle, slider pin 2, slider
-// angle) plus the driven crank angle. The row has that fixed size whatever the scene uses (unused
-// columns stay zero): fixed-size arithmetic is unrolled and vectorised, and was about twice as fast
-// as a dynamic row of the same capacity in the seed scene's right-hand side.
+// angle) plus the driven crank angle. A jet's row has a fixed size (unused columns stay zero):
+// fixed-size arithmetic is unrolled and vectorised, and was about twice as fast as a dynamic row of
+// the same capacity. The simulator instantiates the width its scene needs (3 columns for the seed
+// scene's two coordinates plus the crank: the jets then cost a third of the full width);
+// Jet is the full width.
 inline constexpr int max_jet_columns = 9;
-using JetRow = Eigen::Matrix<double, 1, max_jet_columns>;
+template <int N>
+using BasicJetRow = Eigen::Matrix<double, 1, N>;
+using JetRow = BasicJetRow<max_jet_columns>;
 
-struct Jet {
+template <int N>
+struct BasicJet {
   double value = 0.0;
   double rate = 0.0;
   double bias = 0.0;
-  JetRow grad;
+  BasicJetRow<N> grad;
 
   // A constant (zero gradient).
-  static Jet constant(double value) {
-    Jet j;
+  static BasicJet constant(double value) {
+    BasicJet j;
     j.value = value;
     j.grad.setZero();
     return j;
   }
   // The coordinate in column `index` with its current value and rate.
-  static Jet coordinate(int index, double value, double rate) {
-    Jet j = constant(value);
+  static BasicJet coordinate(int index, double value, double rate) {
+    BasicJet j = constant(value);
     j.rate = rate;
     j.grad(index) = 1.0;
     return j;
   }
 };
+using Jet = BasicJet<max_jet_columns>;
 
-inline Jet operator+(const Jet& a, const Jet& b) {
+template <int N>
+inline BasicJet<N> operator+(const BasicJet<N>& a, const BasicJet<N>& b) {
   return {a.value + b.value, a.rate + b.rate, a.bias + b.bias, a.grad + b.grad};
 }
-inline Jet operator-(const Jet& a, const Jet& b) {
+template <int N>
+inline BasicJet<N> operator-(const BasicJet<N>& a, const BasicJet<N>& b) {
   return {a.value - b.value, a.rate - b.rate, a.bias - b.bias, a.grad - b.grad};
 }
-inline Jet operator-(const Jet& a) { return {-a.value, -a.rate, -a.bias, -a.grad}; }
-inline Jet operator*(double s, const Jet& a) { return {s * a.value, s * a.rate, s * a.bias, s * a.grad}; }
-inline Jet operator*(const Jet& a, const Jet& b) {
+template <int N>
+inline BasicJet<N> operator-(const BasicJet<N>& a) {
+  return {-a.value, -a.rate, -a.bias, -a.grad};
+}
+template <int N>
+inline BasicJet<N> operator*(double s, const BasicJet<N>& a) {
+  return {s * a.value, s * a.rate, s * a.bias, s * a.grad};
+}
+template <int N>
+inline BasicJet<N> operator*(const BasicJet<N>& a, const BasicJet<N>& b) {
   // (ab)'' = a'' b + 2 a' b' + a b''; only the q_ddot-free parts go into the bias.
   return {a.value * b.value, a.rate * b.value + a.value * b.rate,
           a.bias * b.value + 2.0 * a.rate * b.rate + a.value * b.bias,
@@ -65,49 +80,65 @@ inline Jet operator*(const Jet& a, const Jet& b) {
 }
 
 // f(a) for a scalar function with derivatives d1 = f'(a), d2 = f''(a).
-inline Jet chain(const Jet& a, double f, double d1, double d2) {
+template <int N>
+inline BasicJet<N> chain(const BasicJet<N>& a, double f, double d1, double d2) {
   return {f, d1 * a.rate, d1 * a.bias + d2 * a.rate * a.rate, d1 * a.grad};
 }
-inline Jet sin(const Jet& a) {
+template <int N>
+inline BasicJet<N> sin(const BasicJet<N>& a) {
   const double s = std::sin(a.value), c = std::cos(a.value);
   return chain(a, s, c, -s);
 }
-inline Jet cos(const Jet& a) {
+template <int N>
+inline BasicJet<N> cos(const BasicJet<N>& a) {
   const double s = std::sin(a.value), c = std::cos(a.value);
   return chain(a, c, -s, -c);
 }
 // asin on (-1, 1); the caller guarantees |a| < 1 (a conrod shorter than the crank offset is
 // refused when the scene is read).
-inline Jet asin(const Jet& a) {
+template <int N>
+inline BasicJet<N> asin(const BasicJet<N>& a) {
   const double r = 1.0 - a.value * a.value;
   const double d1 = 1.0 / std::sqrt(r);
   return chain(a, std::asin(a.value), d1, a.value * d1 / r);
 }
 
 // A point of the plane as two jets.
-struct JetPoint {
-  Jet x, y;
+template <int N>
+struct BasicJetPoint {
+  BasicJet<N> x, y;
 };
-inline JetPoint operator+(const JetPoint& a, const JetPoint& b) { return {a.x + b.x, a.y + b.y}; }
-inline JetPoint operator-(const JetPoint& a, const JetPoint& b) { return {a.x - b.x, a.y - b.y}; }
+using JetPoint = BasicJetPoint<max_jet_columns>;
+template <int N>
+inline BasicJetPoint<N> operator+(const BasicJetPoint<N>& a, const BasicJetPoint<N>& b) {
+  return {a.x + b.x, a.y + b.y};
+}
+template <int N>
+inline BasicJetPoint<N> operator-(const BasicJetPoint<N>& a, const BasicJetPoint<N>& b) {
+  return {a.x - b.x, a.y - b.y};
+}
 
-// A body's orientation: the cosine and sine of its angle, computed once per angle.
-struct JetRotation {
-  Jet c, s;
-  explicit JetRotation(const Jet& angle) {
+// A body's orientation: the cosine and sine of its angle, computed once per angle (one sincos).
+template <int N>
+struct BasicJetRotation {
+  BasicJet<N> c, s;
+  explicit BasicJetRotation(const BasicJet<N>& angle) {
     const double sn = std::sin(angle.value), cs = std::cos(angle.value);
     c = chain(angle, cs, -sn, -cs);
     s = chain(angle, sn, cs, -sn);
   }
 };
+using JetRotation = BasicJetRotation<max_jet_columns>;
 
 // p + R (ox, oy): a point fixed in a body whose reference point is p and whose orientation is R,
 // at body-frame offset (ox, oy).
-inline JetPoint offset(const JetPoint& p, const JetRotation& r, double ox, double oy) {
+template <int N>
+inline BasicJetPoint<N> offset(const BasicJetPoint<N>& p, const BasicJetRotation<N>& r, double ox, double oy) {
   return {p.x + ox * r.c - oy * r.s, p.y + ox * r.s + oy * r.c};
 }
-inline JetPoint offset(const JetPoint& p, const Jet& angle, double ox, double oy) {
-  return offset(p, JetRotation(angle), ox, oy);
+template <int N>
+inline BasicJetPoint<N> offset(const BasicJetPoint<N>& p, const BasicJet<N>& angle, double ox, double oy) {
+  return offset(p, BasicJetRotation<N>(angle), ox, oy);
 }
 
 }  // namespace mechanism

@@ -22,7 +22,9 @@
 // relaxation rate is capped by the joint's bristle_time_floor, and it is reset to zero when the
 // contact opens). The equations of motion are the
 // principle of virtual power over the three moving bodies, with Jacobians and bias accelerations
-// from kinematic jets (kinematic_jet.hpp).
+// from kinematic jets (kinematic_jet.hpp); for the seed's topology the same equations are written
+// out in closed form (a diagonal mass matrix), which is what the right-hand side's speed needs.
+// Evaluations use no shared mutable state: SliderCrank objects may run in parallel, one per thread.
 //
 // Discrete memory (per contact site) changes only between integrator steps, in commit(): during
 // a step's stages every site sees the memory of the step's start, so rejected or repeated stages
@@ -112,6 +114,9 @@ class SliderCrank {
 
   // Full evaluation at (t, x) with the current memory.
   void evaluate(double t, const State& x, Evaluation& out) const;
+  // The same through the kinematic jets whatever the topology: evaluate() and rhs() use a closed
+  // form for the seed's topology (clearance only in the slider-guide joint), tested against this.
+  void evaluate_with_jets(double t, const State& x, Evaluation& out) const;
 
   // After an accepted step ending at state x, given the evaluation there made with the step's
   // memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
@@ -129,7 +134,26 @@ class SliderCrank {
     int joint = -1;     // for journals: index into the revolute joints modelled
     int corner = -1;    // for slider corners: 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right
     int state = -1;     // index of the bristle deflection in the state (LuGre), else -1
+    double chi = 0.0;   // hysteresis factor of its normal law (checked once, in the constructor)
   };
+  // At most four slider sites (corners) and three journals.
+  static constexpr std::size_t max_sites = 7;
+  // An evaluation in fixed-size storage (slider_crank.cpp): rhs() fills one on the stack, so the
+  // right-hand side neither allocates nor touches shared scratch (one SliderCrank per thread).
+  struct Result;
+  // The equations at (t, x) with jets of `Columns` columns (>= n + 1) and, when Coordinates >= 0,
+  // n fixed at compile time.
+  template <int Columns, int Coordinates>
+  void compute_jets(double t, const State& x, Result& r) const;
+  // The closed form where it applies (unless jets_only), else the narrowest jet width.
+  void compute(double t, const State& x, Result& r, bool jets_only = false) const;
+  // The seed's topology (clearance only in the slider-guide joint) in closed form.
+  void compute_seed(double t, const State& x, Result& r) const;
+  // The slider's contact sites (the first slider_sites_ sites) at the slider's pose (x, y, angle)
+  // and its rates: fills their SiteEvaluations, adds their force and moment about the slider's
+  // centre to load, and returns the corner penetrations (TL, TR, BL, BR).
+  void slider_contacts(const double pose[3], const double rate[3], const State& x, Result& r, double load[3],
+                       double corner_pen[4]) const;
   struct Journal {
     const RevoluteJoint* joint;
     int which;  // 0 crank_ground, 1 crank_conrod, 2 conrod_slider
@@ -150,6 +174,9 @@ class SliderCrank {
   std::vector<Site> sites_;
   std::vector<ContactMemory> memory_;
   int bristles_ = 0;
+  int jet_columns_ = 9;           // the jet width compute() uses: n + 1 rounded up to 3, 5 or 9
+  std::size_t slider_sites_ = 0;  // sites_ starts with the slider's (2 faces or 4 corners)
+  bool seed_topology_ = false;    // compute_seed applies
 };
 
 }  // namespace mechanism
