@@ -629,6 +629,15 @@ void SliderCrank::rhs(double t, const State& x, State& dxdt) const {
   }
 }
 
+void SliderCrank::error_weights(double t, const State& x, State& weights) const {
+  weights.setOnes(x.size());
+  if (bristles_ == 0) return;
+  Result r;
+  compute(t, x, r);
+  for (std::size_t i = 0; i < sites_.size(); ++i)
+    if (sites_[i].state >= 0 && !(r.sites[i].penetration > 0.0)) weights[sites_[i].state] = 0.0;
+}
+
 bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {
   bool latched = false;
   for (std::size_t i = 0; i < sites_.size(); ++i) {

@@ -124,7 +124,7 @@ class DormandPrince54 {
   void first_stage(const S& sys, double t, const State& x);
   template <OdeSystem S>
   void stages(const S& sys, double t, const State& x, double h, double t_new);
-  double error_norm(const State& x, double h) const;
+  double error_norm(const State& x, double h, const State* weights = nullptr) const;
   void accept(double& t, State& x, double t_new);
   template <OdeSystem S>
   StepOutcome controlled(const S& sys, double& t, State& x, double& h, double t_new);
@@ -134,7 +134,7 @@ class DormandPrince54 {
   // current attempt, swapped on acceptance so that a rejected attempt never spoils the dense output.
   State k_[2][7];
   int accepted_set_ = 0;
-  State ys_, x_new_, x0_, x1_, work_x_;
+  State ys_, x_new_, x0_, x1_, work_x_, weights_;
   double t0_ = std::numeric_limits<double>::quiet_NaN(), t1_ = std::numeric_limits<double>::quiet_NaN();
   double work_t_ = 0;
   bool sized_ = false, have_step_ = false;
@@ -151,7 +151,7 @@ class DormandPrince54 {
 inline void DormandPrince54::resize(Eigen::Index n) {
   for (auto& set : k_)
     for (State& k : set) k.resize(n);
-  for (State* v : {&ys_, &x_new_, &x0_, &x1_, &work_x_}) v->resize(n);
+  for (State* v : {&ys_, &x_new_, &x0_, &x1_, &work_x_, &weights_}) v->resize(n);
   sized_ = true;
   have_step_ = end_valid_ = start_valid_ = work_valid_ = false;
   t0_ = t1_ = std::numeric_limits<double>::quiet_NaN();
@@ -191,16 +191,15 @@ inline void DormandPrince54::stages(const S& sys, double t, const State& x, doub
   rhs_evaluations_ += 6;
 }
 
-inline double DormandPrince54::error_norm(const State& x, double h) const {
+inline double DormandPrince54::error_norm(const State& x, double h, const State* weights) const {
   const Eigen::Index n = x.size();
   if (n == 0) return 0.0;
   const State* k = work();
   const double atol = options_.absolute_tolerance, rtol = options_.relative_tolerance;
   // One fused pass: no temporary vector.
-  const double sum = ((h * (e1 * k[0] + e3 * k[2] + e4 * k[3] + e5 * k[4] + e6 * k[5] + e7 * k[6])).array() /
-                      (rtol * x.array().abs().max(x_new_.array().abs()) + atol))
-                         .square()
-                         .sum();
+  const auto scaled = (h * (e1 * k[0] + e3 * k[2] + e4 * k[3] + e5 * k[4] + e6 * k[5] + e7 * k[6])).array() /
+                      (rtol * x.array().abs().max(x_new_.array().abs()) + atol);
+  const double sum = weights ? (scaled * weights->array()).square().sum() : scaled.square().sum();
   return std::sqrt(sum / static_cast<double>(n));
 }
 
@@ -222,7 +221,13 @@ inline StepOutcome DormandPrince54::controlled(const S& sys, double& t, State& x
   prepare(x);
   first_stage(sys, t, x);
   stages(sys, t, x, h, t_new);
-  const double err = error_norm(x, h);
+  double err = 0.0;
+  if constexpr (ErrorWeightedSystem<S>) {
+    sys.error_weights(t_new, x_new_, weights_);
+    err = error_norm(x, h, &weights_);
+  } else {
+    err = error_norm(x, h);
+  }
   last_error_ = err;
   if (!std::isfinite(err) || !x_new_.allFinite()) return StepOutcome::non_finite;
 

@@ -19,6 +19,15 @@ concept OdeSystem = requires(const S& s, double t, const State& x, State& dxdt) 
   s.rhs(t, x, dxdt);
 };
 
+// Optional: a system whose step-end state has components that will be discarded between steps
+// (a LuGre bristle deflection is reset to zero when its contact opens) writes weight 0 for them
+// and 1 for the others; the adaptive stepper leaves the discarded ones out of its error norm, so
+// it does not shrink the step to resolve a value nobody keeps.
+template <class S>
+concept ErrorWeightedSystem = OdeSystem<S> && requires(const S& s, double t, const State& x, State& w) {
+  s.error_weights(t, x, w);
+};
+
 namespace detail {
 
 // Out of line (mechanism/src/integrators.cpp) so that the throwing path stays out of the inlined

@@ -112,6 +112,10 @@ class SliderCrank {
   // The ODE right-hand side (OdeSystem).
   void rhs(double t, const State& x, State& dxdt) const;
 
+  // ErrorWeightedSystem: weight 0 for the bristle deflection of every LuGre site that is open at
+  // (t, x) (commit() resets it to zero there, so its value at a step end is never used), else 1.
+  void error_weights(double t, const State& x, State& weights) const;
+
   // Full evaluation at (t, x) with the current memory.
   void evaluate(double t, const State& x, Evaluation& out) const;
   // The same through the kinematic jets whatever the topology: evaluate() and rhs() use a closed
