@@ -71,16 +71,18 @@ fig4() {  # bifurcation diagram and PDF over clearance at 5000 rpm, with the D2 
   "$STUDY" plot "$RUNS/fig4" --figure bifurcation --last 50 "${mm[@]}" --y-scale 1e3 \
     --x-label 'clearance c_t (mm)' --y-label 'slider y (mm)' --title 'Fig. 4a: last 50 periods, 5000 rpm' -o "$FIGURES/fig4a_bifurcation.png"
   "$STUDY" plot "$RUNS/fig4" --figure density "${mm[@]}" --y-scale 1e3 \
-    --x-label 'clearance c_t (mm)' --y-label 'slider y (mm)' --title 'Fig. 4b: PDF of the last 500 periods' -o "$FIGURES/fig4b_density.png"
+    --x-label 'clearance c_t (mm)' --y-label 'slider y (mm)' --title 'Fig. 4b: PDF of the last 500 periods' --log -o "$FIGURES/fig4b_density.png"
   "$STUDY" plot "$RUNS/fig4" --figure e2 "${mm[@]}" --x-label 'clearance c_t (mm)' --title "Fig. 8a: Cao's E2" -o "$FIGURES/fig8a_e2.png"
   "$STUDY" plot "$RUNS/fig4" --figure d2 "${mm[@]}" --x-label 'clearance c_t (mm)' --title 'Fig. 8b: D2' -o "$FIGURES/fig8b_d2.png"
+  "$STUDY" plot "$RUNS/fig4" --figure d2 --dimension 6 "${mm[@]}" --x-label 'clearance c_t (mm)' \
+    --title 'Fig. 8b at m = 6 (the seed: tau = 18, m = 6): D2(6), not saturated' -o "$FIGURES/fig8b_d2_m6.png"
 }
 
 fig5() {  # PDFs over crank speed for four clearances
   sweep fig5 --axis "driver.speed_rpm=500:5000:$FIG5_SPEEDS" --axis joint.slider.clearance=1e-4,2e-4,3e-4,5e-4 \
     --periods "$FIG5_PERIODS" --keep $((FIG5_PERIODS / 2))
   "$STUDY" plot "$RUNS/fig5" --figure density --y-scale 1e3 --x-label 'crank speed (rpm)' --y-label 'slider y (mm)' \
-    --title 'Fig. 5' -o "$FIGURES/fig5_density.png"
+    --title 'Fig. 5' --log -o "$FIGURES/fig5_density.png"
 }
 
 fig6() {  # Poincare portraits (slider_vy against slider_y once per revolution) for four clearances
@@ -89,33 +91,56 @@ fig6() {  # Poincare portraits (slider_vy against slider_y once per revolution) 
     --title 'Fig. 6' -o "$FIGURES/fig6_portraits.png"
 }
 
-fig7() {  # the correlation-dimension pipeline for c_t = 0.5 mm at 5000 rpm
-  timed fig7 "$STUDY" pipeline "${integrator[@]}" --periods 1000 --plot "$FIGURES/fig7_pipeline.png" > "$RUNS/fig7.json"
+fig7() {  # the correlation-dimension pipeline for c_t = 0.5 mm at 5000 rpm, then the local slopes
+  timed fig7 "$STUDY" pipeline "${integrator[@]}" --periods 1000 --plot "$FIGURES/fig7_pipeline.png" \
+    --series "$RUNS/fig7_series.tsv" > "$RUNS/fig7.json"
   timed fig7_tau18 "$STUDY" pipeline "${integrator[@]}" --periods 1000 --delay 18 --plot "$FIGURES/fig7_pipeline_tau18.png" > "$RUNS/fig7_tau18.json"
+  # The evidence behind D2: log C and the local slopes d ln C / d ln eps for m = 1..12 with the
+  # automatic scaling region, at the MI delay and at the seed's tau = 18.
+  local tau theiler
+  tau=$(jq .analysis.delay_samples "$RUNS/fig7.json")
+  theiler=$(jq .analysis.theiler_samples "$RUNS/fig7.json")
+  if [[ $tau != null ]]; then
+    build/chaos/chaos d2 "$RUNS/fig7_series.tsv" -c 2 --dt 1e-5 -d "$tau" -M 12 -t "$theiler" --json \
+      --plot "$FIGURES/fig7_local_slopes.png" > "$RUNS/fig7_d2.json"
+  fi
+  build/chaos/chaos d2 "$RUNS/fig7_series.tsv" -c 2 --dt 1e-5 -d 18 -M 12 -t "$theiler" --json \
+    --plot "$FIGURES/fig7_local_slopes_tau18.png" > "$RUNS/fig7_d2_tau18.json"
 }
 
 fig9() {  # D2 over clearance and speed
   sweep fig9 --axis "joint.slider.clearance=1e-5:6e-4:$FIG9_CLEARANCES" --axis "driver.speed_rpm=500:5000:$FIG9_SPEEDS" \
-    --periods "$FIG9_PERIODS" --keep 10 --analysis
+    --periods "$FIG9_PERIODS" --keep 10 --analysis --analysis-samples-per-period 1200 --max-delay 200
   "$STUDY" plot "$RUNS/fig9" --figure d2map "${mm[@]}" --x-label 'clearance c_t (mm)' --y-label 'crank speed (rpm)' \
     --title 'Fig. 9: D2' -o "$FIGURES/fig9_d2map.png"
+  "$STUDY" plot "$RUNS/fig9" --figure d2map --dimension 6 "${mm[@]}" --x-label 'clearance c_t (mm)' --y-label 'crank speed (rpm)' \
+    --title 'Fig. 9 at m = 6: D2(6), not saturated' -o "$FIGURES/fig9_d2map_m6.png"
 }
 
 fig12() {  # D2 over c_t with a revolute clearance at the conrod-slider pin, friction 0 and 0.05
+  # (LuGre in the journal with sigma1 fading: with a constant sigma1 = 400 N s/m there, dopri5 stalls
+  # in step_underflow within the first second; docs/reproduction.md)
   local revolute=(--set 'joint.conrod_slider.type="clearance"')
   sweep fig12_mu0 "${revolute[@]}" --axis "joint.slider.clearance=1e-5:6e-4:$FIG12_CLEARANCES" \
     --axis joint.conrod_slider.clearance=1e-4,5e-4 --periods "$FIG12_PERIODS" --keep 10 --analysis
   sweep fig12_mu005 "${revolute[@]}" --set 'joint.conrod_slider.friction.law="lugre_absolute"' \
     --set joint.conrod_slider.friction.static_coefficient=0.05 --set joint.conrod_slider.friction.kinetic_coefficient=0.05 \
+    --set joint.conrod_slider.friction.sigma1_velocity=1e-3 \
     --axis "joint.slider.clearance=1e-5:6e-4:$FIG12_CLEARANCES" --axis joint.conrod_slider.clearance=1e-4,5e-4 \
     --periods "$FIG12_PERIODS" --keep 10 --analysis
-  "$STUDY" plot "$RUNS/fig12_mu0" --figure d2 "${mm[@]}" --x-label 'clearance c_t (mm)' --title 'Fig. 12a: revolute friction 0' -o "$FIGURES/fig12a_d2.png"
-  "$STUDY" plot "$RUNS/fig12_mu005" --figure d2 "${mm[@]}" --x-label 'clearance c_t (mm)' --title 'Fig. 12b: revolute mu_s = 0.05' -o "$FIGURES/fig12b_d2.png"
+  for run in fig12_mu0 fig12_mu005; do
+    local mu=${run#fig12_mu}
+    "$STUDY" plot "$RUNS/$run" --figure d2 "${mm[@]}" --x-label 'clearance c_t (mm)' --title "Fig. 12: revolute mu_s = ${mu/005/0.05}" -o "$FIGURES/${run}_d2.png"
+    "$STUDY" plot "$RUNS/$run" --figure d2 --dimension 6 "${mm[@]}" --x-label 'clearance c_t (mm)' --title "Fig. 12 at m = 6: revolute mu_s = ${mu/005/0.05}" -o "$FIGURES/${run}_d2_m6.png"
+  done
 }
 
-fig13() {  # journal trajectories in the conrod-slider bearing, c_t = c_r = 0.5 mm
-  timed fig13 "$MECHANISM" simulate "${integrator[@]}" --set 'joint.conrod_slider.type="clearance"' \
-    --set run.transient=1.2 --set run.duration=0.12 --signals t -q -o /dev/null --plot "$FIGURES/fig13_journal.png"
+fig13() {  # journal trajectories in the conrod-slider bearing, c_t = 0.5 mm, c_r = 0.1 and 0.5 mm
+  for cr in 0.1 0.5; do
+    timed "fig13_$cr" "$MECHANISM" simulate "${integrator[@]}" --set 'joint.conrod_slider.type="clearance"' \
+      --set "joint.conrod_slider.clearance=${cr}e-3" --set run.transient=1.2 --set run.duration=0.12 --signals t -q \
+      -o /dev/null --plot "$FIGURES/fig13_cr${cr}mm.png"
+  done
 }
 
 figures=("$@")

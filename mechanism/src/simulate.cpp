@@ -111,7 +111,7 @@ class HybridLoop {
       for (;;) {
         const double t = transient_ + static_cast<double>(next_out_) * out_dt_;
         if (t > t_end_ + eps) break;
-        if (at_start ? t > eps : t > t1 + eps) break;
+        if (!due(t, t1, eps, at_start)) break;
         emit(t, t1, x1, [&](const State& xs) { obs_.sample(t, xs, probe_); });
         ++next_out_;
         ++sum_.samples;
@@ -121,7 +121,7 @@ class HybridLoop {
       for (;;) {
         const double t = static_cast<double>(next_rev_) * period_;
         if (t > t_end_ + eps) break;
-        if (at_start ? t > eps : t > t1 + eps) break;
+        if (!due(t, t1, eps, at_start)) break;
         const std::size_t rev = next_rev_;
         emit(t, t1, x1, [&](const State& xs) { obs_.stroboscopic(rev, t, xs, probe_); });
         ++next_rev_;
@@ -130,10 +130,20 @@ class HybridLoop {
     }
   }
 
+  // Whether an output time t belongs to the step ending at t1: inside it, or (only for the run's
+  // last step) within eps after it, where t and t_end differ by rounding. An output just after an
+  // inner step's end belongs to the next step, whose dense output covers it.
+  bool due(double t, double t1, double eps, bool at_start) const {
+    if (at_start) return t <= eps;
+    if (t <= t1) return true;
+    return t1 >= t_end_ && t <= t_end_ + eps;
+  }
+
   template <class F>
   void emit(double t, double t1, const State& x1, F&& f) {
-    // At the step's end the state is exact; inside the step it comes from the dense output.
-    if (std::abs(t - t1) <= 1e-12 * std::max(1.0, std::abs(t1))) {
+    // At (or, at the run's end, rounding past) the step's end the state is exact; inside the step
+    // it comes from the dense output.
+    if (t >= t1 || std::abs(t - t1) <= 1e-12 * std::max(1.0, std::abs(t1))) {
       sys_.evaluate(t1, x1, probe_);
       f(x1);
     } else {

@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
   sweep->add_flag("--analysis", spec.analyse, "also analyse slider_y over the last --analysis-periods revolutions: MI delay, Cao E1/E2, D2");
   sweep->add_option("--analysis-periods", spec.analysis.periods, "revolutions analysed (the seed: 5)");
   sweep->add_option("--analysis-interval", spec.analysis.interval, "s between samples of the analysed series");
+  sweep->add_option("--analysis-samples-per-period", spec.analysis.samples_per_period,
+                    "sample the analysed series this many times per crank revolution instead of every --analysis-interval");
   sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay searched, samples");
   sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
@@ -156,15 +158,18 @@ int main(int argc, char** argv) {
     ProgressBar bar(root && !quiet && isatty(fileno(stderr)));
     exec.progress = [&](const study::SweepProgress& p) { bar(p); };
     const auto wall0 = std::chrono::steady_clock::now();
-    bool mine = true;
+    int failure = ok;
     study::SweepProgress progress;
     try {
       progress = study::run_sweep(spec, *store, exec);
+    } catch (const study::StudyError& e) {
+      std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
+      failure = invalid_request;
     } catch (const std::exception& e) {
-      std::cerr << "study: error on rank " << mpi.rank() << ": " << e.what() << "\n";
-      mine = false;
+      std::cerr << "study: internal error on rank " << mpi.rank() << ": " << e.what() << "\n";
+      failure = internal_error;
     }
-    if (!mpi.all_succeeded(mine)) return mine ? internal_error : invalid_request;
+    if (!mpi.all_succeeded(failure == ok)) return failure == ok ? internal_error : failure;
     const std::size_t computed = mpi.sum(progress.done), resumed = mpi.sum(progress.skipped);
     if (!root) return ok;
     store->assemble();

@@ -20,6 +20,8 @@ void add_pipeline_options(CLI::App& cmd, PipelineRequest& r) {
   cmd.add_option("--periods", r.periods, "crank revolutions simulated; the analysed ones are the last");
   cmd.add_option("--analysis-periods", r.analysis.periods, "revolutions analysed (the seed: 5)");
   cmd.add_option("--analysis-interval", r.analysis.interval, "s between samples of the analysed series");
+  cmd.add_option("--analysis-samples-per-period", r.analysis.samples_per_period,
+                 "sample this many times per crank revolution instead of every --analysis-interval");
   cmd.add_option("--max-delay", r.analysis.max_delay, "largest mutual-information delay searched, samples");
   cmd.add_option("--max-dimension", r.analysis.max_dimension, "Cao and D2 up to this embedding dimension (the seed: 12)");
   cmd.add_option("--delay", r.analysis.given_delay, "use this delay (samples) instead of the mutual-information minimum");
@@ -43,9 +45,11 @@ bool run_pipeline(const PipelineRequest& r) {
   mechanism::Scene scene = mechanism::read_scene(text, r.overrides, r.scene_file.empty() ? "scene" : r.scene_file);
   for (const auto& w : mechanism::scene_warnings(scene)) std::cerr << "study: warning: " << w << "\n";
   const double period = scene.driver.period();
+  AnalysisOptions analysis = r.analysis;
+  if (analysis.samples_per_period) analysis.interval = period / static_cast<double>(analysis.samples_per_period);
   scene.run.transient = static_cast<double>(r.periods - r.analysis.periods) * period;
   scene.run.duration = static_cast<double>(r.analysis.periods) * period;
-  scene.run.output_interval = r.analysis.interval;
+  scene.run.output_interval = analysis.interval;
   scene.run.stroboscopic = false;
   mechanism::SliderCrank system(scene);
   std::vector<double> t, y, vy;
@@ -71,7 +75,7 @@ bool run_pipeline(const PipelineRequest& r) {
     f << "# t\tslider_y\tslider_vy\n" << std::setprecision(12);
     for (std::size_t i = 0; i < t.size(); ++i) f << t[i] << '\t' << y[i] << '\t' << vy[i] << '\n';
   }
-  const SeriesAnalysis a = analyse_series(y, r.analysis.interval, r.analysis);
+  const SeriesAnalysis a = analyse_series(y, analysis.interval, analysis);
   auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   nlohmann::json d2m = nlohmann::json::array();
   for (const auto& d : a.d2_by_dimension) d2m.push_back(opt(d));

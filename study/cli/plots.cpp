@@ -103,6 +103,10 @@ void add_plot_options(CLI::App& cmd, PlotRequest& r) {
   cmd.add_option("--signal2", r.signal2, "portrait's vertical axis");
   cmd.add_option("--last", r.last, "bifurcation: the last N kept revolutions of each point (the seed: 50)");
   cmd.add_option("--bins", r.bins, "density: equal-width bins over the pooled range of the signal");
+  cmd.add_flag("--log", r.log_density, "density: logarithmic colour scale (cells with no sample are left blank)");
+  cmd.add_option("--dimension", r.dimension,
+                 "d2, d2map: plot the per-dimension estimate D2(m) at this m instead of the saturated D2 "
+                 "(it exists where D2 does not saturate; the plot says so)");
   cmd.add_option("--x-scale", r.x_scale, "multiply the horizontal values (1e3: m to mm)");
   cmd.add_option("--y-scale", r.y_scale, "multiply the vertical values");
   cmd.add_option("--z-scale", r.z_scale, "portrait: multiply --signal2's values");
@@ -161,12 +165,13 @@ void draw(const PlotRequest& r) {
           }
           if (!(hi > lo)) hi = lo + 1e-12 * std::max(1.0, std::abs(lo)) + 1e-300;  // a constant signal: one thin bin
           g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\nset view map\n"
-            << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n$d << EOD\n";
+            << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n"
+            << (r.log_density ? "set logscale cb\n" : "") << "$d << EOD\n";
           for (const auto& [x, v] : values) {
             const chaos::Histogram h = chaos::probability_density(v, r.bins, lo, hi);
             for (std::size_t b = 0; b < r.bins; ++b)
               g << x * r.x_scale << ' ' << 0.5 * (h.edges[b] + h.edges[b + 1]) * r.y_scale << ' '
-                << h.density[b] / r.y_scale << '\n';
+                << (r.log_density && h.density[b] == 0.0 ? std::string("NaN") : std::to_string(h.density[b] / r.y_scale)) << '\n';
             g << '\n';
           }
           g << "EOD\nsplot $d using 1:2:3 with pm3d\n";
@@ -177,7 +182,10 @@ void draw(const PlotRequest& r) {
     const Table t = read_table(analysis_path);
     const auto keys = axis_keys(t);
     if (keys.empty()) throw StudyError("--figure", r.figure, "needs a sweep with at least one axis");
-    const std::size_t d2 = t.column("d2", analysis_path), lo = t.column("d2_low", analysis_path),
+    const bool per_m = r.dimension > 0;
+    if (per_m && r.figure == "e2") throw StudyError("--dimension", std::to_string(r.dimension), "applies to d2 and d2map only");
+    const std::size_t d2 = t.column(per_m ? "D2_m" + std::to_string(r.dimension) : std::string("d2"), analysis_path),
+                      lo = t.column("d2_low", analysis_path),
                       hi = t.column("d2_high", analysis_path), e2 = t.column("e2_deviation", analysis_path);
     const std::size_t shown = r.figure == "e2" ? e2 : d2;
     const bool any = std::any_of(t.rows.begin(), t.rows.end(), [&](const auto& row) { return !std::isnan(row[shown]); });
@@ -189,8 +197,11 @@ void draw(const PlotRequest& r) {
     } else if (r.figure == "d2map") {
       if (keys.size() < 2) throw StudyError("--figure", "d2map", "needs a two-axis sweep");
       g << "set view map\nset xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
-        << plot_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel 'D2'\nset palette rgbformulae 33,13,10\n"
-        << "set title " << plot_support::quoted(label(r.title, "correlation dimension D2 (blank: no saturated D2)")) << "\n$m << EOD\n";
+        << plot_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel "
+        << plot_support::quoted(per_m ? "D2(m = " + std::to_string(r.dimension) + "), not saturated" : "D2")
+        << "\nset palette rgbformulae 33,13,10\nset title "
+        << plot_support::quoted(label(r.title, per_m ? "D2(m) (blank: no flat region at this m)" : "correlation dimension D2 (blank: no saturated D2)"))
+        << "\n$m << EOD\n";
       const auto groups = by_second_axis(t, keys);
       for (const auto& [value, rows] : groups) {
         for (std::size_t i : rows)
@@ -203,7 +214,7 @@ void draw(const PlotRequest& r) {
       std::size_t missing = 0;
       for (const auto& row : t.rows) missing += std::isnan(row[r.figure == "d2" ? d2 : e2]) ? 1 : 0;
       g << "set xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
-        << plot_support::quoted(label(r.y_label, r.figure == "d2" ? "D2" : "max |E2(m) - 1|")) << "\n"
+        << plot_support::quoted(label(r.y_label, r.figure == "e2" ? "max |E2(m) - 1|" : per_m ? "D2(m = " + std::to_string(r.dimension) + "), not a saturated D2" : "D2")) << "\n"
         << "set title " << plot_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
                                                 (missing ? " (" + std::to_string(missing) + " points without a value)" : ""))
         << "\n";
@@ -216,7 +227,8 @@ void draw(const PlotRequest& r) {
         for (std::size_t i : rows) {
           if (std::isnan(t.rows[i][r.figure == "d2" ? d2 : e2])) continue;
           g << t.rows[i][1] * r.x_scale << ' ';
-          if (r.figure == "d2") g << t.rows[i][d2] << ' ' << t.rows[i][lo] << ' ' << t.rows[i][hi] << '\n';
+          if (r.figure == "d2" && per_m) g << t.rows[i][d2] << ' ' << t.rows[i][d2] << ' ' << t.rows[i][d2] << '\n';
+          else if (r.figure == "d2") g << t.rows[i][d2] << ' ' << t.rows[i][lo] << ' ' << t.rows[i][hi] << '\n';
           else g << t.rows[i][e2] << '\n';
         }
         g << "EOD\n";

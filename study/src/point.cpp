@@ -21,7 +21,9 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
   scene.run.transient = static_cast<double>(first_output) * period;
   scene.run.duration = static_cast<double>(spec.periods - first_output) * period;
   scene.run.stroboscopic = true;
-  scene.run.output_interval = spec.analyse ? spec.analysis.interval : 0.0;
+  const double interval =
+      spec.analysis.samples_per_period ? period / static_cast<double>(spec.analysis.samples_per_period) : spec.analysis.interval;
+  scene.run.output_interval = spec.analyse ? interval : 0.0;
   mechanism::SliderCrank system(scene);
 
   const auto table = mechanism::signal_table(system);
@@ -57,7 +59,7 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
     r.summary.message = "started fresh: the previous point's state has another size";
   if (spec.analyse) {
     if (r.summary.status == mechanism::SimulationStatus::completed) {
-      r.analysis = analyse_series(series, spec.analysis.interval, spec.analysis);
+      r.analysis = analyse_series(series, interval, spec.analysis);
     } else {
       SeriesAnalysis a;
       a.status = std::string("not analysed: the simulation ended with ") + mechanism::to_string(r.summary.status);

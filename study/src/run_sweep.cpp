@@ -4,6 +4,8 @@
 #include <atomic>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "study/error.hpp"
@@ -48,7 +50,15 @@ SweepProgress run_sweep(const SweepSpec& spec, const ResultStore& store, const S
             }
             continue;
           }
-          const PointResult r = run_point(spec, p, state ? &*state : nullptr);
+          PointResult r;
+          try {
+            r = run_point(spec, p, state ? &*state : nullptr);
+          } catch (const std::exception& e) {
+            // Name the point, so the failure can be rerun alone (study sweep --set for each axis).
+            std::string where = "point " + std::to_string(p);
+            for (const std::string& o : grid.overrides(p)) where += " " + o;
+            throw std::runtime_error(where + ": " + e.what());
+          }
           store.write(r);
           if (chains) {
             if (r.summary.status == mechanism::SimulationStatus::completed) {

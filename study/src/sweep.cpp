@@ -29,6 +29,8 @@ void SweepSpec::validate() const {
                        "must be 1 .. --periods (" + std::to_string(periods) + ")");
     if (!(analysis.interval > 0.0))
       throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
+    if (analysis.samples_per_period == 1)
+      throw StudyError("--analysis-samples-per-period", "1", "must be 0 (use --analysis-interval) or at least 2");
     if (analysis.max_dimension < 2)
       throw StudyError("--max-dimension", std::to_string(analysis.max_dimension), "must be at least 2");
   }
@@ -66,7 +68,7 @@ std::string SweepSpec::describe() const {
   d << "\n";
   if (analyse) {
     d << "analysis.periods = " << analysis.periods << "\n"
-      << "analysis.interval = " << exact(analysis.interval) << "\n"
+      << "analysis.interval = " << (analysis.samples_per_period ? std::string("period / ") + std::to_string(analysis.samples_per_period) : exact(analysis.interval)) << "\n"
       << "analysis.max_delay = " << analysis.max_delay << "\n"
       << "analysis.boxes = " << analysis.boxes << "\n"
       << "analysis.max_dimension = " << analysis.max_dimension << "\n"

@@ -20,6 +20,9 @@ namespace study {
 struct AnalysisOptions {
   std::size_t periods = 5;        // crank revolutions analysed, at the end of the run (the seed: 5)
   double interval = 1e-5;         // s between samples of the analysed series
+  // > 0: sample the series this many times per crank revolution instead (a sweep over speed then
+  // analyses every point at the same resolution of its period); `interval` is then ignored.
+  std::size_t samples_per_period = 0;
   std::size_t max_delay = 100;    // mutual-information delays searched, samples
   std::size_t boxes = 16;         // mutual-information histogram bins per axis
   std::size_t max_dimension = 12; // Cao and D2 up to this m (the seed's Fig. 7d: 1..12)
