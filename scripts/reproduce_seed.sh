@@ -8,7 +8,7 @@
 # Sizes: the seed's where this 2-core machine can afford them, else reduced (the variables below,
 # each overridable from the environment; SIZE=seed sets every one to the seed's value).
 # The integrator is the one docs/mechanism/performance.md shows to keep the long-run statistics:
-# INTEGRATOR (default dopri5 at relative tolerance RTOL).
+# dopri5 at relative tolerance RTOL (1e-4), or INTEGRATOR=rk4 at STEP (1e-6 s, the seed's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 STUDY=${STUDY:-build/study/study}
@@ -36,7 +36,11 @@ FIG12_CLEARANCES=${FIG12_CLEARANCES:-12}
 FIG12_PERIODS=${FIG12_PERIODS:-200}
 
 mkdir -p "$RUNS" "$FIGURES"
-integrator=(--set 'integrator.method="dopri5"' --set "integrator.relative_tolerance=$RTOL" "${SCENE_SETS[@]}")
+if [[ ${INTEGRATOR:-dopri5} == rk4 ]]; then  # the seed's method: RK4 at STEP (default 1e-6 s)
+  integrator=(--set 'integrator.method="rk4"' --set "integrator.step=${STEP:-1e-6}" "${SCENE_SETS[@]}")
+else
+  integrator=(--set 'integrator.method="dopri5"' --set "integrator.relative_tolerance=$RTOL" "${SCENE_SETS[@]}")
+fi
 mm=(--x-scale 1e3)
 
 # timed NAME COMMAND...: runs it and appends "NAME<TAB>seconds<TAB>command" to timing.tsv.

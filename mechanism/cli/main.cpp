@@ -266,7 +266,14 @@ int main(int argc, char** argv) {
       j["coordinates"] = system.coordinate_names();
       std::cout << j.dump(2) << "\n";
     }
-    if (!plot_path.empty()) plot_trajectories(plot, scene, system.journal_names(), plot_path);
+    if (!plot_path.empty()) {
+      if (plot.slider_y.empty()) {
+        std::cerr << "mechanism: no plot: the run wrote no samples to draw (it stopped at t = " << number(s.end_time)
+                  << " s, before the transient of " << number(scene.run.transient) << " s ended)\n";
+      } else {
+        plot_trajectories(plot, scene, system.journal_names(), plot_path);
+      }
+    }
     if (s.status != mechanism::SimulationStatus::completed) {
       std::cerr << "mechanism: the integration stopped: " << s.message << "\n";
       return integration_failed;

@@ -164,7 +164,7 @@ void draw(const PlotRequest& r) {
             hi = std::max(hi, t.rows[i][y]);
           }
           if (!(hi > lo)) hi = lo + 1e-12 * std::max(1.0, std::abs(lo)) + 1e-300;  // a constant signal: one thin bin
-          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\nset view map\n"
+          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\n"
             << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n"
             << (r.log_density ? "set logscale cb\n" : "") << "$d << EOD\n";
           for (const auto& [x, v] : values) {
@@ -174,7 +174,7 @@ void draw(const PlotRequest& r) {
                 << (r.log_density && h.density[b] == 0.0 ? std::string("NaN") : std::to_string(h.density[b] / r.y_scale)) << '\n';
             g << '\n';
           }
-          g << "EOD\nsplot $d using 1:2:3 with pm3d\n";
+          g << "EOD\nplot $d using 1:2:3 with image\n";
         }
       }
     }
@@ -196,7 +196,7 @@ void draw(const PlotRequest& r) {
         << " at graph 0.5,0.5 center\nplot [0:1][0:1] NaN notitle\n";
     } else if (r.figure == "d2map") {
       if (keys.size() < 2) throw StudyError("--figure", "d2map", "needs a two-axis sweep");
-      g << "set view map\nset xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+      g << "set xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
         << plot_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel "
         << plot_support::quoted(per_m ? "D2(m = " + std::to_string(r.dimension) + "), not saturated" : "D2")
         << "\nset palette rgbformulae 33,13,10\nset title "
@@ -208,7 +208,7 @@ void draw(const PlotRequest& r) {
           g << t.rows[i][1] * r.x_scale << ' ' << value * r.y_scale << ' ' << (std::isnan(t.rows[i][d2]) ? std::string("NaN") : std::to_string(t.rows[i][d2])) << '\n';
         g << '\n';
       }
-      g << "EOD\nsplot $m using 1:2:3 with pm3d\n";
+      g << "EOD\nplot $m using 1:2:3 with image\n";
     } else {
       const auto groups = by_second_axis(t, keys);
       std::size_t missing = 0;
@@ -218,7 +218,7 @@ void draw(const PlotRequest& r) {
         << "set title " << plot_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
                                                 (missing ? " (" + std::to_string(missing) + " points without a value)" : ""))
         << "\n";
-      if (keys.size() > 1) g << "set key outside right\n";
+      if (keys.size() > 1) g << "set key below\n";
       std::string plot_line = "plot ";
       std::size_t k = 0;
       for (const auto& [value, rows] : groups) {

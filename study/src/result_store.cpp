@@ -103,6 +103,9 @@ ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume)
   }
   fs::create_directories(dir_ / "points");
   if (!fs::exists(spec_file)) write_atomically(spec_file, header_);
+  // A killed run leaves at most one temporary file per point it was writing: never a result.
+  for (const auto& entry : fs::directory_iterator(dir_ / "points"))
+    if (entry.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(entry.path());
 }
 
 fs::path ResultStore::point_path(std::size_t point) const {

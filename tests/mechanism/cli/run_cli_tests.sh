@@ -58,6 +58,10 @@ expect 3 "must end in .png or .svg" -- simulate -q --json --set run.duration=0.0
 
 # A run that cannot continue exits 5 with the time.
 expect 5 "step limit" -- simulate -q --set integrator.max_steps=10 --set run.duration=0.001
+# ... and with --plot, when it stopped before the transient ended, says there is nothing to draw.
+expect 5 "no plot: the run wrote no samples" -- simulate -q -o /dev/null --set integrator.max_steps=10 \
+  --set run.transient=0.001 --set run.duration=0.001 --plot "$work/none.png"
+[[ ! -e $work/none.png ]] || fail "a run with no samples still drew $work/none.png"
 
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2

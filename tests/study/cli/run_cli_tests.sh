@@ -55,6 +55,7 @@ rm "$work/b/points/000002.tsv"; echo partial > "$work/b/points/000002.tsv.tmp.99
 expect_code 0 "resume" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/b" -q --resume
 [[ $(jq -r .computed "$work/out") == 1 && $(jq -r .resumed_from_disk "$work/out") == 3 ]] || fail "resume did not recompute exactly one point: $(cat "$work/out")"
 cmp -s "$work/a/samples.tsv" "$work/b/samples.tsv" || fail "a resumed sweep differs from an uninterrupted one"
+[[ ! -e "$work/b/points/000002.tsv.tmp.99999" ]] || fail "resume left a killed run's temporary file"
 expect_code 3 "resume with another spec" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 9 --keep 3 -o "$work/b" -q --resume
 expect_message "first difference" "resume with another spec"
 
