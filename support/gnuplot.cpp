@@ -5,7 +5,7 @@
 #include <fstream>
 #include <functional>
 
-namespace plot_support {
+namespace cli_support {
 
 namespace {
 bool ends_with(const std::string& s, const std::string& suffix) {
@@ -54,4 +54,4 @@ void render(const std::string& script, const std::string& path) {
   }
 }
 
-}  // namespace plot_support
+}  // namespace cli_support

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace plot_support {
+namespace cli_support {
 
 class PlotError : public std::runtime_error {
  public:
@@ -25,4 +25,4 @@ void render(const std::string& script, const std::string& path);
 // Single quotes in gnuplot strings are doubled.
 std::string quoted(const std::string& s);
 
-}  // namespace plot_support
+}  // namespace cli_support

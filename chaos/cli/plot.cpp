@@ -7,9 +7,9 @@ namespace chaos::cli {
 
 void render_plot(const std::string& script, const std::string& path) {
   try {
-    plot_support::render(script, path);
-  } catch (const plot_support::PlotError& e) {
-    throw InvalidInput(e.kind() == plot_support::PlotError::Kind::bad_extension ? ErrorCode::invalid_parameter
+    cli_support::render(script, path);
+  } catch (const cli_support::PlotError& e) {
+    throw InvalidInput(e.kind() == cli_support::PlotError::Kind::bad_extension ? ErrorCode::invalid_parameter
                                                                                  : ErrorCode::io,
                        e.what());
   }

@@ -1,6 +1,7 @@
 #pragma once
-// Lagrange interpolation weights on arbitrary nodes (private): the streaming sections interpolate
-// between samples whose times need not be uniform.
+// Lagrange interpolation weights on arbitrary nodes, and the bisection that finds where an
+// interpolant crosses a level (private): the sections interpolate between samples whose times
+// need not be uniform.
 
 #include <cstddef>
 
@@ -17,6 +18,23 @@ inline void lagrange_weights(const double* u, std::size_t n, double s, double* w
     }
     w[k] = num / den;
   }
+}
+
+// The root in [0, 1] of f, a function with f(0) = f0 and a value of the opposite sign (or zero)
+// at 1: 60 bisections, below the spacing of doubles in [0, 1].
+template <class F>
+double bisect_unit_interval(F&& f, double f0) {
+  double low = 0.0, high = 1.0, f_low = f0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (low + high), f_mid = f(mid);
+    if ((f_mid < 0.0) == (f_low < 0.0) && f_mid != 0.0) {
+      low = mid;
+      f_low = f_mid;
+    } else {
+      high = mid;
+    }
+  }
+  return 0.5 * (low + high);
 }
 
 }  // namespace chaos::detail

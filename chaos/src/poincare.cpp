@@ -5,6 +5,7 @@
 #include <string>
 
 #include "chaos/error.hpp"
+#include "lagrange.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -74,17 +75,7 @@ HyperplaneSection hyperplane_section(const std::vector<std::vector<double>>& com
         cubic_weights(t, w);
         return w[0] * g[i - 1] + w[1] * g[i] + w[2] * g[i + 1] + w[3] * g[i + 2] - o.level;
       };
-      double lo = 0.0, hi = 1.0, flo = a;
-      for (int it = 0; it < 60; ++it) {
-        const double mid = 0.5 * (lo + hi), fm = f(mid);
-        if ((fm < 0.0) == (flo < 0.0) && fm != 0.0) {
-          lo = mid;
-          flo = fm;
-        } else {
-          hi = mid;
-        }
-      }
-      s = 0.5 * (lo + hi);
+      s = detail::bisect_unit_interval(f, a);
       double w[4];
       cubic_weights(s, w);
       for (std::size_t k = 0; k < components.size(); ++k) {

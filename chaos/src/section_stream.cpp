@@ -130,17 +130,7 @@ std::optional<SectionPoint> HyperplaneCrossingDetector::examine(std::size_t lo, 
       for (std::size_t j = 0; j < 4; ++j) v += weight[j] * w.values[j * d + k];
       return v - level;
     };
-    double low = 0.0, high = 1.0, f_low = a;
-    for (int it = 0; it < 60; ++it) {
-      const double mid = 0.5 * (low + high), f_mid = f(mid);
-      if ((f_mid < 0.0) == (f_low < 0.0) && f_mid != 0.0) {
-        low = mid;
-        f_low = f_mid;
-      } else {
-        high = mid;
-      }
-    }
-    s = 0.5 * (low + high);
+    s = detail::bisect_unit_interval(f, a);
   } else {
     s = a / (a - b);
   }

@@ -10,10 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -21,6 +19,7 @@
 #include <unistd.h>
 
 #include "gnuplot.hpp"
+#include "progress_bar.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/signals.hpp"
@@ -65,30 +64,6 @@ void write_scene_header(std::ostream& out, const mechanism::Scene& scene) {
   for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
 }
 
-// A progress bar on stderr when it is a terminal and the run is long enough to need one.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-  void operator()(double fraction) {
-    if (!enabled_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (elapsed < 2.0 && fraction < 1.0) return;
-    const int width = 40, filled = static_cast<int>(fraction * width);
-    const double remaining = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << std::setw(3)
-              << static_cast<int>(100 * fraction) << "%  " << std::fixed << std::setprecision(0) << remaining
-              << " s left " << std::flush;
-    shown_ = true;
-  }
-  ~ProgressBar() {
-    if (shown_) std::cerr << "\n";
-  }
-
- private:
-  bool enabled_, shown_ = false;
-  std::chrono::steady_clock::time_point start_;
-};
-
 // The slider's trajectory (seed Fig. 3: its centre's height against the crank angle and its
 // path in the guide) and, for each revolute clearance joint, the journal centre's path relative
 // to the bearing inside the clearance circle (seed Fig. 13).
@@ -128,15 +103,15 @@ void plot_trajectories(const PlotData& d, const mechanism::Scene& scene, const s
     const mechanism::RevoluteJoint& joint = journals[j] == "crank_ground"   ? scene.crank_ground
                                             : journals[j] == "crank_conrod" ? scene.crank_conrod
                                                                             : scene.conrod_slider;
-    g << "set title " << plot_support::quoted("journal centre relative to the bearing: " + journals[j]) << "\n"
+    g << "set title " << cli_support::quoted("journal centre relative to the bearing: " + journals[j]) << "\n"
       << "set xlabel 'x (mm)'\nset ylabel 'y (mm)'\nset size ratio -1\nset parametric\nset trange [0:2*pi]\n"
       << "plot $" << name << " using 1:2 with lines, " << joint.clearance * 1e3 << "*cos(t), " << joint.clearance * 1e3
       << "*sin(t) lw 2 lc rgb 'black' dt 2\nunset parametric\nset size noratio\n";
   }
   g << "unset multiplot\n";
   try {
-    plot_support::render(g.str(), path);
-  } catch (const plot_support::PlotError& e) {
+    cli_support::render(g.str(), path);
+  } catch (const cli_support::PlotError& e) {
     throw mechanism::InvalidParameter("--plot", path, e.what());
   }
 }
@@ -244,8 +219,8 @@ int main(int argc, char** argv) {
         keep_for_plot(ev);
       };
     }
-    ProgressBar bar(!quiet && isatty(fileno(stderr)));
-    observer.progress = [&](double f) { bar(f); };
+    cli_support::ProgressBar bar(!quiet && isatty(fileno(stderr)));
+    observer.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
     const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
     if (json) {
       nlohmann::ordered_json j;

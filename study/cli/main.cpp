@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -23,6 +22,7 @@
 #include "mechanism/error.hpp"
 #include "mpi_session.hpp"
 #include "pipeline.hpp"
+#include "progress_bar.hpp"
 #include "plots.hpp"
 #include "study/error.hpp"
 #include "study/run_sweep.hpp"
@@ -30,29 +30,6 @@
 namespace {
 
 enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_request = 3, io_error = 4, points_failed = 5 };
-
-// Points done out of this run's share, with the remaining time from this run's rate.
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-  void operator()(const study::SweepProgress& p) {
-    if (!enabled_ || p.to_do == 0) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double f = static_cast<double>(p.done) / static_cast<double>(p.to_do);
-    const int width = 40, filled = static_cast<int>(f * width);
-    const double remaining = p.done ? elapsed * static_cast<double>(p.to_do - p.done) / static_cast<double>(p.done) : 0.0;
-    std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << p.done << "/"
-              << p.to_do << " points  " << std::fixed << std::setprecision(0) << remaining << " s left " << std::flush;
-    shown_ = true;
-  }
-  ~ProgressBar() {
-    if (shown_) std::cerr << "\n";
-  }
-
- private:
-  bool enabled_, shown_ = false;
-  std::chrono::steady_clock::time_point start_;
-};
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
@@ -155,8 +132,13 @@ int main(int argc, char** argv) {
     exec.rank = mpi.rank();
     exec.ranks = mpi.size();
     exec.threads = threads ? threads : std::max<std::size_t>(1, std::thread::hardware_concurrency() / mpi.size());
-    ProgressBar bar(root && !quiet && isatty(fileno(stderr)));
-    exec.progress = [&](const study::SweepProgress& p) { bar(p); };
+    // Points done out of this run's share, the time left from this run's rate.
+    cli_support::ProgressBar bar(root && !quiet && isatty(fileno(stderr)));
+    exec.progress = [&](const study::SweepProgress& p) {
+      if (p.to_do)
+        bar.update(static_cast<double>(p.done) / static_cast<double>(p.to_do),
+                   std::to_string(p.done) + "/" + std::to_string(p.to_do) + " points");
+    };
     const auto wall0 = std::chrono::steady_clock::now();
     int failure = ok;
     study::SweepProgress progress;

@@ -105,14 +105,14 @@ bool run_pipeline(const PipelineRequest& r) {
       << "plot $series using 1:2 with lines lc rgb 'black'\n";
     g << "$mi << EOD\n";
     for (std::size_t k = 0; k < a.mutual_information.size(); ++k) g << k << ' ' << a.mutual_information[k] << '\n';
-    g << "EOD\nset title " << plot_support::quoted("(b) mutual information" + (a.delay ? ", delay " + std::to_string(*a.delay) : std::string(", no minimum")))
+    g << "EOD\nset title " << cli_support::quoted("(b) mutual information" + (a.delay ? ", delay " + std::to_string(*a.delay) : std::string(", no minimum")))
       << "\nset xlabel 'delay (samples)'\nset ylabel 'I (nats)'\n";
     if (a.delay) g << "set arrow from " << *a.delay << ", graph 0 to " << *a.delay << ", graph 1 nohead dt 2\n";
     g << "plot $mi using 1:2 with linespoints pt 7 ps 0.3\nunset arrow\n";
     const std::size_t tau = a.delay.value_or(1);
     g << "$rec << EOD\n";
     for (std::size_t i = 0; i + tau < y.size(); ++i) g << y[i] * 1e3 << ' ' << y[i + tau] * 1e3 << '\n';
-    g << "EOD\nset title " << plot_support::quoted("(c) reconstruction, tau = " + std::to_string(tau))
+    g << "EOD\nset title " << cli_support::quoted("(c) reconstruction, tau = " + std::to_string(tau))
       << "\nset xlabel 'y(t) (mm)'\nset ylabel 'y(t + tau) (mm)'\nplot $rec using 1:2 with lines lc rgb 'black'\n";
     g << "$c << EOD\n";
     for (std::size_t m = 0; m < a.correlation_sum.size(); ++m) {
@@ -127,20 +127,20 @@ bool run_pipeline(const PipelineRequest& r) {
     g << "$d2 << EOD\n";
     for (std::size_t m = 0; m < a.d2_by_dimension.size(); ++m)
       if (a.d2_by_dimension[m]) g << m + 1 << ' ' << *a.d2_by_dimension[m] << '\n';
-    g << "EOD\nset title " << plot_support::quoted("(e) D2 against m: " + a.d2_status + (a.d2 ? ", D2 = " + std::to_string(*a.d2) : std::string()))
+    g << "EOD\nset title " << cli_support::quoted("(e) D2 against m: " + a.d2_status + (a.d2 ? ", D2 = " + std::to_string(*a.d2) : std::string()))
       << "\nset xlabel 'embedding dimension m'\nset ylabel 'D2(m)'\n";
     const bool any_d2 = std::any_of(a.d2_by_dimension.begin(), a.d2_by_dimension.end(), [](const auto& d) { return d.has_value(); });
     g << (any_d2 ? "plot $d2 using 1:2 with linespoints pt 7\n" : "plot [0:1][0:1] NaN\n");
     g << "$cao << EOD\n";
     for (std::size_t k = 0; k < a.E1.size(); ++k) g << a.dimension[k] << ' ' << a.E1[k] << ' ' << a.E2[k] << '\n';
-    g << "EOD\nset title " << plot_support::quoted("(f) Cao: E1 (saturation " +
+    g << "EOD\nset title " << cli_support::quoted("(f) Cao: E1 (saturation " +
                                                   (a.embedding_dimension ? std::to_string(*a.embedding_dimension) : std::string("none")) + "), E2")
       << "\nset xlabel 'm'\nset ylabel 'E1, E2'\nset key bottom right\n";
     g << (a.E1.empty() ? "plot [0:1][0:1] NaN\n" : "plot $cao using 1:2 with linespoints title 'E1', $cao using 1:3 with linespoints title 'E2'\n");
     g << "unset multiplot\n";
     try {
-      plot_support::render(g.str(), r.plot);
-    } catch (const plot_support::PlotError& e) {
+      cli_support::render(g.str(), r.plot);
+    } catch (const cli_support::PlotError& e) {
       throw StudyError("--plot", r.plot, e.what());
     }
   }

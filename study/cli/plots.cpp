@@ -134,9 +134,9 @@ void draw(const PlotRequest& r) {
         std::ostringstream title;
         title << r.title;
         for (std::size_t k = 0; k < keys.size(); ++k) title << (k || !r.title.empty() ? ", " : "") << keys[k] << " = " << t.rows[rows[0]][1 + k];
-        g << "set title " << plot_support::quoted(title.str() + " (" + std::to_string(rows.size()) + " points)") << "\n"
-          << "set xlabel " << plot_support::quoted(label(r.x_label, r.signal)) << "\nset ylabel "
-          << plot_support::quoted(label(r.y_label, r.signal2)) << "\n$p << EOD\n";
+        g << "set title " << cli_support::quoted(title.str() + " (" + std::to_string(rows.size()) + " points)") << "\n"
+          << "set xlabel " << cli_support::quoted(label(r.x_label, r.signal)) << "\nset ylabel "
+          << cli_support::quoted(label(r.y_label, r.signal2)) << "\n$p << EOD\n";
         for (std::size_t i : rows) g << t.rows[i][y] * r.x_scale << ' ' << t.rows[i][z] * r.z_scale << '\n';
         g << "EOD\nplot $p using 1:2 with dots lc rgb 'black'\n";
       }
@@ -146,10 +146,10 @@ void draw(const PlotRequest& r) {
       double max_rev = 0;
       for (const auto& row : t.rows) max_rev = std::max(max_rev, row[rev]);
       for (const auto& [value, rows] : groups) {
-        g << "set title " << plot_support::quoted(panel_title(keys, value, r)) << "\nset xlabel "
-          << plot_support::quoted(label(r.x_label, keys[0])) << "\n";
+        g << "set title " << cli_support::quoted(panel_title(keys, value, r)) << "\nset xlabel "
+          << cli_support::quoted(label(r.x_label, keys[0])) << "\n";
         if (r.figure == "bifurcation") {
-          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\n$b << EOD\n";
+          g << "set ylabel " << cli_support::quoted(label(r.y_label, r.signal)) << "\n$b << EOD\n";
           for (std::size_t i : rows)
             if (t.rows[i][rev] > max_rev - static_cast<double>(r.last))
               g << t.rows[i][1] * r.x_scale << ' ' << t.rows[i][y] * r.y_scale << '\n';
@@ -164,7 +164,7 @@ void draw(const PlotRequest& r) {
             hi = std::max(hi, t.rows[i][y]);
           }
           if (!(hi > lo)) hi = lo + 1e-12 * std::max(1.0, std::abs(lo)) + 1e-300;  // a constant signal: one thin bin
-          g << "set ylabel " << plot_support::quoted(label(r.y_label, r.signal)) << "\n"
+          g << "set ylabel " << cli_support::quoted(label(r.y_label, r.signal)) << "\n"
             << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n"
             << (r.log_density ? "set logscale cb\n" : "") << "$d << EOD\n";
           for (const auto& [x, v] : values) {
@@ -191,16 +191,16 @@ void draw(const PlotRequest& r) {
     const bool any = std::any_of(t.rows.begin(), t.rows.end(), [&](const auto& row) { return !std::isnan(row[shown]); });
     if (!any) {
       // A legitimate outcome (no point reached a saturated D2): an empty frame that says so.
-      g << "set title " << plot_support::quoted(label(r.title, r.figure)) << "\nset label "
-        << plot_support::quoted("no point has a value: analysis.tsv's status and d2_status columns say why")
+      g << "set title " << cli_support::quoted(label(r.title, r.figure)) << "\nset label "
+        << cli_support::quoted("no point has a value: analysis.tsv's status and d2_status columns say why")
         << " at graph 0.5,0.5 center\nplot [0:1][0:1] NaN notitle\n";
     } else if (r.figure == "d2map") {
       if (keys.size() < 2) throw StudyError("--figure", "d2map", "needs a two-axis sweep");
-      g << "set xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
-        << plot_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel "
-        << plot_support::quoted(per_m ? "D2(m = " + std::to_string(r.dimension) + "), not saturated" : "D2")
+      g << "set xlabel " << cli_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+        << cli_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel "
+        << cli_support::quoted(per_m ? "D2(m = " + std::to_string(r.dimension) + "), not saturated" : "D2")
         << "\nset palette rgbformulae 33,13,10\nset title "
-        << plot_support::quoted(label(r.title, per_m ? "D2(m) (blank: no flat region at this m)" : "correlation dimension D2 (blank: no saturated D2)"))
+        << cli_support::quoted(label(r.title, per_m ? "D2(m) (blank: no flat region at this m)" : "correlation dimension D2 (blank: no saturated D2)"))
         << "\n$m << EOD\n";
       const auto groups = by_second_axis(t, keys);
       for (const auto& [value, rows] : groups) {
@@ -213,9 +213,9 @@ void draw(const PlotRequest& r) {
       const auto groups = by_second_axis(t, keys);
       std::size_t missing = 0;
       for (const auto& row : t.rows) missing += std::isnan(row[r.figure == "d2" ? d2 : e2]) ? 1 : 0;
-      g << "set xlabel " << plot_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
-        << plot_support::quoted(label(r.y_label, r.figure == "e2" ? "max |E2(m) - 1|" : per_m ? "D2(m = " + std::to_string(r.dimension) + "), not a saturated D2" : "D2")) << "\n"
-        << "set title " << plot_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
+      g << "set xlabel " << cli_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+        << cli_support::quoted(label(r.y_label, r.figure == "e2" ? "max |E2(m) - 1|" : per_m ? "D2(m = " + std::to_string(r.dimension) + "), not a saturated D2" : "D2")) << "\n"
+        << "set title " << cli_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
                                                 (missing ? " (" + std::to_string(missing) + " points without a value)" : ""))
         << "\n";
       if (keys.size() > 1) g << "set key below\n";
@@ -240,7 +240,7 @@ void draw(const PlotRequest& r) {
           continue;
         }
         plot_line += std::string(plot_line == "plot " ? "" : ", ") + block + (r.figure == "d2" ? " using 1:2:3:4 with yerrorlines" : " using 1:2 with linespoints") +
-                     " title " + plot_support::quoted(name.str());
+                     " title " + cli_support::quoted(name.str());
         ++k;
       }
       g << plot_line << "\n";
@@ -248,8 +248,8 @@ void draw(const PlotRequest& r) {
   }
   if (g.str().find("set multiplot") != std::string::npos) g << "unset multiplot\n";
   try {
-    plot_support::render(g.str(), r.output);
-  } catch (const plot_support::PlotError& e) {
+    cli_support::render(g.str(), r.output);
+  } catch (const cli_support::PlotError& e) {
     throw StudyError("--output", r.output, e.what());
   }
 }

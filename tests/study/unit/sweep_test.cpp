@@ -42,6 +42,27 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
+// slider_y at revolutions 4..6 of point p's scene run directly by the mechanism library, from
+// its initial state or from `start`: what the study must reproduce exactly.
+std::vector<double> direct_samples(const study::SweepSpec& spec, std::size_t p, const mechanism::State* start = nullptr) {
+  mechanism::Scene scene = study::point_scene(spec, p);
+  scene.run.transient = 3 * scene.driver.period();
+  scene.run.duration = 3 * scene.driver.period();
+  scene.run.output_interval = 0;
+  mechanism::SliderCrank system(scene);
+  std::vector<double> ys;
+  mechanism::SimulationObserver obs;
+  obs.stroboscopic = [&](std::size_t rev, double, const mechanism::State&, const mechanism::Evaluation& ev) {
+    if (rev > 3) ys.push_back(ev.slider_pose[1]);
+  };
+  if (start) {
+    mechanism::simulate(system, *start, obs);
+  } else {
+    mechanism::simulate(system, obs);
+  }
+  return ys;
+}
+
 TEST(Sweep, KeepsTheLastRevolutions) {
   const study::SweepSpec spec = short_spec();
   const study::PointResult r = study::run_point(spec, 1);
@@ -61,17 +82,7 @@ TEST(Sweep, PointEqualsADirectSimulation) {
   // stroboscopic sample of the same scene.
   const study::SweepSpec spec = short_spec();
   const study::PointResult r = study::run_point(spec, 0);
-  mechanism::Scene scene = study::point_scene(spec, 0);
-  scene.run.transient = 3 * scene.driver.period();
-  scene.run.duration = 3 * scene.driver.period();
-  scene.run.output_interval = 0;
-  mechanism::SliderCrank system(scene);
-  std::vector<double> ys;
-  mechanism::SimulationObserver obs;
-  obs.stroboscopic = [&](std::size_t rev, double, const mechanism::State&, const mechanism::Evaluation& ev) {
-    if (rev > 3) ys.push_back(ev.slider_pose[1]);
-  };
-  mechanism::simulate(system, obs);
+  const std::vector<double> ys = direct_samples(spec, 0);
   ASSERT_EQ(ys.size(), r.samples.size());
   for (std::size_t k = 0; k < ys.size(); ++k) EXPECT_EQ(ys[k], r.samples[k][2]);
 }
@@ -147,17 +158,7 @@ TEST(Sweep, ContinuationStartsFromThePreviousFinalState) {
   // Starting from a state of the previous clearance changes the trajectory; a direct run from
   // that state reproduces the continued point exactly.
   EXPECT_NE(continued.samples[0][2], fresh.samples[0][2]);
-  mechanism::Scene scene = study::point_scene(spec, 1);
-  scene.run.transient = 3 * scene.driver.period();
-  scene.run.duration = 3 * scene.driver.period();
-  scene.run.output_interval = 0;
-  mechanism::SliderCrank system(scene);
-  std::vector<double> ys;
-  mechanism::SimulationObserver obs;
-  obs.stroboscopic = [&](std::size_t rev, double, const mechanism::State&, const mechanism::Evaluation& ev) {
-    if (rev > 3) ys.push_back(ev.slider_pose[1]);
-  };
-  mechanism::simulate(system, first.summary.final_state, obs);
+  const std::vector<double> ys = direct_samples(spec, 1, &first.summary.final_state);
   ASSERT_EQ(ys.size(), continued.samples.size());
   for (std::size_t k = 0; k < ys.size(); ++k) EXPECT_EQ(ys[k], continued.samples[k][2]);
 
