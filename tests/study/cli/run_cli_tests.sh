@@ -59,6 +59,24 @@ cmp -s "$work/a/samples.tsv" "$work/b/samples.tsv" || fail "a resumed sweep diff
 expect_code 3 "resume with another spec" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 9 --keep 3 -o "$work/b" -q --resume
 expect_message "first difference" "resume with another spec"
 
+# A real kill: SIGKILL part-way through a sweep of about 2 s (whatever had finished stays; a point
+# being written is at most a temporary file), then --resume computes only the rest and gives the
+# uninterrupted run's table.
+long=("${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 200 --keep 3 -q --threads 1)
+expect_code 0 "uninterrupted long sweep" "$STUDY" sweep "${long[@]}" -o "$work/u"
+"$STUDY" sweep "${long[@]}" -o "$work/k" >/dev/null 2>&1 &
+victim=$!
+for _ in $(seq 100); do  # until the first point is written, then kill
+  compgen -G "$work/k/points/*.tsv" >/dev/null && break
+  sleep 0.05
+done
+kill -9 "$victim" 2>/dev/null
+wait "$victim" 2>/dev/null
+before=$(ls "$work/k/points" | grep -c '\.tsv$')
+expect_code 0 "resume after SIGKILL" "$STUDY" sweep "${long[@]}" -o "$work/k" --resume
+[[ $(jq -r .resumed_from_disk "$work/out") == "$before" ]] || fail "resume after SIGKILL did not keep the $before finished point(s): $(cat "$work/out")"
+cmp -s "$work/u/samples.tsv" "$work/k/samples.tsv" || fail "a sweep killed and resumed differs from an uninterrupted one"
+
 # Analysis columns, and plots of each kind.
 expect_code 0 "analysis" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=2e-4,5e-4 --axis driver.speed_rpm=4000,5000 --periods 8 --keep 5 --analysis -o "$work/c" -q
 [[ $(grep -vc '^#' "$work/c/analysis.tsv") == 4 ]] || fail "analysis.tsv should have one row per point"
