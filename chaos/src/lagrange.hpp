@@ -1,11 +1,25 @@
 #pragma once
-// Lagrange interpolation weights on arbitrary nodes, and the bisection that finds where an
-// interpolant crosses a level (private): the sections interpolate between samples whose times
-// need not be uniform.
+// What both Poincaré section paths (whole series, streamed) share (private): whether two samples
+// straddle the level in the chosen direction, Lagrange interpolation weights on arbitrary nodes
+// (streamed samples need not be uniform in time), and the bisection that finds where the
+// interpolant crosses the level.
 
 #include <cstddef>
 
+#include "chaos/poincare.hpp"
+
 namespace chaos::detail {
+
+// a and b are the samples minus the level: a crossing lies between them in direction d.
+inline bool crosses(double a, double b, CrossingDirection d) {
+  const bool up = a < 0.0 && b >= 0.0, down = a > 0.0 && b <= 0.0;
+  switch (d) {
+    case CrossingDirection::upward: return up;
+    case CrossingDirection::downward: return down;
+    case CrossingDirection::both: return up || down;
+  }
+  return false;
+}
 
 // w[k] = prod_{j != k} (s - u[j]) / (u[k] - u[j]) for the n distinct nodes u (n <= 4).
 inline void lagrange_weights(const double* u, std::size_t n, double s, double* w) {

@@ -20,16 +20,6 @@ void cubic_weights(double s, double w[4]) {
   w[3] = (s + 1) * s * (s - 1) / 6.0;
 }
 
-bool crosses(double a, double b, CrossingDirection d) {
-  const bool up = a < 0.0 && b >= 0.0, down = a > 0.0 && b <= 0.0;
-  switch (d) {
-    case CrossingDirection::upward: return up;
-    case CrossingDirection::downward: return down;
-    case CrossingDirection::both: return up || down;
-  }
-  return false;
-}
-
 }  // namespace
 
 std::vector<double> stroboscopic_section(std::span<const double> series, std::size_t period, std::size_t phase) {
@@ -64,7 +54,7 @@ HyperplaneSection hyperplane_section(const std::vector<std::vector<double>>& com
   HyperplaneSection out;
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double a = g[i] - o.level, b = g[i + 1] - o.level;
-    if (!crosses(a, b, o.direction)) continue;
+    if (!detail::crosses(a, b, o.direction)) continue;
     double s;  // crossing at sample i + s
     std::vector<double> point(components.size());
     if (i >= 1 && i + 2 < n) {

@@ -18,16 +18,6 @@ namespace {
 // of steps per period accumulates rounding of a few ulps, not 1e-9 of a step.
 constexpr double snap = 1e-9;
 
-bool crosses(double a, double b, CrossingDirection d) {
-  const bool up = a < 0.0 && b >= 0.0, down = a > 0.0 && b <= 0.0;
-  switch (d) {
-    case CrossingDirection::upward: return up;
-    case CrossingDirection::downward: return down;
-    case CrossingDirection::both: return up || down;
-  }
-  return false;
-}
-
 // The nodes of the interval [lo, lo + 1] of the window in units of that interval: the cubic uses
 // all four samples (lo = 1), the linear form the interval's two ends.
 std::size_t nodes(const detail::SampleWindow& w, std::size_t lo, bool cubic, double u[4]) {
@@ -116,7 +106,7 @@ std::optional<SectionPoint> HyperplaneCrossingDetector::examine(std::size_t lo, 
   const std::size_t d = w.dimension, k = options_.component;
   const double level = options_.level;
   const double a = w.values[lo * d + k] - level, b = w.values[(lo + 1) * d + k] - level;
-  if (!crosses(a, b, options_.direction)) return std::nullopt;
+  if (!detail::crosses(a, b, options_.direction)) return std::nullopt;
   double u[4];
   const std::size_t n = nodes(w, lo, cubic, u);
   const std::size_t first_node = cubic ? 0 : lo;
