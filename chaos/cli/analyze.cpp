@@ -1,5 +1,6 @@
 // chaos analyze: the embedding parameters of a series chosen and justified. The delay is the first
-// mutual-information minimum, the Theiler window the autocorrelation's 1/e time, the dimension
+// mutual-information minimum, the Theiler window the autocorrelation's 1/e time or half the dominant
+// oscillation period (time_scales.hpp; a series that never decorrelates is reported non-stationary), the dimension
 // where Cao's E1 saturates, corroborated by false nearest neighbours; then, in that embedding, D2,
 // the largest Lyapunov exponent (Rosenstein) and the surrogate test for nonlinearity. With no file
 // it analyses a built-in Lorenz x series, the project's default demonstration.
@@ -17,6 +18,7 @@
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/surrogates.hpp"
+#include "chaos/time_scales.hpp"
 #include "common.hpp"
 
 namespace chaos::cli {
@@ -52,22 +54,43 @@ void run(AnalyzeArgs& args) {
   const std::vector<double>& x = series.values;
   require_not_constant(x, builtin ? "built-in Lorenz x" : args.input.file);
 
-  // Theiler window from the autocorrelation time, unless given.
-  const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
-  const AutocorrelationResult acf = autocorrelation(x, max_lag);
-  const auto decay = decorrelation_time(acf);
-  const auto zero = first_zero_crossing(acf);
+  // Theiler window from the series' time scales (the 1/e time, or half the dominant oscillation
+  // period when that is longer), unless given; the same reading says whether the record is
+  // stationary at all.
+  const TimeScales scales = time_scales(x);
+  const std::size_t max_lag = scales.max_lag;
+  const auto decay = scales.decorrelation_time;
+  const auto zero = scales.first_zero_crossing;
   std::size_t theiler = 0;
   std::string theiler_source;
   if (args.theiler) {
     theiler = *args.theiler;
     theiler_source = "given (-t)";
-  } else if (decay) {
-    theiler = static_cast<std::size_t>(std::ceil(*decay));
-    theiler_source = "autocorrelation 1/e time";
   } else {
-    theiler = max_lag;
-    theiler_source = "autocorrelation stays above 1/e up to lag " + std::to_string(max_lag) + "; window set to that lag";
+    theiler = scales.theiler;
+    theiler_source = scales.theiler_source;
+  }
+  if (!scales.stationary) {
+    // A random walk has no mutual-information minimum, no saturating dimension and no exponent to
+    // find: say what the series is instead of failing on the first estimator.
+    Report report("analyze", args.output);
+    report.parameter("file", builtin ? std::string("(built-in Lorenz x)") : args.input.file).parameter("N", x.size());
+    std::ostream& out = report.stream();
+    auto& j = report.json();
+    j["stationary"] = false;
+    j["stationarity_explanation"] = scales.stationarity_explanation;
+    j["d2_status"] = "not_run";
+    j["lambda_status"] = "not_run";
+    j["autocorrelation"] = {{"first_zero_crossing", optional_json(zero)}, {"decorrelation_time", nullptr}};
+    if (report.json_mode()) {
+      report.write_json(out);
+      return;
+    }
+    report.write_header(out);
+    out << "stationarity\tnon-stationary\t[" << scales.stationarity_explanation << "]\n";
+    out << "correlation_dimension\tnot run\t[non-stationary series]\n";
+    out << "largest_lyapunov_exponent\tnot run\t[non-stationary series]\n";
+    return;
   }
 
   // Delay from the first mutual-information minimum, unless given; no silent fallback.
@@ -124,10 +147,14 @@ void run(AnalyzeArgs& args) {
     l.dimension = *dimension;
     l.delay = delay;
     l.theiler = theiler;
-    // As `chaos lyapunov`: 10 autocorrelation times, at least 20 steps, at most N/10.
-    const std::size_t correlation = decay ? static_cast<std::size_t>(std::ceil(*decay)) : max_lag;
-    l.steps = std::max<std::size_t>(20, std::min(10 * correlation, x.size() / 10));
-    lyapunov = largest_lyapunov(x, l, {}, series.dt);
+    // As `chaos lyapunov`: 20 correlation times or periods, at least 20 steps, at most N/10; local
+    // slopes over a whole period; m, m+1 and m+2 must agree on the linear region and its slope.
+    const std::size_t correlation = std::max(scales.theiler, scales.period());
+    l.steps = std::max<std::size_t>(20, std::min(20 * correlation, x.size() / 10));
+    LyapunovFitOptions fit;
+    fit.period = scales.period();
+    fit.dimensions = 3;
+    lyapunov = largest_lyapunov(x, l, fit, series.dt);
 
     // The surrogate test on the first test_length samples, trimmed to their best end match (an end
     // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
@@ -156,6 +183,7 @@ void run(AnalyzeArgs& args) {
     return series.dt ? nlohmann::ordered_json(static_cast<double>(samples) * *series.dt) : nullptr;
   };
   auto& j = report.json();
+  j["stationary"] = true;
   j["delay"] = delay;
   j["delay_time"] = time(delay);
   j["delay_source"] = delay_source;
@@ -180,6 +208,7 @@ void run(AnalyzeArgs& args) {
     j["lambda_per"] = per_time ? "time" : "sample";
     j["lambda_status"] = to_string(lyapunov->fit.status);
     j["lambda_explanation"] = lyapunov->fit.explanation;
+    j["lambda_fit_range_time"] = interval(lyapunov->fit_range_time);
   } else {
     j["lambda"] = nullptr;
     j["lambda_interval"] = nullptr;

@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include "chaos/time_scales.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -108,12 +110,12 @@ std::map<std::string, double> parse_settings(const std::vector<std::string>& set
 }
 
 CorrelationTime correlation_time(std::span<const double> x) {
-  const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
+  const TimeScales scales = time_scales(x);
   CorrelationTime t;
-  t.decay = decorrelation_time(autocorrelation(x, max_lag));
-  t.samples = t.decay ? static_cast<std::size_t>(std::ceil(*t.decay)) : max_lag;
-  t.source = t.decay ? "autocorrelation 1/e time"
-                     : "autocorrelation stays above 1/e up to lag " + std::to_string(max_lag) + ": set to that lag";
+  t.decay = scales.decorrelation_time;
+  t.samples = scales.theiler;
+  t.source = scales.theiler_source;
+  t.period = scales.period();
   return t;
 }
 

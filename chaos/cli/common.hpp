@@ -103,10 +103,12 @@ std::map<std::string, double> parse_settings(const std::vector<std::string>& set
 // The autocorrelation time of a series as the commands use it for a default Theiler window: the
 // lag where r falls to 1/e (rounded up), or, when r stays above 1/e, the largest lag examined
 // (N/4, at most 5000). `source` says which.
+// The Theiler window and the oscillation period of time_scales.hpp, for the commands' defaults.
 struct CorrelationTime {
-  std::size_t samples = 0;
+  std::size_t samples = 0;      // the Theiler window: max(1/e time, half the oscillation period)
   std::optional<double> decay;  // the 1/e time itself, when there is one
   std::string source;
+  std::size_t period = 0;       // of a dominant oscillation, samples; 0 when none
 };
 CorrelationTime correlation_time(std::span<const double> x);
 

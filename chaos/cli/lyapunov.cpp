@@ -19,7 +19,7 @@ struct LyapunovArgs {
   OutputOptions output;
   LyapunovOptions options;
   LyapunovFitOptions fit;
-  std::optional<std::size_t> theiler, steps;
+  std::optional<std::size_t> theiler, steps, period;
   std::string method = "rosenstein";
   std::string norm = "max";
   std::string plot;
@@ -98,22 +98,31 @@ void run(LyapunovArgs& args) {
   args.options.method = parse_method(args.method);
   args.options.norm = parse_norm(args.norm);
 
-  // Defaults from the data's own time scale: the Theiler window is the autocorrelation time (as in
-  // d2); the curve is followed for 10 autocorrelation times (at least 20 steps, at most N/10), long
-  // enough for a flow's separation to grow to the attractor's size.
+  // Defaults from the data's own time scales (time_scales.hpp): the Theiler window covers the
+  // autocorrelation time and half a period of a dominant oscillation (as in d2); the curve is
+  // followed for 20 of the longer of the two (at least 20 steps, at most N/10), long enough for a
+  // flow's separation to grow to the attractor's size; the local slopes span a whole period.
+  // (20 of them: the linear region must rise by LyapunovFitOptions::min_rise after the transient.)
   const CorrelationTime correlation = correlation_time(x);
-  std::string theiler_source = "given (-t)", steps_source = "given (-s)";
+  std::string theiler_source = "given (-t)", steps_source = "given (-s)", period_source = "given (--period)";
   if (args.theiler) {
     args.options.theiler = *args.theiler;
   } else {
     args.options.theiler = correlation.samples;
     theiler_source = correlation.source;
   }
+  if (!args.period) {
+    args.fit.period = correlation.period;
+    period_source = correlation.period ? "twice the first autocorrelation minimum" : "no dominant oscillation";
+  } else {
+    args.fit.period = *args.period;
+  }
   if (args.steps) {
     args.options.steps = *args.steps;
   } else {
-    args.options.steps = std::max<std::size_t>(20, std::min(10 * correlation.samples, x.size() / 10));
-    steps_source = "10 autocorrelation times, at least 20, at most N/10";
+    const std::size_t scale = std::max(correlation.samples, args.fit.period);
+    args.options.steps = std::max<std::size_t>(20, std::min(20 * scale, x.size() / 10));
+    steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
   const LyapunovResult r = largest_lyapunov(x, args.options, args.fit, series.dt);
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
@@ -136,7 +145,8 @@ void run(LyapunovArgs& args) {
         .parameter("min_neighbours", args.options.min_neighbours);
   report.parameter("reference_points", args.options.reference_points).parameter("threads", args.options.threads)
       .parameter("tolerance", args.fit.tolerance).parameter("half_width", r.fit.half_width)
-      .parameter("min_steps", r.fit.min_steps);
+      .parameter("min_steps", r.fit.min_steps).parameter("period", args.fit.period)
+      .parameter("period_source", period_source).parameter("dimensions", args.fit.dimensions);
   std::ostream& out = report.stream();
   auto& j = report.json();
   j["lambda"] = optional_json(lambda);
@@ -148,6 +158,9 @@ void run(LyapunovArgs& args) {
   j["explanation"] = r.fit.explanation;
   j["region"] = r.fit.first_step ? nlohmann::ordered_json::array({*r.fit.first_step, *r.fit.last_step})
                                  : nlohmann::ordered_json(nullptr);
+  j["region_time"] = interval_json(r.fit_range_time);
+  j["dimensions"] = r.dimensions;
+  j["lambda_by_dimension"] = r.fit.lambda_by_curve;
   j["step"] = r.curve.step;
   if (per_time) {
     std::vector<double> time(r.curve.step.size());
@@ -178,6 +191,9 @@ void run(LyapunovArgs& args) {
   if (per_time)
     out << "# lambda_per_sample = " << (r.fit.lambda ? number(*r.fit.lambda) : "none") << "  interval "
         << interval_text(r.fit.lambda_interval) << "\n";
+  if (r.fit_range_time)
+    out << "# fitted over t = " << number(r.fit_range_time->low) << " .. " << number(r.fit_range_time->high)
+        << " time units\n";
   out << "# references_used = " << r.curve.references_used << " of " << r.curve.reference_points
       << "  mean_neighbours = " << number(r.curve.mean_neighbours) << "\n";
   out << (per_time ? "# step\ttime\tdivergence\tlocal_slope\tterms\n" : "# step\tdivergence\tlocal_slope\tterms\n");
@@ -193,6 +209,7 @@ void run(LyapunovArgs& args) {
 
 void register_lyapunov(CLI::App& app) {
   auto args = std::make_shared<LyapunovArgs>();
+  args->fit.dimensions = 3;  // m, m+1, m+2 must agree: a transient that looks straight in one m is refused
   CLI::App* command =
       app.add_subcommand("lyapunov", "largest Lyapunov exponent from a series (Rosenstein 1993 or Kantz 1994)");
   add_input_options(*command, args->input);
@@ -201,9 +218,15 @@ void register_lyapunov(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-m,--dimension", args->options.dimension, "embedding dimension")->capture_default_str();
   command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-t,--theiler", args->theiler, "Theiler window in samples (default: autocorrelation 1/e time)");
+  command->add_option("-t,--theiler", args->theiler, "Theiler window in samples (default: the autocorrelation 1/e "
+                                                     "time or half the dominant oscillation period, the longer)");
   command->add_option("-s,--steps", args->steps,
-                      "steps the divergence is followed (default: 10 autocorrelation times, 20..N/10)");
+                      "steps the divergence is followed (default: 20 correlation times or periods, 20..N/10)");
+  command->add_option("--period", args->period, "oscillation period in samples: local slopes span a whole period "
+                                                "(default: twice the first autocorrelation minimum; 0: none)");
+  command->add_option("--dimensions", args->fit.dimensions, "embedding dimensions m, m+1, ... whose curves must "
+                                                            "share the linear region and agree on its slope")
+      ->capture_default_str();
   command->add_option("-r,--radius", args->options.radius, "Kantz: neighbourhood radius eps (default: data range / 1000, scaled by powers of 2 so that half the "
                       "reference points have a neighbour and at most 20 on average)");
   command->add_option("-k,--min-neighbours", args->options.min_neighbours,
@@ -217,9 +240,11 @@ void register_lyapunov(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--tolerance", args->fit.tolerance, "relative flatness of the local slopes in the linear region")
       ->capture_default_str();
-  command->add_option("--half-width", args->fit.half_width, "local-slope half width in steps (0: max(2, steps/25))")
+  command->add_option("--half-width", args->fit.half_width, "local-slope half width in steps (0: max(2, steps/25, period/2))")
       ->capture_default_str();
-  command->add_option("--min-steps", args->fit.min_steps, "steps in a linear region, at least (0: 3 half widths + 1)")
+  command->add_option("--min-steps", args->fit.min_steps, "steps in a linear region, at least (0: 3 half widths + 1, and a period + 1)")
+      ->capture_default_str();
+  command->add_option("--min-rise", args->fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
   command->add_option("--plot", args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);

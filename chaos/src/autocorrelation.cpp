@@ -2,6 +2,7 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -98,6 +99,20 @@ std::optional<double> decorrelation_time(const AutocorrelationResult& result) {
     if (r[k] <= level) {
       // r[k-1] > 1/e >= r[k]: the straight line between them crosses 1/e inside [k-1, k].
       return static_cast<double>(k - 1) + (r[k - 1] - level) / (r[k - 1] - r[k]);
+    }
+  return std::nullopt;
+}
+
+std::optional<std::size_t> oscillation_half_period(const AutocorrelationResult& result, double min_depth,
+                                                   double max_ratio) {
+  const auto zero = first_zero_crossing(result);
+  const auto decay = decorrelation_time(result);
+  if (!zero || !decay || static_cast<double>(*zero) > max_ratio * std::max(*decay, 1.0)) return std::nullopt;
+  const auto& r = result.correlation;
+  for (std::size_t k = *zero; k + 1 < r.size(); ++k)
+    if (r[k] <= r[k - 1] && r[k] < r[k + 1]) {
+      if (r[k] > -min_depth) return std::nullopt;  // a shallow wiggle, not an oscillation
+      return k;
     }
   return std::nullopt;
 }

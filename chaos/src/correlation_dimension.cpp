@@ -58,6 +58,12 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   std::vector<double> log_r(radii);
   for (std::size_t k = 0; k < radii; ++k) log_r[k] = std::log(sums.radius[k]);
 
+  // The evidence behind a region: the e-folds of pairs that enter across it.
+  std::vector<std::vector<double>> support(dims, std::vector<double>(radii));
+  for (std::size_t d = 0; d < dims; ++d)
+    for (std::size_t k = 0; k < radii; ++k)
+      support[d][k] = std::log(std::max(1.0, static_cast<double>(sums.pairs[d][k])));
+
   // Steps 1-2: local slopes and a region per dimension.
   std::vector<std::vector<std::optional<double>>> log_c(dims, std::vector<std::optional<double>>(radii));
   for (std::size_t d = 0; d < dims; ++d) {
@@ -69,7 +75,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           sums.pairs[d][k] < sums.examined[d][k])
         log_c[d][k] = std::log(sums.correlation_sum[d][k]);
     out.local_slope.push_back(local_slopes(log_r, log_c[d], options.region.half_width));
-    const auto region = find_scaling_region(log_r, {out.local_slope[d]}, options.region);
+    const auto region = find_scaling_region(log_r, {out.local_slope[d]}, options.region, support[d]);
     if (region) {
       out.d2_by_dimension.push_back(fit_slope(log_r, log_c[d], region->first, region->last));
       out.d2_by_dimension_interval.push_back(Interval{region->slope_min, region->slope_max});
@@ -104,7 +110,8 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   } else {
     std::vector<std::vector<std::optional<double>>> curves;
     for (const auto d : top) curves.push_back(out.local_slope[d]);
-    const auto shared = find_scaling_region(log_r, curves, options.region);
+    // The highest dimension has the fewest pairs: its count is the shared region's support.
+    const auto shared = find_scaling_region(log_r, curves, options.region, support[top.back()]);
     if (!shared) {
       out.status = D2Status::not_saturated;
       why << "the highest dimensions share no plateau; D2(m) by dimension: " << list_d2();
@@ -133,6 +140,21 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           << out.scaling_region->high << "]";
     }
   }
+  // Finite-set structure: counts that stop changing over a run of radii in the highest dimension.
+  {
+    const auto& p = sums.pairs[dims - 1];
+    for (std::size_t k = 0; k + 2 < radii; ++k) {
+      std::size_t end = k;
+      while (end + 1 < radii && p[end + 1] == p[k]) ++end;
+      // (A run at C = 1, every pair already inside eps, is the attractor's size, not a finite set.)
+      if (p[k] > 0 && p[k] < sums.examined[dims - 1][k] && end >= k + 2) out.finite_set_below = sums.radius[end];
+      k = end;
+    }
+  }
+  if (out.finite_set_below)
+    why << "; below eps = " << *out.finite_set_below << " the pair counts stop changing over consecutive radii: at "
+        << "those scales the data are a finite set of points (periodic with a rational period, or quantised), "
+        << "and no dimension can be read there";
   double largest = out.d2.value_or(0.0);
   for (const auto& v : out.d2_by_dimension)
     if (v) largest = std::max(largest, *v);

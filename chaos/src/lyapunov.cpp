@@ -171,6 +171,9 @@ void LyapunovFitOptions::validate() const {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     refuse("Lyapunov fit: tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
   if (min_steps == 1) refuse("Lyapunov fit: a linear region needs at least 2 steps (got min_steps = 1)");
+  if (dimensions < 1) refuse("Lyapunov fit: at least 1 embedding dimension must be fitted (got dimensions = 0)");
+  if (!(min_rise >= 0.0) || !std::isfinite(min_rise))
+    refuse("Lyapunov fit: the minimum rise must be finite and >= 0 (got " + detail::format_number(min_rise) + ")");
 }
 
 DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
@@ -307,54 +310,132 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
 }
 
 LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options) {
+  return fit_divergence(std::vector<DivergenceCurve>{curve}, options);
+}
+
+LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const LyapunovFitOptions& options) {
   options.validate();
+  if (curves.empty()) refuse("Lyapunov fit: no divergence curve to fit");
+  for (const auto& c : curves)
+    if (c.step != curves.front().step) refuse("Lyapunov fit: the curves of one fit must cover the same steps");
   LyapunovFit fit;
+  const DivergenceCurve& curve = curves.front();
   const std::size_t last = curve.step.empty() ? 0 : curve.step.back();
-  fit.half_width = options.half_width != 0 ? options.half_width : std::max<std::size_t>(2, last / 25);
-  fit.min_steps = options.min_steps != 0 ? options.min_steps : 3 * fit.half_width + 1;
+  // Each local slope spans at least one whole oscillation period, so a rotating flow's periodic
+  // modulation of the divergence averages out instead of breaking the tolerance.
+  const bool secants = options.period > 1 && options.half_width == 0;
+  fit.half_width = options.half_width != 0 ? options.half_width
+                   : secants               ? (options.period + 1) / 2
+                                           : std::max<std::size_t>(2, last / 25);
+  fit.min_steps = options.min_steps != 0 ? options.min_steps : std::max(3 * fit.half_width + 1, options.period + 1);
   const ScalingRegionOptions region_options{options.tolerance, true, fit.min_steps, fit.half_width};
   std::vector<double> x(curve.step.size());
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = static_cast<double>(curve.step[k]);
-  fit.local_slope = local_slopes(x, curve.divergence, fit.half_width);
-  std::ostringstream why;
-  if (curve.references_used == 0) {
-    fit.status = LyapunovStatus::no_neighbours;
-    why << "none of the " << curve.reference_points << " reference points has a neighbour"
-        << (curve.method == LyapunovMethod::kantz ? " within eps" : "") << " outside the Theiler window";
-    fit.explanation = why.str();
-    return fit;
+  std::vector<std::vector<std::optional<double>>> slopes;
+  for (const auto& c : curves) {
+    if (secants) {
+      // Over a whole period the periodic part of the curve returns to its value, so the secant
+      // (y[k+after] - y[k-before]) / P with before + after = P (the mean of the short local slopes
+      // over the period) cancels it exactly; a least-squares line over the same window would not.
+      const std::size_t before = options.period / 2, after = options.period - before;
+      std::vector<std::optional<double>> secant(x.size());
+      for (std::size_t k = before; k + after < x.size(); ++k)
+        if (c.divergence[k - before] && c.divergence[k + after])
+          secant[k] = (*c.divergence[k + after] - *c.divergence[k - before]) / (x[k + after] - x[k - before]);
+      slopes.push_back(std::move(secant));
+    } else {
+      slopes.push_back(local_slopes(x, c.divergence, fit.half_width));
+    }
   }
+  fit.local_slope = slopes.front();
+  std::ostringstream why;
+  for (const auto& c : curves)
+    if (c.references_used == 0) {
+      fit.status = LyapunovStatus::no_neighbours;
+      why << "none of the " << c.reference_points << " reference points has a neighbour"
+          << (c.method == LyapunovMethod::kantz ? " within eps" : "") << " outside the Theiler window";
+      fit.explanation = why.str();
+      return fit;
+    }
   // Only a rising curve carries a positive exponent, and these methods estimate nothing else: the
   // straight stretch is searched among steps with a positive local slope. (A saturated plateau
   // whose slopes were exactly 0 would otherwise count as perfectly straight.)
-  std::vector<std::optional<double>> rising(fit.local_slope.size());
+  std::vector<std::vector<std::optional<double>>> rising(slopes.size(), std::vector<std::optional<double>>(x.size()));
   bool rises = false;
-  for (std::size_t k = 0; k < rising.size(); ++k)
-    if (fit.local_slope[k] && *fit.local_slope[k] > 0.0) {
-      rising[k] = fit.local_slope[k];
-      rises = true;
-    }
+  for (std::size_t c = 0; c < slopes.size(); ++c)
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (slopes[c][k] && *slopes[c][k] > 0.0) {
+        rising[c][k] = slopes[c][k];
+        rises = true;
+      }
   if (!rises) {
     fit.status = LyapunovStatus::not_diverging;
     why << "no local slope of the divergence curve is positive: no exponential divergence";
     fit.explanation = why.str();
     return fit;
   }
-  const auto region = find_scaling_region(x, {rising}, region_options);
+  // Among the straight stretches, the one across which the curve rises most wins, and it must rise
+  // by min_rise: the growth of the separation is the evidence for an exponential divergence.
+  std::vector<double> level(x.size(), 0.0);
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    std::size_t n = 0;
+    for (const auto& c : curves)
+      if (c.divergence[k]) {
+        level[k] += *c.divergence[k];
+        ++n;
+      }
+    if (n > 0) level[k] /= static_cast<double>(n);
+  }
+  ScalingRegionOptions rising_options = region_options;
+  rising_options.min_support_gain = options.min_rise;
+  const auto region = find_scaling_region(x, rising, rising_options, level);
   if (!region) {
     fit.status = LyapunovStatus::no_linear_region;
-    why << "no stretch of at least " << fit.min_steps << " steps has positive local slopes within "
-        << options.tolerance * 100 << "% of their mean: the divergence curve has no linear region";
+    why << "no stretch of at least " << fit.min_steps << " steps rising by " << options.min_rise
+        << " e-folds or more has positive local slopes within " << options.tolerance * 100 << "% of their mean";
+    if (curves.size() > 1) why << " in all " << curves.size() << " embedding dimensions at once";
+    why << ": the divergence curve has no linear region";
+    if (curves.size() > 1) why << " that does not depend on m";
     fit.explanation = why.str();
     return fit;
   }
   fit.first_step = curve.step[region->first];
   fit.last_step = curve.step[region->last];
-  const double slope = fit_slope(x, curve.divergence, region->first, region->last).value_or(region->slope);
-  if (!(slope > 0.0)) {  // local slopes all positive but the least-squares line is not: refuse to guess
+  double sum = 0.0, lo = region->slope_min, hi = region->slope_max, low_fit = INFINITY, high_fit = -INFINITY;
+  for (const auto& c : curves) {
+    const double slope = fit_slope(x, c.divergence, region->first, region->last).value_or(region->slope);
+    fit.lambda_by_curve.push_back(slope);
+    sum += slope;
+    low_fit = std::min(low_fit, slope);
+    high_fit = std::max(high_fit, slope);
+  }
+  const double slope = sum / static_cast<double>(curves.size());
+  if (!(low_fit > 0.0)) {  // local slopes all positive but a least-squares line is not: refuse to guess
     fit.status = LyapunovStatus::not_diverging;
     why << "the straightest stretch (steps " << *fit.first_step << ".." << *fit.last_step << ") has slope "
-        << slope << " <= 0: no exponential divergence";
+        << low_fit << " <= 0: no exponential divergence";
+    fit.first_step.reset();
+    fit.last_step.reset();
+    fit.explanation = why.str();
+    return fit;
+  }
+  if (high_fit - low_fit > options.tolerance * slope) {  // the dimensions disagree on the slope itself
+    fit.status = LyapunovStatus::no_linear_region;
+    why << "the embedding dimensions disagree on the slope over steps " << *fit.first_step << ".." << *fit.last_step
+        << " (" << low_fit << " to " << high_fit << " per sample, more than " << options.tolerance * 100
+        << "% apart)";
+    fit.first_step.reset();
+    fit.last_step.reset();
+    fit.explanation = why.str();
+    return fit;
+  }
+  const double rise = slope * (x[region->last] - x[region->first]);
+  if (rise < options.min_rise) {
+    fit.status = LyapunovStatus::no_linear_region;
+    why << "the straightest stretch (steps " << *fit.first_step << ".." << *fit.last_step << ", slope " << slope
+        << " per sample) rises by only " << rise << " e-folds, fewer than the " << options.min_rise
+        << " needed to identify an exponential divergence (follow the curve longer with more steps, or it is "
+        << "a piece of the initial transient)";
     fit.first_step.reset();
     fit.last_step.reset();
     fit.explanation = why.str();
@@ -362,9 +443,11 @@ LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOption
   }
   fit.status = LyapunovStatus::linear_region;
   fit.lambda = slope;
-  fit.lambda_interval = Interval{std::min(region->slope_min, slope), std::max(region->slope_max, slope)};
+  fit.lambda_interval = Interval{std::min({lo, low_fit}), std::max({hi, high_fit})};
   why << "local slopes agree within " << options.tolerance * 100 << "% over steps " << *fit.first_step << ".."
       << *fit.last_step;
+  if (curves.size() > 1) why << " in " << curves.size() << " embedding dimensions";
+  if (options.period > 1) why << " (local slopes over " << 2 * fit.half_width + 1 << " steps: a whole oscillation period)";
   fit.explanation = why.str();
   return fit;
 }
@@ -377,7 +460,16 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
   fit.validate();
   LyapunovResult result;
   result.curve = divergence_curve(x, options);
-  result.fit = fit_divergence(result.curve, fit);
+  std::vector<DivergenceCurve> curves{result.curve};
+  result.dimensions = {options.dimension};
+  for (std::size_t extra = 1; extra < fit.dimensions; ++extra) {
+    LyapunovOptions higher = options;
+    higher.dimension = options.dimension + extra;
+    // Kantz: the same neighbourhood rule, its radius found afresh for the higher dimension.
+    curves.push_back(divergence_curve(x, higher));
+    result.dimensions.push_back(higher.dimension);
+  }
+  result.fit = fit_divergence(curves, fit);
   result.options = options;
   if (options.method == LyapunovMethod::kantz) result.options.radius = result.curve.radius;
   result.dt = dt;
@@ -385,6 +477,9 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
     result.lambda_per_time = *result.fit.lambda / *dt;
     result.lambda_per_time_interval = Interval{result.fit.lambda_interval->low / *dt, result.fit.lambda_interval->high / *dt};
   }
+  if (dt && result.fit.first_step)
+    result.fit_range_time = Interval{static_cast<double>(*result.fit.first_step) * *dt,
+                                     static_cast<double>(*result.fit.last_step) * *dt};
   return result;
 }
 

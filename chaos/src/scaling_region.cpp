@@ -53,15 +53,22 @@ void ScalingRegionOptions::validate() const {
   if (min_points < 2)
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "a scaling region needs at least 2 points (got min_points = " + std::to_string(min_points) + ")");
+  if (!(min_support_gain >= 0.0) || !std::isfinite(min_support_gain))
+    throw InvalidInput(ErrorCode::invalid_parameter, "scaling-region support gain must be finite and at least 0 (got " +
+                                                         std::to_string(min_support_gain) + ")");
   if (half_width < 1)
     throw InvalidInput(ErrorCode::invalid_parameter, "local-slope half width must be at least 1 (got 0)");
 }
 
 std::optional<ScalingRegion> find_scaling_region(std::span<const double> x,
                                                  const std::vector<std::vector<std::optional<double>>>& slopes,
-                                                 const ScalingRegionOptions& options) {
+                                                 const ScalingRegionOptions& options,
+                                                 std::span<const double> support) {
   options.validate();
   if (slopes.empty()) return std::nullopt;
+  if (!support.empty() && support.size() != x.size())
+    throw InvalidInput(ErrorCode::invalid_parameter, "find_scaling_region: the support has " + std::to_string(support.size()) +
+                                                         " points but the grid has " + std::to_string(x.size()));
   for (const auto& curve : slopes)
     if (curve.size() != x.size())
       throw InvalidInput(ErrorCode::invalid_parameter, "find_scaling_region: a slope curve has " + std::to_string(curve.size()) +
@@ -90,7 +97,9 @@ std::optional<ScalingRegion> find_scaling_region(std::span<const double> x,
       if (hi - lo > 2.0 * allowed) break;
       if (hi - mean > allowed || mean - lo > allowed) continue;
       if (b - a + 1 < options.min_points) continue;
-      const double width = x[b] - x[a];
+      const double width = support.empty() ? x[b] - x[a] : support[b] - support[a];
+      if (!support.empty() && (!(width > 0.0) || width < options.min_support_gain))
+        continue;  // too little entered across the region: no evidence of its slope
       const bool wider = width > best_width * (1.0 + 1e-12);
       const bool as_wide_but_flatter = std::abs(width - best_width) <= 1e-12 * std::abs(best_width) && best &&
                                        hi - lo < best->slope_max - best->slope_min;

@@ -98,7 +98,8 @@ head -c 8 "$work/d2.png" | od -An -c | grep -q "P   N   G" && pass || fail "d2.p
 "$CHAOS" generate white_noise -l 3000 > "$work/noise.dat" || fail "generate white_noise"
 expect_json_keys lyapunov "$work/henon.dat" -- lambda lambda_interval per status divergence step local_slope terms
 l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.status, .per, (.lambda > 0.3 and .lambda < 0.5), (.divergence | length), .parameters.steps]')
-[[ $l == '["linear_region","sample",true,21,20]' ]] && pass || fail "lyapunov henon gave $l"
+# Default steps: 20 correlation times (Henon x: Theiler window 2 samples), so 40 steps and 41 curve values.
+[[ $l == '["linear_region","sample",true,41,40]' ]] && pass || fail "lyapunov henon gave $l"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --json | jq -c '[.status, .parameters.method, (.parameters.radius > 0)]')
 [[ $l == '["linear_region","kantz",true]' ]] && pass || fail "lyapunov --method kantz gave $l"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --dt 0.5 --json | jq -c '[.per, (.lambda == .lambda_per_sample / 0.5)]')

@@ -50,6 +50,41 @@ TEST(CorrelationDimension, ExactPowerLawSaturates) {
   EXPECT_NEAR(r.eckmann_ruelle_limit, 10.0, 1e-12);  // 2 log10(1e5)
 }
 
+// A finite set of points at small scales: below eps = 0.05 no pair enters (the counts stay at
+// their value there, as for a sine sampled at a rational period), above it C grows as eps^1. The
+// stretch of constant counts is long and perfectly flat (slope 0) but carries no information: it
+// is never the scaling region, D2 = 1 comes from the radii where pairs enter, and the finite-set
+// structure is reported with the radius where it ends.
+TEST(CorrelationDimension, RadiiWhereNoPairEntersAreNeverTheRegion) {
+  auto sums = power_law(5, [](std::size_t) { return 1.0; });
+  std::size_t last_flat = 0;
+  for (std::size_t k = 0; k < sums.radius.size(); ++k)
+    if (sums.radius[k] < 0.05) last_flat = k;
+  for (std::size_t d = 0; d < sums.dimension.size(); ++d)
+    for (std::size_t k = 0; k <= last_flat; ++k) {
+      sums.pairs[d][k] = sums.pairs[d][last_flat + 1];
+      sums.correlation_sum[d][k] = sums.correlation_sum[d][last_flat + 1];
+    }
+  const auto r = chaos::correlation_dimension(sums);
+  ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
+  EXPECT_NEAR(*r.d2, 1.0, 1e-9);
+  EXPECT_GE(r.scaling_region->low, 0.05);
+  ASSERT_TRUE(r.finite_set_below.has_value());
+  EXPECT_DOUBLE_EQ(*r.finite_set_below, sums.radius[last_flat + 1]);
+  EXPECT_NE(r.explanation.find("finite set"), std::string::npos);
+
+  // With only the flat stretch and no radius where pairs enter, there is no region at all (the old
+  // rule answered "saturated, D2 = 0").
+  for (std::size_t d = 0; d < sums.dimension.size(); ++d)
+    for (std::size_t k = 0; k < sums.radius.size(); ++k) {
+      sums.pairs[d][k] = 5000;
+      sums.correlation_sum[d][k] = 5e-6;
+    }
+  const auto flat = chaos::correlation_dimension(sums);
+  EXPECT_EQ(flat.status, chaos::D2Status::no_scaling_region) << flat.explanation;
+  EXPECT_FALSE(flat.d2.has_value());
+}
+
 TEST(CorrelationDimension, SlopesGrowingWithDimensionAreNotSaturated) {
   // Noise-like: D2(m) = m for every m.
   const auto r = chaos::correlation_dimension(power_law(5, [](std::size_t m) { return double(m); }));

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <string>
 #include <vector>
@@ -448,6 +449,62 @@ TEST(FitDivergence, StraightPartOfConstructedCurves) {
   EXPECT_EQ(fit.half_width, 20u);  // 500 / 25
   EXPECT_EQ(fit.min_steps, 61u);
   EXPECT_NEAR(*fit.lambda, 0.01, 1e-12);
+}
+
+// The rise rule: a straight stretch is only an exponential divergence if the separation grows
+// across it by min_rise e-folds (default 2). A line rising 1.5 in total is refused by default and
+// accepted when the user lowers the bar to 1.
+TEST(FitDivergence, StraightStretchMustRiseEnough) {
+  std::vector<std::optional<double>> y;
+  for (std::size_t k = 0; k <= 150; ++k) y.push_back(-4.0 + 0.01 * static_cast<double>(k));
+  auto fit = chaos::fit_divergence(constructed(y));
+  EXPECT_EQ(fit.status, LyapunovStatus::no_linear_region) << fit.explanation;
+  EXPECT_FALSE(fit.lambda.has_value());
+  chaos::LyapunovFitOptions low;
+  low.min_rise = 1.0;
+  fit = chaos::fit_divergence(constructed(y), low);
+  ASSERT_EQ(fit.status, LyapunovStatus::linear_region) << fit.explanation;
+  EXPECT_NEAR(*fit.lambda, 0.01, 1e-12);
+}
+
+// A rotating flow modulates the divergence with its period: y = 0.01 k + 0.3 sin(2 pi k / 50). The
+// modulation's slope swings by 0.3 * 2 pi / 50 = 0.038, four times the exponent, so short local
+// slopes never agree within 10%. With period = 50 the local slopes are secants over one whole
+// period, in which the sine cancels exactly: every one is 0.01, and so is the fit (the least-
+// squares line over the region keeps a ripple of order 0.3 * 6 / (pi * region length)).
+TEST(FitDivergence, OscillatingCurveNeedsWholePeriods) {
+  std::vector<std::optional<double>> y;
+  for (std::size_t k = 0; k <= 300; ++k) {
+    const double t = static_cast<double>(k);
+    y.push_back(-4.0 + 0.01 * t + 0.3 * std::sin(2.0 * std::numbers::pi * t / 50.0));
+  }
+  auto fit = chaos::fit_divergence(constructed(y));
+  EXPECT_EQ(fit.status, LyapunovStatus::no_linear_region) << fit.explanation;
+  chaos::LyapunovFitOptions periodic;
+  periodic.period = 50;
+  fit = chaos::fit_divergence(constructed(y), periodic);
+  ASSERT_EQ(fit.status, LyapunovStatus::linear_region) << fit.explanation;
+  EXPECT_EQ(fit.half_width, 25u);
+  EXPECT_GE(fit.min_steps, 51u);
+  for (std::size_t k = 25; k + 25 <= 300; ++k) EXPECT_NEAR(*fit.local_slope[k], 0.01, 1e-12) << k;
+  EXPECT_NEAR(*fit.lambda, 0.01, 0.0005);
+}
+
+// Curves of several embedding dimensions must agree: slopes 0.01 and 0.0104 (4% apart) are fitted
+// together to their mean; 0.01 and 0.013 (30% apart) are refused, never averaged into a number.
+TEST(FitDivergence, DimensionsMustAgree) {
+  const auto line = [](double slope) {
+    std::vector<std::optional<double>> y;
+    for (std::size_t k = 0; k <= 300; ++k) y.push_back(-4.0 + slope * static_cast<double>(k));
+    return constructed(y);
+  };
+  auto fit = chaos::fit_divergence(std::vector<chaos::DivergenceCurve>{line(0.01), line(0.0104)});
+  ASSERT_EQ(fit.status, LyapunovStatus::linear_region) << fit.explanation;
+  EXPECT_NEAR(*fit.lambda, 0.0102, 1e-12);
+  ASSERT_EQ(fit.lambda_by_curve.size(), 2u);
+  fit = chaos::fit_divergence(std::vector<chaos::DivergenceCurve>{line(0.01), line(0.013)});
+  EXPECT_EQ(fit.status, LyapunovStatus::no_linear_region) << fit.explanation;
+  EXPECT_FALSE(fit.lambda.has_value());
 }
 
 template <class F>

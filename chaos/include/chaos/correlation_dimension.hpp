@@ -3,11 +3,18 @@
 // with the scaling region chosen automatically and an honest interval:
 //  1. local slopes d ln C / d ln eps for every m (radii with fewer than min_pairs pairs are left out:
 //     their relative statistical error is above 1/sqrt(min_pairs); so are radii where C = 1);
-//  2. per m, the widest flat region gives D2(m) (the least-squares slope there) and an interval
-//     (the range of the local slopes over that region);
+//  2. per m, the flat region across which the most pairs enter, counted in e-folds of the pair count
+//     (ln pairs(eps_high) - ln pairs(eps_low), the width in ln eps times the slope), gives D2(m) (the
+//     least-squares slope there) and an interval (the range of the local slopes over that region). A
+//     region must see the pair count at least double across it (min_support_gain = ln 2): a stretch
+//     of radii where no pair enters (below the spacing of a finite set of points: periodic or
+//     quantised data) has slope 0 and carries no information, so it is never a scaling region,
+//     however long and flat;
 //  3. the saturated D2 needs one region shared by the `saturation_dimensions` highest dimensions
 //     that have an estimate, with their D2(m) agreeing within the tolerance; its interval is the
 //     range of all local slopes of those dimensions over the shared region.
+// Radii where the pair counts stop changing (three or more consecutive radii with the same non-zero
+// count in the highest dimension) are reported: at those scales the data are a finite set of points.
 // Otherwise the result says "not saturated" (D2(m) keeps growing, as for noise) or "no scaling
 // region". A second, independent estimate is the Takens-Theiler maximum-likelihood D2 at the upper
 // edge of the region (Takens 1985; Theiler 1988), with its standard error.
@@ -27,7 +34,7 @@ enum class D2Status { saturated, not_saturated, no_scaling_region };
 const char* to_string(D2Status status) noexcept;
 
 struct CorrelationDimensionOptions {
-  ScalingRegionOptions region;
+  ScalingRegionOptions region{0.05, true, 5, 1, 0.6931471805599453};
   std::size_t saturation_dimensions = 3;
   std::uint64_t min_pairs = 100;
   void validate() const;
@@ -50,6 +57,10 @@ struct CorrelationDimensionResult {
   bool exceeds_eckmann_ruelle = false;
   std::optional<double> takens_theiler;     // at the upper edge of the shared region, highest m used
   std::optional<double> takens_theiler_error;
+  // The largest radius below which the highest dimension's pair count stays the same over at least
+  // three consecutive radii: the data look like a finite set of points at smaller scales (periodic
+  // with a rational period, or quantised). nullopt when the counts keep changing.
+  std::optional<double> finite_set_below;
 };
 
 CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,

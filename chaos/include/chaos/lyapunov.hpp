@@ -110,6 +110,23 @@ struct LyapunovFitOptions {
   double tolerance = 0.1;
   std::size_t half_width = 0;
   std::size_t min_steps = 0;
+  // The period of a dominant oscillation, in steps (0: none). A rotating flow (Rossler) modulates
+  // the divergence with its orbit period, so local slopes over a few steps swing by more than any
+  // tolerance. With a period (and the automatic half width), the local slope at k is the secant
+  // over one whole period centred on k, the mean of the short slopes over the period, in which the
+  // periodic part cancels; a linear region spans at least one period plus one step.
+  std::size_t period = 0;
+  // Embedding dimensions that must agree (largest_lyapunov): curves for m, m+1, ..., m+dimensions-1
+  // must share the linear region and their slopes there agree within the tolerance. The exponent
+  // does not depend on m, while the initial transient (neighbours selected close in the delay
+  // window, then relaxing onto the unstable direction) does: a stretch of the transient that looks
+  // straight in one dimension has another slope in the next, and is refused. 1: the given m alone.
+  std::size_t dimensions = 1;
+  // The curve must rise by at least this much (natural log units) across the linear region: an
+  // exponential divergence is only identified when the separation grows over a range of scales.
+  // 2 (a factor e^2 = 7.4, close to a decade) refuses the short straight-looking pieces of the
+  // initial transient, which rise by less than one e-fold before the true slope takes over.
+  double min_rise = 2.0;
   void validate() const;
 };
 
@@ -120,10 +137,15 @@ struct LyapunovFit {
   std::optional<std::size_t> first_step, last_step;  // the straight stretch, inclusive
   std::optional<double> lambda;                      // per sample (per iteration for maps)
   std::optional<Interval> lambda_interval;           // range of the local slopes over the stretch
+  std::vector<double> lambda_by_curve;               // least-squares slope of each curve over the stretch
   std::string explanation;                           // one sentence a user can read
 };
 
 LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options = {});
+// Several curves of one series (embedding dimensions m, m+1, ...) fitted together: one stretch
+// shared by all, lambda the mean of their least-squares slopes, which must agree within the
+// tolerance. The reported local slopes are the first curve's.
+LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const LyapunovFitOptions& options = {});
 
 struct LyapunovResult {
   DivergenceCurve curve;
@@ -132,6 +154,8 @@ struct LyapunovResult {
   std::optional<double> dt;                 // sampling interval, when known
   std::optional<double> lambda_per_time;    // fit.lambda / dt
   std::optional<Interval> lambda_per_time_interval;
+  std::optional<Interval> fit_range_time;   // the fitted stretch in time units, when dt is known
+  std::vector<std::size_t> dimensions;      // the embedding dimensions fitted together (fit.dimensions)
 };
 
 // Curve and fit in one call; `dt` (when known) converts to time units.

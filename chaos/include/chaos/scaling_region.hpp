@@ -29,6 +29,9 @@ struct ScalingRegionOptions {
   bool relative = true;
   std::size_t min_points = 5;  // grid points in the region
   std::size_t half_width = 1;  // of the local-slope fits
+  // With a support (find_scaling_region): the support must gain at least this much across a
+  // region, support[last] - support[first] >= min_support_gain (and always more than 0).
+  double min_support_gain = 0.0;
   void validate() const;
 };
 
@@ -38,11 +41,16 @@ struct ScalingRegion {
   double slope_min = 0.0, slope_max = 0.0;  // their range: the plateau's actual flatness
 };
 
-// The widest region (in x) shared by all curves; ties go to the flatter region. nullopt when no
-// interval of at least min_points satisfies the tolerance.
+// The region shared by all curves that scores highest; ties go to the flatter region. nullopt when
+// no interval of at least min_points satisfies the tolerance. Without `support` the score is the
+// width in x (the widest region). With it, support[k] is a non-decreasing measure of the evidence
+// accumulated up to grid point k (for correlation sums: ln of the pairs closer than eps_k) and the
+// score is what is gained across the region, support[last] - support[first]: a stretch where
+// nothing enters gains 0 and is never chosen.
 std::optional<ScalingRegion> find_scaling_region(std::span<const double> x,
                                                  const std::vector<std::vector<std::optional<double>>>& slopes,
-                                                 const ScalingRegionOptions& options = {});
+                                                 const ScalingRegionOptions& options = {},
+                                                 std::span<const double> support = {});
 
 // Least-squares slope of y against x over [first, last], skipping undefined y; nullopt if fewer
 // than 2 defined points.
