@@ -121,6 +121,7 @@ void register_fnn(CLI::App& app);
 void register_d2(CLI::App& app);
 void register_analyze(CLI::App& app);
 void register_validate(CLI::App& app);
+void register_zoo(CLI::App& app);
 void register_lyapunov(CLI::App& app);
 void register_spectrum(CLI::App& app);
 void register_section(CLI::App& app);

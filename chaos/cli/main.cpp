@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   register_section(app);
   register_density(app);
   register_validate(app);
+  register_zoo(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

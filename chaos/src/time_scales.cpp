@@ -28,7 +28,7 @@ TimeScales time_scales(std::span<const double> x) {
     t.theiler_source = t.decorrelation_time ? "autocorrelation 1/e time"
                                             : "autocorrelation stays above 1/e up to lag " + std::to_string(t.max_lag) +
                                                   ": set to that lag";
-    const std::string time = t.decorrelation_time ? detail::format_number(*t.decorrelation_time)
+    const std::string time = t.decorrelation_time ? std::to_string(static_cast<long long>(std::llround(*t.decorrelation_time)))
                                                   : "more than " + std::to_string(t.max_lag);
     t.stationarity_explanation =
         "the autocorrelation falls to 1/e only after " + time + " samples: the record (N = " +

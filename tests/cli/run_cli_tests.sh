@@ -230,8 +230,21 @@ expect_error 3 "pv_nan.dat:3: column 2: 'nan' is not finite" -- density "$work/p
 head -c 8 "$work/density.png" | od -An -c | grep -q "P   N   G" && pass || fail "density --plot made no PNG"
 expect_error 3 "png or .svg" -- density "$work/pv.dat" --plot "$work/density.gif"
 
+# chaos zoo --fast: the CI sample of the out-of-sample suite (4 systems, 5 controls, N = 10^4). It
+# exits 4 if any estimate is confident and outside the band fixed in zoo_suite.hpp; the report says 0.
+"$CHAOS" zoo --fast --threads 2 -q -o "$work/zoo.md" && pass || fail "chaos zoo --fast found a confident wrong estimate (exit $?)"
+grep -q "Confident and wrong: \*\*0\*\*" "$work/zoo.md" && pass || fail "zoo.md does not report 0 confident-wrong"
+grep -q "^| random_walk | random_walk |.*not_run" "$work/zoo.md" && pass || fail "zoo: the random walk was analysed"
+expect_error 3 "no case matches --only" -- zoo --only no_such_case -q
+expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
+
+# analyze on a random walk: non-stationary, said with advice, nothing estimated, exit 0.
+"$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"
+l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
+[[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
+
 # Every command has --help.
-for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate; do
+for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 

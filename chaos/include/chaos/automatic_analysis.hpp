@@ -1,0 +1,63 @@
+#pragma once
+// The automatic pipeline from a scalar series to its invariants, every choice made by a stated rule
+// and every estimate with a status (confident or unsure), so a caller never has to hand-pick:
+//   1. time scales (time_scales.hpp): stationarity, the Theiler window w, a dominant period;
+//      a non-stationary series stops here, saying so;
+//   2. delay tau: 1 when the autocorrelation is below 1/e at lag 1 (maps: the information then
+//      falls at once and its later wiggles are noise); else the first mutual-information minimum
+//      (Fraser & Swinney 1986); where the
+//      information falls without a minimum, the autocorrelation's first zero crossing (a standard
+//      alternative, named as the source); if neither exists within max_delay, nothing further runs;
+//   3. embedding dimension m: Cao's E1 saturation (Cao 1997); none, nothing further runs;
+//   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp);
+//   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
+//      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
+//      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
+//      reference points.
+// `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "chaos/cao.hpp"
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/lyapunov.hpp"
+#include "chaos/time_scales.hpp"
+
+namespace chaos {
+
+struct AutomaticAnalysisOptions {
+  std::optional<std::size_t> delay, theiler, dimension;  // given values replace the automatic choices
+  std::size_t max_delay = 100;       // largest delay searched, samples (capped at N/10)
+  std::size_t boxes = 16;            // of the mutual information
+  std::size_t max_dimension = 10;    // of Cao's method
+  std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
+  std::size_t radii = 40;            // log-spaced from range/1000 to range/4
+  bool rosenstein = true, kantz = true;
+  std::size_t threads = 1;           // results identical for any number
+};
+
+struct AutomaticAnalysis {
+  TimeScales scales;
+  std::optional<std::size_t> delay;
+  std::string delay_source;
+  std::size_t theiler = 0;
+  std::optional<std::size_t> dimension;  // Cao's, or the given one
+  std::optional<CaoResult> cao;
+  std::optional<CorrelationDimensionResult> d2;
+  std::optional<LyapunovResult> rosenstein, kantz;
+  std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
+};
+
+// The Lyapunov settings the pipeline uses in embedding dimension m (w, tau, steps, period, three
+// dimensions), for callers that vary one of them around the automatic choice.
+LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
+                                           std::size_t delay, std::size_t theiler, LyapunovMethod method);
+LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales);
+
+AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt = std::nullopt,
+                                 const AutomaticAnalysisOptions& options = {});
+
+}  // namespace chaos

@@ -1,0 +1,104 @@
+#pragma once
+// The out-of-sample regression suite run by `chaos zoo`: every chaotic system of the zoo (zoo.hpp)
+// and a set of negative and tricky controls (control_signals.hpp, IAAFT surrogates, noisy,
+// quantised and short chaos) through the automatic pipeline (automatic_analysis.hpp), with each
+// confident estimate judged against a band fixed in advance:
+//   - D2 within +-0.1 of a cited literature D2; where none is cited, not above D_KY + 0.1 (D_KY from
+//     the equations);
+//   - lambda_1 within 10% of the spectrum's lambda_1 from the equations;
+//   - noise, surrogates and random walks: no confident D2 and no confident lambda_1 at all;
+//   - periodic and quasi-periodic signals: a confident D2 must equal the torus dimension (1, 2 or 3)
+//     within +-0.1, and no confident lambda_1.
+// A confident estimate outside its band is "wrong": the one outcome the suite exists to exclude.
+// Chaotic systems are also run over a neighbourhood of the automatic choices: N in {1e4, 1e5}, the
+// Theiler window at 1, 2 and 3 times the automatic one, and the embedding dimension from Cao's to
+// Cao's + 3 (for D2 the highest dimension of the saturation test, for lambda_1 the lowest of the
+// three fitted together).
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/lyapunov.hpp"
+
+namespace chaos {
+
+enum class ZooCaseKind { chaotic, noise, surrogate, random_walk, periodic, quasi_periodic, noisy_chaos, quantised, short_series };
+const char* to_string(ZooCaseKind kind) noexcept;
+
+// One estimate judged: a confident value inside its band, a confident value outside it, or unsure
+// (a status without a value: not saturated, no linear region, not run).
+enum class ZooVerdict { in_band, wrong, unsure };
+const char* to_string(ZooVerdict verdict) noexcept;
+
+struct ZooBand {
+  std::vector<Interval> accepted;  // a confident value must lie in one of these; empty: none is right
+  std::string source;              // where the band comes from, in words
+};
+
+struct ZooCase {
+  std::string name;
+  ZooCaseKind kind = ZooCaseKind::chaotic;
+  std::string system;       // the zoo system behind it, empty for pure signals
+  std::string description;
+  std::size_t length = 100000;
+  std::optional<double> dt;  // sampling interval (flows)
+  std::function<std::vector<double>(std::size_t n)> series;
+  ZooBand d2_band, lambda_band;  // lambda band per time unit (flows) or per iteration (maps)
+  // From the equations and the references (chaotic cases): NaN where not known.
+  double lambda_equations = std::numeric_limits<double>::quiet_NaN();
+  double kaplan_yorke = std::numeric_limits<double>::quiet_NaN();
+  double literature_lambda = std::numeric_limits<double>::quiet_NaN();
+  double literature_d2 = std::numeric_limits<double>::quiet_NaN();
+  double dysts_lambda = std::numeric_limits<double>::quiet_NaN();
+  double dysts_d2 = std::numeric_limits<double>::quiet_NaN();
+  bool grid = false;  // run the neighbourhood grid, not only the automatic choices
+};
+
+struct ZooSuiteOptions {
+  bool fast = false;        // the CI subset: a few systems and controls at N = 10^4, automatic choices only
+  bool grid = true;         // chaotic systems over the neighbourhood grid
+  std::vector<std::string> only;  // case names to run (empty: all)
+  std::size_t threads = 1;        // zoo_cases: the spectra behind the bands in parallel
+};
+
+// The cases, in a stable order; builds the chaotic bands from each system's spectrum (zoo_spectrum),
+// on options.threads threads. An exception from a spectrum (a system that escapes) propagates.
+std::vector<ZooCase> zoo_cases(const ZooSuiteOptions& options);
+
+// One evaluated estimate.
+struct ZooEstimate {
+  std::optional<double> value;
+  std::optional<Interval> interval;
+  std::string status;
+  ZooVerdict verdict = ZooVerdict::unsure;
+};
+
+// One row: a case at one point of the grid (N, Theiler window, dimension).
+struct ZooRow {
+  std::size_t n = 0;
+  double theiler_factor = 1.0;
+  std::size_t theiler = 0, delay = 0, dimension = 0;  // dimension: m of the grid point (0: none)
+  bool automatic = true;                              // the automatic choices, not a neighbour
+  ZooEstimate d2, rosenstein, kantz;
+  std::string note;  // why the pipeline stopped, when it did
+};
+
+struct ZooCaseResult {
+  std::size_t case_index = 0;
+  std::vector<ZooRow> rows;
+  double seconds = 0.0;
+  std::string error;  // a refusal from the pipeline (e.g. a series too short), when there was one
+};
+
+// Runs one case (deterministic; single-threaded inside).
+ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSuiteOptions& options);
+
+// Judges a value against a band.
+ZooVerdict judge(const std::optional<double>& value, bool confident, const ZooBand& band);
+
+}  // namespace chaos

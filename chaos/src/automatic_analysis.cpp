@@ -1,0 +1,116 @@
+#include "chaos/automatic_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "chaos/autocorrelation.hpp"
+#include "chaos/correlation_sum.hpp"
+#include "chaos/error.hpp"
+#include "chaos/mutual_information.hpp"
+#include "chaos/series.hpp"
+
+namespace chaos {
+
+LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
+                                           std::size_t delay, std::size_t theiler, LyapunovMethod method) {
+  LyapunovOptions l;
+  l.method = method;
+  l.dimension = dimension;
+  l.delay = delay;
+  l.theiler = theiler;
+  const std::size_t correlation = std::max(scales.theiler, scales.period());
+  l.steps = std::max<std::size_t>(20, std::min(20 * correlation, n / 10));
+  // At most 10^4 reference points, evenly spaced: the curve is a mean over them, whose sampling
+  // error at 10^4 is far below the 10% the fit tolerates, and the cost of a long curve (K steps per
+  // pair) stays linear in N / 10^4 instead of N.
+  l.reference_points = std::min<std::size_t>(n, 10000);
+  return l;
+}
+
+LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales) {
+  LyapunovFitOptions fit;
+  fit.period = scales.period();
+  fit.dimensions = 3;
+  return fit;
+}
+
+AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
+                                 const AutomaticAnalysisOptions& options) {
+  require_finite(x, "automatic analysis");
+  require_not_constant(x, "automatic analysis");
+  AutomaticAnalysis a;
+  a.scales = time_scales(x);
+  a.theiler = options.theiler.value_or(a.scales.theiler);
+  if (!a.scales.stationary) {
+    a.stopped = a.scales.stationarity_explanation;
+    return a;
+  }
+
+  if (options.delay) {
+    a.delay = options.delay;
+    a.delay_source = "given";
+  } else if (a.scales.decorrelation_time && *a.scales.decorrelation_time <= 1.0) {
+    // Decorrelated within one sample (maps, coarsely sampled flows): successive samples are already
+    // as independent as the dynamics allows, and later "minima" of the information are its noise.
+    a.delay = 1;
+    a.delay_source = "autocorrelation below 1/e at lag 1: delay 1";
+  } else {
+    MutualInformationOptions mi;
+    mi.max_delay = std::max<std::size_t>(1, std::min(options.max_delay, x.size() / 10));
+    mi.boxes = options.boxes;
+    const auto minimum = first_minimum(mutual_information(x, mi));
+    if (minimum) {
+      a.delay = minimum;
+      a.delay_source = "first mutual-information minimum";
+    } else if (a.scales.first_zero_crossing && *a.scales.first_zero_crossing <= mi.max_delay) {
+      a.delay = a.scales.first_zero_crossing;
+      a.delay_source = "no mutual-information minimum up to " + std::to_string(mi.max_delay) +
+                       "; autocorrelation first zero crossing";
+    } else {
+      a.stopped = "no mutual-information minimum and no autocorrelation zero crossing up to delay " +
+                  std::to_string(mi.max_delay) + ": no delay can be chosen";
+      return a;
+    }
+  }
+
+  if (options.dimension) {
+    a.dimension = options.dimension;
+  } else {
+    CaoOptions c;
+    c.delay = *a.delay;
+    c.theiler = a.theiler;
+    c.max_dimension = options.max_dimension;
+    a.cao = cao(x, c);
+    a.dimension = a.cao->embedding_dimension;
+    if (!a.dimension) {
+      a.stopped = "Cao's E1 does not saturate up to m = " + std::to_string(options.max_dimension) +
+                  (a.cao->stochastic ? " and E2 stays at 1 (stochastic)" : "") + ": no embedding dimension";
+      return a;
+    }
+  }
+
+  CorrelationSumOptions s;
+  s.delay = *a.delay;
+  s.theiler = a.theiler;
+  s.max_dimension = *a.dimension + options.extra_dimensions;
+  s.threads = options.threads;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, options.radii);
+  a.d2 = correlation_dimension(correlation_sum(x, s));
+
+  const auto lyapunov = [&](LyapunovMethod method) {
+    LyapunovOptions l = automatic_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);
+    l.threads = options.threads;
+    return largest_lyapunov(x, l, automatic_lyapunov_fit(a.scales), dt);
+  };
+  try {
+    if (options.rosenstein) a.rosenstein = lyapunov(LyapunovMethod::rosenstein);
+    if (options.kantz) a.kantz = lyapunov(LyapunovMethod::kantz);
+  } catch (const InvalidInput& e) {
+    // Too short for the curve's steps in m + 2 dimensions: the exponent is not estimated.
+    a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
+  }
+  return a;
+}
+
+}  // namespace chaos

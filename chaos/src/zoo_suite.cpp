@@ -1,0 +1,385 @@
+#include "chaos/zoo_suite.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
+#include <chrono>
+#include <numbers>
+#include <cmath>
+#include <sstream>
+
+#include "chaos/automatic_analysis.hpp"
+#include "chaos/control_signals.hpp"
+#include "chaos/correlation_sum.hpp"
+#include "chaos/error.hpp"
+#include "chaos/surrogates.hpp"
+#include "chaos/systems.hpp"
+#include "chaos/zoo.hpp"
+
+namespace chaos {
+
+const char* to_string(ZooCaseKind kind) noexcept {
+  switch (kind) {
+    case ZooCaseKind::chaotic: return "chaotic";
+    case ZooCaseKind::noise: return "noise";
+    case ZooCaseKind::surrogate: return "surrogate";
+    case ZooCaseKind::random_walk: return "random_walk";
+    case ZooCaseKind::periodic: return "periodic";
+    case ZooCaseKind::quasi_periodic: return "quasi_periodic";
+    case ZooCaseKind::noisy_chaos: return "noisy_chaos";
+    case ZooCaseKind::quantised: return "quantised";
+    case ZooCaseKind::short_series: return "short_series";
+  }
+  return "unknown";
+}
+
+const char* to_string(ZooVerdict verdict) noexcept {
+  switch (verdict) {
+    case ZooVerdict::in_band: return "in_band";
+    case ZooVerdict::wrong: return "WRONG";
+    case ZooVerdict::unsure: return "unsure";
+  }
+  return "unknown";
+}
+
+ZooVerdict judge(const std::optional<double>& value, bool confident, const ZooBand& band) {
+  if (!confident || !value) return ZooVerdict::unsure;
+  for (const auto& i : band.accepted)
+    if (*value >= i.low && *value <= i.high) return ZooVerdict::in_band;
+  return ZooVerdict::wrong;
+}
+
+namespace {
+
+constexpr std::size_t full_length = 100000;
+constexpr std::size_t fast_length = 10000;
+constexpr std::size_t short_length = 500;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+// The series of a zoo system: its default component at its default sampling.
+std::function<std::vector<double>(std::size_t)> system_series(const ZooEntry& e) {
+  return [&e](std::size_t n) { return zoo_trajectory(e, n).components[e.component]; };
+}
+
+struct ChaoticReference {
+  ZooBand d2, lambda;
+  double lambda_equations, kaplan_yorke;
+};
+
+// Bands fixed from the equations and the cited literature, before anything is estimated.
+ChaoticReference reference_bands(const ZooEntry& e) {
+  ChaoticReference r;
+  const LyapunovSpectrum s = zoo_spectrum(e);
+  r.lambda_equations = s.exponents.front();
+  r.kaplan_yorke = s.kaplan_yorke_dimension;
+  r.lambda.accepted = {Interval{0.9 * r.lambda_equations, 1.1 * r.lambda_equations}};
+  r.lambda.source = "lambda_1 = " + fmt(r.lambda_equations) + " from the equations, +-10%";
+  if (e.literature.d2 == e.literature.d2) {
+    r.d2.accepted = {Interval{e.literature.d2 - 0.1, e.literature.d2 + 0.1}};
+    r.d2.source = "D2 = " + fmt(e.literature.d2) + " (" + e.literature.source + "), +-0.1";
+  } else {
+    r.d2.accepted = {Interval{0.0, r.kaplan_yorke + 0.1}};
+    r.d2.source = "no cited D2: not above D_KY + 0.1 = " + fmt(r.kaplan_yorke + 0.1);
+  }
+  return r;
+}
+
+ZooCase chaotic_case(const ZooEntry& e, const ChaoticReference& ref, std::size_t length) {
+  ZooCase c;
+  c.name = e.name;
+  c.kind = ZooCaseKind::chaotic;
+  c.system = e.name;
+  c.description = e.citation;
+  c.length = length;
+  if (e.kind == ZooKind::flow) c.dt = e.dt;
+  c.series = system_series(e);
+  c.d2_band = ref.d2;
+  c.lambda_band = ref.lambda;
+  c.lambda_equations = ref.lambda_equations;
+  c.kaplan_yorke = ref.kaplan_yorke;
+  c.literature_lambda = e.literature.lambda1();
+  c.literature_d2 = e.literature.d2;
+  c.dysts_lambda = e.dysts.lambda1();
+  c.dysts_d2 = e.dysts.d2;
+  c.grid = true;
+  return c;
+}
+
+ZooBand nothing_right(const std::string& why) { return ZooBand{{}, why}; }
+ZooBand torus(std::initializer_list<double> dimensions, const std::string& why) {
+  ZooBand b;
+  for (const double d : dimensions) b.accepted.push_back(Interval{d - 0.1, d + 0.1});
+  b.source = why;
+  return b;
+}
+
+ZooCase control(std::string name, ZooCaseKind kind, std::string description, std::size_t length,
+                std::function<std::vector<double>(std::size_t)> series, ZooBand d2, ZooBand lambda) {
+  ZooCase c;
+  c.name = std::move(name);
+  c.kind = kind;
+  c.description = std::move(description);
+  c.length = length;
+  c.series = std::move(series);
+  c.d2_band = std::move(d2);
+  c.lambda_band = std::move(lambda);
+  return c;
+}
+
+// Chaos seen through a transformation (noise, quantisation, shortness): the clean system's bands.
+ZooCase derived(const ZooCase& clean, std::string name, ZooCaseKind kind, std::string description, std::size_t length,
+                std::function<std::vector<double>(std::vector<double>)> transform) {
+  ZooCase c = clean;
+  c.name = std::move(name);
+  c.kind = kind;
+  c.description = std::move(description);
+  c.length = length;
+  c.grid = false;
+  const auto source = clean.series;
+  c.series = [source, transform](std::size_t n) { return transform(source(n)); };
+  return c;
+}
+
+}  // namespace
+
+std::vector<ZooCase> zoo_cases(const ZooSuiteOptions& options) {
+  const std::size_t length = options.fast ? fast_length : full_length;
+  const std::vector<std::string> fast_systems = {"lorenz", "henon", "rossler", "logistic"};
+  std::vector<ZooCase> cases;
+  const auto wanted = [&](const std::string& name) {
+    return options.only.empty() || std::find(options.only.begin(), options.only.end(), name) != options.only.end();
+  };
+  std::optional<ZooCase> lorenz, henon;
+  std::vector<const ZooEntry*> entries;
+  for (const ZooEntry& e : zoo_systems()) {
+    const bool needed = e.name == "lorenz" || e.name == "henon";
+    if (options.fast && std::find(fast_systems.begin(), fast_systems.end(), e.name) == fast_systems.end()) continue;
+    if (wanted(e.name) || needed) entries.push_back(&e);
+  }
+  // The spectra behind the bands, one entry per task (each is deterministic on its own).
+  std::vector<std::optional<ChaoticReference>> references(entries.size());
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> failures(entries.size());
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < std::max<std::size_t>(1, std::min(options.threads, entries.size())); ++t)
+    pool.emplace_back([&] {
+      for (std::size_t k; (k = next.fetch_add(1)) < entries.size();) try {
+          references[k] = reference_bands(*entries[k]);
+        } catch (...) {
+          failures[k] = std::current_exception();
+        }
+    });
+  for (auto& t : pool) t.join();
+  for (const auto& f : failures)
+    if (f) std::rethrow_exception(f);
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const ZooEntry& e = *entries[k];
+    const ZooCase c = chaotic_case(e, *references[k], length);
+    if (e.name == "lorenz") lorenz = c;
+    if (e.name == "henon") henon = c;
+    if (wanted(e.name)) cases.push_back(c);
+  }
+
+  const ZooBand no_d2 = nothing_right("no invariant: any confident D2 is wrong");
+  const ZooBand no_lambda = nothing_right("no exponential divergence: any confident lambda_1 is wrong");
+  std::vector<ZooCase> controls;
+  controls.push_back(control("white_noise", ZooCaseKind::noise, "Gaussian white noise, seed 11", length,
+                             [](std::size_t n) { return white_noise(n, 11).components[0]; }, no_d2, no_lambda));
+  controls.push_back(control("random_walk", ZooCaseKind::random_walk, "cumulative Gaussian steps, seed 12", length,
+                             [](std::size_t n) { return random_walk(n, 12).components[0]; }, no_d2, no_lambda));
+  controls.push_back(control("periodic_rational", ZooCaseKind::periodic, "sine at a period of 317/3 samples (317 distinct points)",
+                             length, [](std::size_t n) { return periodic(n, RationalPeriod{317, 3}).components[0]; },
+                             torus({1.0}, "a closed curve: D2 = 1 +- 0.1"), no_lambda));
+  controls.push_back(control("torus2", ZooCaseKind::quasi_periodic, "two incommensurate frequencies (control_signals.hpp)",
+                             length, [](std::size_t n) { return two_torus(n).components[0]; },
+                             torus({2.0}, "a 2-torus: D2 = 2 +- 0.1"), no_lambda));
+  if (!options.fast) {
+    controls.push_back(control("ar1", ZooCaseKind::noise, "AR(1), phi = 0.9, seed 13", length,
+                               [](std::size_t n) { return ar1(n, 0.9, 13).components[0]; }, no_d2, no_lambda));
+    controls.push_back(control("pink_noise", ZooCaseKind::noise, "1/f noise (Timmer & Koenig 1995), seed 14", length,
+                               [](std::size_t n) { return power_law_noise(n, 1.0, 14).components[0]; }, no_d2, no_lambda));
+    controls.push_back(control("brown_noise", ZooCaseKind::noise, "1/f^2 noise (Timmer & Koenig 1995), seed 15", length,
+                               [](std::size_t n) { return power_law_noise(n, 2.0, 15).components[0]; }, no_d2, no_lambda));
+    controls.push_back(control("periodic_integer", ZooCaseKind::periodic, "sine at a period of 25 samples", length,
+                               [](std::size_t n) { return periodic(n, RationalPeriod{25, 1}).components[0]; },
+                               torus({1.0}, "a closed curve: D2 = 1 +- 0.1"), no_lambda));
+    controls.push_back(control("periodic_irrational", ZooCaseKind::periodic, "sine at a period of 25 phi samples", length,
+                               [](std::size_t n) { return periodic(n, 25.0 * std::numbers::phi).components[0]; },
+                               torus({1.0}, "a closed curve: D2 = 1 +- 0.1"), no_lambda));
+    controls.push_back(control("torus3", ZooCaseKind::quasi_periodic, "three incommensurate frequencies", length,
+                               [](std::size_t n) { return three_torus(n).components[0]; },
+                               torus({3.0}, "a 3-torus: D2 = 3 +- 0.1"), no_lambda));
+    controls.push_back(control("torus2_rational_first", ZooCaseKind::quasi_periodic,
+                               "two frequencies, the first at a period of exactly 25 samples", length,
+                               [](std::size_t n) { return two_torus_rational_first(n).components[0]; },
+                               torus({1.0, 2.0}, "25 closed curves on a torus: D2 = 1 at small scales, 2 at large (+- 0.1)"),
+                               no_lambda));
+  }
+  for (auto& c : controls)
+    if (wanted(c.name)) cases.push_back(std::move(c));
+
+  const auto surrogate = [](const ZooCase& clean, std::uint64_t seed) {
+    ZooCase c = clean;
+    c.name = clean.name + "_iaaft";
+    c.kind = ZooCaseKind::surrogate;
+    c.description = "IAAFT surrogate of " + clean.name + " (seed " + std::to_string(seed) + ")";
+    c.grid = false;
+    c.d2_band = nothing_right("a linear Gaussian process with the data's spectrum: any confident D2 is wrong");
+    c.lambda_band = nothing_right("a linear stochastic process: any confident lambda_1 is wrong");
+    const auto source = clean.series;
+    c.series = [source, seed](std::size_t n) { return surrogates(source(n), 1, seed).front().values; };
+    return c;
+  };
+  std::vector<ZooCase> more;
+  if (lorenz) {
+    more.push_back(derived(*lorenz, "lorenz_snr20", ZooCaseKind::noisy_chaos, "Lorenz x + Gaussian noise at 20 dB SNR",
+                           length, [](std::vector<double> x) { return add_noise(x, 20.0, 21); }));
+    if (!options.fast) {
+      more.push_back(surrogate(*lorenz, 31));
+      more.push_back(derived(*lorenz, "lorenz_snr10", ZooCaseKind::noisy_chaos, "Lorenz x + Gaussian noise at 10 dB SNR",
+                             length, [](std::vector<double> x) { return add_noise(x, 10.0, 22); }));
+      more.push_back(derived(*lorenz, "lorenz_quantised", ZooCaseKind::quantised, "Lorenz x rounded to 64 levels",
+                             length, [](std::vector<double> x) { return quantise_levels(x, 64); }));
+      more.push_back(derived(*lorenz, "lorenz_short", ZooCaseKind::short_series, "the first 500 samples of Lorenz x",
+                             short_length, [](std::vector<double> x) { return x; }));
+    }
+  }
+  if (henon && !options.fast) {
+    more.push_back(surrogate(*henon, 32));
+    more.push_back(derived(*henon, "henon_snr20", ZooCaseKind::noisy_chaos, "Henon x + Gaussian noise at 20 dB SNR",
+                           length, [](std::vector<double> x) { return add_noise(x, 20.0, 23); }));
+    more.push_back(derived(*henon, "henon_quantised", ZooCaseKind::quantised, "Henon x rounded to 64 levels", length,
+                           [](std::vector<double> x) { return quantise_levels(x, 64); }));
+    more.push_back(derived(*henon, "henon_short", ZooCaseKind::short_series, "the first 500 samples of Henon x",
+                           short_length, [](std::vector<double> x) { return x; }));
+  }
+  for (auto& c : more)
+    if (wanted(c.name)) cases.push_back(std::move(c));
+  return cases;
+}
+
+namespace {
+
+ZooEstimate d2_estimate(const CorrelationDimensionResult& r, const ZooBand& band) {
+  ZooEstimate e;
+  e.value = r.d2;
+  e.interval = r.d2_interval;
+  e.status = to_string(r.status);
+  e.verdict = judge(r.d2, r.status == D2Status::saturated, band);
+  return e;
+}
+
+ZooEstimate lambda_estimate(const LyapunovFit& fit, std::optional<double> dt, const ZooBand& band) {
+  ZooEstimate e;
+  const double scale = dt.value_or(1.0);
+  if (fit.lambda) e.value = *fit.lambda / scale;
+  if (fit.lambda_interval) e.interval = Interval{fit.lambda_interval->low / scale, fit.lambda_interval->high / scale};
+  e.status = to_string(fit.status);
+  e.verdict = judge(e.value, fit.status == LyapunovStatus::linear_region, band);
+  return e;
+}
+
+ZooEstimate not_run(const std::string& why) {
+  ZooEstimate e;
+  e.status = why;
+  return e;
+}
+
+// D2 from the sums of dimensions 1..top only (the saturation test then uses the three highest).
+CorrelationSumResult truncated(const CorrelationSumResult& sums, std::size_t top) {
+  CorrelationSumResult t = sums;
+  std::size_t keep = 0;
+  while (keep < sums.dimension.size() && sums.dimension[keep] <= top) ++keep;
+  t.dimension.resize(keep);
+  t.correlation_sum.resize(keep);
+  t.pairs.resize(keep);
+  t.examined.resize(keep);
+  return t;
+}
+
+}  // namespace
+
+ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSuiteOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  ZooCaseResult result;
+  result.case_index = case_index;
+  try {
+    const std::vector<double> full = c.series(c.length);
+    std::vector<std::size_t> lengths{c.length};
+    const bool grid = c.grid && options.grid && !options.fast;
+    if (grid && c.length > 10000) lengths = {10000, c.length};
+    for (const std::size_t n : lengths) {
+      const std::span<const double> x(full.data(), n);
+      const AutomaticAnalysis a = analyse_series(x, c.dt);
+      ZooRow base;
+      base.n = n;
+      base.theiler = a.theiler;
+      base.delay = a.delay.value_or(0);
+      base.dimension = a.dimension.value_or(0);
+      base.note = a.stopped;
+      base.d2 = a.d2 ? d2_estimate(*a.d2, c.d2_band) : not_run("not_run");
+      base.rosenstein = a.rosenstein ? lambda_estimate(a.rosenstein->fit, c.dt, c.lambda_band) : not_run("not_run");
+      base.kantz = a.kantz ? lambda_estimate(a.kantz->fit, c.dt, c.lambda_band) : not_run("not_run");
+      result.rows.push_back(base);
+      if (!grid || !a.dimension || !a.delay) continue;
+
+      const std::size_t m0 = *a.dimension;
+      for (const double factor : {1.0, 2.0, 3.0}) {
+        const std::size_t w = static_cast<std::size_t>(factor) * a.theiler;
+        CorrelationSumOptions s;
+        s.delay = *a.delay;
+        s.theiler = w;
+        s.max_dimension = m0 + 3;
+        const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+        s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, 40);
+        const CorrelationSumResult sums = correlation_sum(x, s);
+        // Curves for m0 .. m0 + 5: the fit at grid dimension m uses m, m+1, m+2.
+        std::vector<std::optional<DivergenceCurve>> rosenstein(6), kantz(6);
+        std::string curve_error;
+        for (std::size_t k = 0; k < 6; ++k) {
+          try {
+            rosenstein[k] = divergence_curve(
+                x, automatic_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::rosenstein));
+            kantz[k] = divergence_curve(
+                x, automatic_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::kantz));
+          } catch (const InvalidInput& e) {
+            curve_error = e.what();
+          }
+        }
+        const LyapunovFitOptions fit = automatic_lyapunov_fit(a.scales);
+        for (std::size_t m = m0; m <= m0 + 3; ++m) {
+          ZooRow row;
+          row.n = n;
+          row.theiler_factor = factor;
+          row.theiler = w;
+          row.delay = *a.delay;
+          row.dimension = m;
+          row.automatic = false;
+          row.d2 = d2_estimate(correlation_dimension(truncated(sums, m)), c.d2_band);
+          const std::size_t k = m - m0;
+          const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) {
+            if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return not_run("not_run: " + curve_error);
+            return lambda_estimate(fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit),
+                                   c.dt, c.lambda_band);
+          };
+          row.rosenstein = fit_of(rosenstein);
+          row.kantz = fit_of(kantz);
+          result.rows.push_back(row);
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    result.error = e.what();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace chaos
