@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/error.hpp"
 #include "chaos/lyapunov.hpp"
 #include "common.hpp"
@@ -120,8 +121,7 @@ void run(LyapunovArgs& args) {
   if (args.steps) {
     args.options.steps = *args.steps;
   } else {
-    const std::size_t scale = std::max(correlation.samples, args.fit.period);
-    args.options.steps = std::max<std::size_t>(20, std::min(20 * scale, x.size() / 10));
+    args.options.steps = automatic_lyapunov_steps(correlation.samples, args.fit.period, x.size());
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
   const LyapunovResult r = largest_lyapunov(x, args.options, args.fit, series.dt);

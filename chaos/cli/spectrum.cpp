@@ -44,15 +44,20 @@ void write(SpectrumArgs& args, const LyapunovSpectrum& s, Report& report) {
   (void)args;
 }
 
-// A zoo system with its own equations (not one of the five reference systems of generate.hpp).
-void run_zoo(SpectrumArgs& args, const ZooEntry& entry) {
-  const bool flow = entry.kind == ZooKind::flow;
+// Options of the other kind of system would be silently ignored: refuse them instead.
+void refuse_other_kind_options(const SpectrumArgs& args, bool flow) {
   if (flow && (args.iterations || args.map_interval || args.map_transient))
     throw InvalidInput(ErrorCode::invalid_parameter, args.system + " is a flow: use --time, --step, --interval, --transient "
                                                                    "(in time units), not --iterations or --map-*");
   if (!flow && (args.time || args.step || args.flow_interval || args.flow_transient))
     throw InvalidInput(ErrorCode::invalid_parameter, args.system + " is a map: use --iterations, --map-interval, "
                                                                    "--map-transient, not --time, --step, --interval, --transient");
+}
+
+// A zoo system with its own equations (not one of the five reference systems of generate.hpp).
+void run_zoo(SpectrumArgs& args, const ZooEntry& entry) {
+  const bool flow = entry.kind == ZooKind::flow;
+  refuse_other_kind_options(args, flow);
   if (args.delay_exponents && !entry.delay)
     throw InvalidInput(ErrorCode::invalid_parameter, "--exponents applies to delay systems only; " + args.system +
                                                          " has " + std::to_string(entry.dimension) + " exponents");
@@ -129,13 +134,7 @@ void run(SpectrumArgs& args) {
   request.parameters = parse_settings(args.settings);
   request.seed = args.seed;
   const bool flow = is_flow(*kind);
-  // Options of the other kind of system would be silently ignored: refuse them instead.
-  if (flow && (args.iterations || args.map_interval || args.map_transient))
-    throw InvalidInput(ErrorCode::invalid_parameter, args.system + " is a flow: use --time, --step, --interval, --transient "
-                                                                   "(in time units), not --iterations or --map-*");
-  if (!flow && (args.time || args.step || args.flow_interval || args.flow_transient))
-    throw InvalidInput(ErrorCode::invalid_parameter, args.system + " is a map: use --iterations, --map-interval, "
-                                                                   "--map-transient, not --time, --step, --interval, --transient");
+  refuse_other_kind_options(args, flow);
   if (args.time) request.flow.time = *args.time;
   if (args.step) request.flow.step = *args.step;
   if (args.flow_interval) request.flow.renormalisation_interval = *args.flow_interval;

@@ -11,6 +11,22 @@
 
 namespace chaos {
 
+std::size_t automatic_lyapunov_steps(std::size_t correlation_time, std::size_t period, std::size_t n) {
+  return std::max<std::size_t>(20, std::min(20 * std::max(correlation_time, period), n / 10));
+}
+
+CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> x, std::size_t delay,
+                                                        std::size_t theiler, std::size_t max_dimension,
+                                                        std::size_t radii) {
+  CorrelationSumOptions s;
+  s.delay = delay;
+  s.theiler = theiler;
+  s.max_dimension = max_dimension;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, radii);
+  return s;
+}
+
 LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
                                            std::size_t delay, std::size_t theiler, LyapunovMethod method) {
   LyapunovOptions l;
@@ -18,8 +34,7 @@ LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t
   l.dimension = dimension;
   l.delay = delay;
   l.theiler = theiler;
-  const std::size_t correlation = std::max(scales.theiler, scales.period());
-  l.steps = std::max<std::size_t>(20, std::min(20 * correlation, n / 10));
+  l.steps = automatic_lyapunov_steps(scales.theiler, scales.period(), n);
   // At most 10^4 reference points, evenly spaced: the curve is a mean over them, whose sampling
   // error at 10^4 is far below the 10% the fit tolerates, and the cost of a long curve (K steps per
   // pair) stays linear in N / 10^4 instead of N.
@@ -89,13 +104,9 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     }
   }
 
-  CorrelationSumOptions s;
-  s.delay = *a.delay;
-  s.theiler = a.theiler;
-  s.max_dimension = *a.dimension + options.extra_dimensions;
+  CorrelationSumOptions s =
+      automatic_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, options.radii);
   a.d2 = correlation_dimension(correlation_sum(x, s));
 
   const auto lyapunov = [&](LyapunovMethod method) {

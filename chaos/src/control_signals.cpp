@@ -3,7 +3,6 @@
 #include <fftw3.h>
 
 #include <algorithm>
-#include <charconv>
 #include <climits>
 #include <cmath>
 #include <mutex>
@@ -29,11 +28,7 @@ __extension__ typedef unsigned __int128 uint128;
 constexpr std::uint64_t max_exact = std::uint64_t{1} << 53;
 
 // Shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
-std::string num(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
+std::string num(double v) { return detail::shortest_number(v); }
 
 [[noreturn]] void refuse(const std::string& message) {
   throw InvalidInput(ErrorCode::invalid_parameter, message);

@@ -4,6 +4,7 @@
 // squares finite for data of any magnitude.
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -20,6 +21,13 @@ inline constexpr std::size_t size_max = std::numeric_limits<std::size_t>::max();
 // wrapped-around requirement.
 inline std::size_t mul_sat(std::size_t a, std::size_t b) noexcept { return a != 0 && b > size_max / a ? size_max : a * b; }
 inline std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > size_max - b ? size_max : a + b; }
+
+// The shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
+inline std::string shortest_number(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
 
 // All 17 significant digits, so a message shows the number that was really used.
 inline std::string format_number(double v) {

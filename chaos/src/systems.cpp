@@ -1,24 +1,20 @@
 #include "chaos/systems.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <string>
 
 #include "chaos/error.hpp"
 #include "chaos/random.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
 namespace {
 
 // Shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
-std::string num(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
+std::string num(double v) { return detail::shortest_number(v); }
 
 [[noreturn]] void refuse(const std::string& message) {
   throw InvalidInput(ErrorCode::invalid_parameter, message);

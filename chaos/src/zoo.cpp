@@ -174,39 +174,44 @@ const char* to_string(ZooKind kind) noexcept { return kind == ZooKind::flow ? "f
 
 namespace detail {
 
-ZooEntry zoo_flow(std::string name, std::vector<std::string> variables, std::vector<ZooParameter> parameters,
-                  std::vector<double> initial_state, double dt, double step, double transient, std::string equations,
-                  std::string citation, std::shared_ptr<const ZooModel> model) {
+namespace {
+
+// The fields every entry has, whatever its kind.
+ZooEntry zoo_entry(ZooKind kind, std::string name, std::vector<std::string> variables,
+                   std::vector<ZooParameter> parameters, std::vector<double> initial_state, std::string equations,
+                   std::string citation, std::shared_ptr<const ZooModel> model) {
   ZooEntry e;
   e.name = std::move(name);
-  e.kind = ZooKind::flow;
+  e.kind = kind;
   e.dimension = variables.size();
   e.variables = std::move(variables);
   e.parameters = std::move(parameters);
   e.initial_state = std::move(initial_state);
-  e.dt = dt;
-  e.step = step;
-  e.transient = transient;
   e.equations = std::move(equations);
   e.citation = std::move(citation);
   e.model = std::move(model);
   return e;
 }
 
+}  // namespace
+
+ZooEntry zoo_flow(std::string name, std::vector<std::string> variables, std::vector<ZooParameter> parameters,
+                  std::vector<double> initial_state, double dt, double step, double transient, std::string equations,
+                  std::string citation, std::shared_ptr<const ZooModel> model) {
+  ZooEntry e = zoo_entry(ZooKind::flow, std::move(name), std::move(variables), std::move(parameters),
+                         std::move(initial_state), std::move(equations), std::move(citation), std::move(model));
+  e.dt = dt;
+  e.step = step;
+  e.transient = transient;
+  return e;
+}
+
 ZooEntry zoo_map(std::string name, std::vector<std::string> variables, std::vector<ZooParameter> parameters,
                  std::vector<double> initial_state, std::size_t transient, std::string equations, std::string citation,
                  std::shared_ptr<const ZooModel> model) {
-  ZooEntry e;
-  e.name = std::move(name);
-  e.kind = ZooKind::map;
-  e.dimension = variables.size();
-  e.variables = std::move(variables);
-  e.parameters = std::move(parameters);
-  e.initial_state = std::move(initial_state);
+  ZooEntry e = zoo_entry(ZooKind::map, std::move(name), std::move(variables), std::move(parameters),
+                         std::move(initial_state), std::move(equations), std::move(citation), std::move(model));
   e.map_transient = transient;
-  e.equations = std::move(equations);
-  e.citation = std::move(citation);
-  e.model = std::move(model);
   return e;
 }
 

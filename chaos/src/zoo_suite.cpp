@@ -333,13 +333,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       const std::size_t m0 = *a.dimension;
       for (const double factor : {1.0, 2.0, 3.0}) {
         const std::size_t w = static_cast<std::size_t>(factor) * a.theiler;
-        CorrelationSumOptions s;
-        s.delay = *a.delay;
-        s.theiler = w;
-        s.max_dimension = m0 + 3;
-        const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-        s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, 40);
-        const CorrelationSumResult sums = correlation_sum(x, s);
+        const CorrelationSumResult sums = correlation_sum(x, automatic_correlation_sum_options(x, *a.delay, w, m0 + 3));
         // Curves for m0 .. m0 + 5: the fit at grid dimension m uses m, m+1, m+2.
         std::vector<std::optional<DivergenceCurve>> rosenstein(6), kantz(6);
         std::string curve_error;

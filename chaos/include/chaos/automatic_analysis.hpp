@@ -23,6 +23,7 @@
 
 #include "chaos/cao.hpp"
 #include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/time_scales.hpp"
 
@@ -50,6 +51,15 @@ struct AutomaticAnalysis {
   std::optional<LyapunovResult> rosenstein, kantz;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };
+
+// The steps a divergence curve is followed: 20 of the longer of the correlation time and the
+// oscillation period (samples), at least 20, at most N / 10.
+std::size_t automatic_lyapunov_steps(std::size_t correlation_time, std::size_t period, std::size_t n);
+// The correlation sums the pipeline uses for D2: m = 1..max_dimension, 40 radii log-spaced from
+// range/1000 to range/4.
+CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> x, std::size_t delay,
+                                                        std::size_t theiler, std::size_t max_dimension,
+                                                        std::size_t radii = 40);
 
 // The Lyapunov settings the pipeline uses in embedding dimension m (w, tau, steps, period, three
 // dimensions), for callers that vary one of them around the automatic choice.
