@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <sstream>
 
 #include "chaos/correlation_dimension.hpp"
@@ -27,6 +28,7 @@ struct D2Args {
   std::string norm = "max";
   std::string search = "box";
   std::string plot;
+  bool halves = false;
 };
 
 CorrelationSearch parse_search(const std::string& name) {
@@ -104,7 +106,15 @@ void run(D2Args& args) {
   args.sums.radii = args.radius_list.empty() ? log_radii(r_min, r_max, args.radii) : args.radius_list;
 
   const CorrelationSumResult sums = correlation_sum(x, args.sums);
-  const CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
+  CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
+  if (args.halves && d2.status == D2Status::saturated) {
+    // The same sums over each half of the record (same radii): the plateau must be reproduced.
+    const std::span<const double> all(x);
+    const std::size_t half = all.size() / 2;
+    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(all.first(half), args.sums), args.dimension),
+                                 correlation_dimension(correlation_sum(all.subspan(half), args.sums), args.dimension),
+                                 args.dimension);
+  }
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
 
   Report report("d2", args.output);
@@ -142,6 +152,14 @@ void run(D2Args& args) {
   j["d2"] = optional_json(d2.d2);
   j["d2_interval"] = interval_json(d2.d2_interval);
   j["scaling_region"] = interval_json(d2.scaling_region);
+  auto plateaus = nlohmann::ordered_json::array();
+  for (const auto& p : d2.plateaus)
+    plateaus.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
+  j["plateaus"] = plateaus;
+  if (d2.first_half_status) {
+    j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
+    j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};
+  }
   j["saturated"] = d2.status == D2Status::saturated;
   j["status"] = to_string(d2.status);
   j["explanation"] = d2.explanation;
@@ -207,6 +225,8 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-pairs", args->dimension.min_pairs, "radii with fewer close pairs are left out")
       ->capture_default_str();
+  command->add_flag("--halves", args->halves,
+                    "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
   command->add_option("--plot", args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

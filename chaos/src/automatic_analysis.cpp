@@ -27,6 +27,28 @@ CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> 
   return s;
 }
 
+std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x) {
+  const std::size_t half = x.size() / 2;
+  return {x.first(half), x.subspan(half)};
+}
+
+CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
+                                                           bool check_halves) {
+  CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, sums));
+  if (!check_halves || d2.status != D2Status::saturated) return d2;
+  const auto [first, second] = record_halves(x);
+  try {
+    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(first, sums)),
+                                 correlation_dimension(correlation_sum(second, sums)));
+  } catch (const InvalidInput& e) {
+    // A half too short to embed in the highest dimension: the plateau cannot be reproduced.
+    const CorrelationDimensionResult none;  // no_scaling_region
+    require_reproduced_by_halves(d2, none, none);
+    d2.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
+  }
+  return d2;
+}
+
 LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
                                            std::size_t delay, std::size_t theiler, LyapunovMethod method) {
   LyapunovOptions l;
@@ -107,7 +129,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   CorrelationSumOptions s =
       automatic_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
-  a.d2 = correlation_dimension(correlation_sum(x, s));
+  a.d2 = automatic_correlation_dimension(x, s, options.check_halves);
 
   const auto lyapunov = [&](LyapunovMethod method) {
     LyapunovOptions l = automatic_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);

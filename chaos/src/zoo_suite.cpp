@@ -333,7 +333,26 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       const std::size_t m0 = *a.dimension;
       for (const double factor : {1.0, 2.0, 3.0}) {
         const std::size_t w = static_cast<std::size_t>(factor) * a.theiler;
-        const CorrelationSumResult sums = correlation_sum(x, automatic_correlation_sum_options(x, *a.delay, w, m0 + 3));
+        const CorrelationSumOptions sum_options = automatic_correlation_sum_options(x, *a.delay, w, m0 + 3);
+        const CorrelationSumResult sums = correlation_sum(x, sum_options);
+        // The halves check, as in the pipeline (automatic_correlation_dimension), computed once per w
+        // and only when some dimension saturates.
+        std::optional<std::pair<CorrelationSumResult, CorrelationSumResult>> halves;
+        const auto d2_at = [&](std::size_t m) {
+          CorrelationDimensionResult d2 = correlation_dimension(truncated(sums, m));
+          if (d2.status != D2Status::saturated) return d2;
+          try {
+            if (!halves) {
+              const auto [first, second] = record_halves(x);
+              halves.emplace(correlation_sum(first, sum_options), correlation_sum(second, sum_options));
+            }
+            require_reproduced_by_halves(d2, correlation_dimension(truncated(halves->first, m)),
+                                         correlation_dimension(truncated(halves->second, m)));
+          } catch (const InvalidInput&) {
+            require_reproduced_by_halves(d2, CorrelationDimensionResult{}, CorrelationDimensionResult{});
+          }
+          return d2;
+        };
         // Curves for m0 .. m0 + 5: the fit at grid dimension m uses m, m+1, m+2.
         std::vector<std::optional<DivergenceCurve>> rosenstein(6), kantz(6);
         std::string curve_error;
@@ -356,7 +375,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           row.delay = *a.delay;
           row.dimension = m;
           row.automatic = false;
-          row.d2 = d2_estimate(correlation_dimension(truncated(sums, m)), c.d2_band);
+          row.d2 = d2_estimate(d2_at(m), c.d2_band);
           const std::size_t k = m - m0;
           const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) {
             if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return not_run("not_run: " + curve_error);

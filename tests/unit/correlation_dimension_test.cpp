@@ -85,6 +85,83 @@ TEST(CorrelationDimension, RadiiWhereNoPairEntersAreNeverTheRegion) {
   EXPECT_FALSE(flat.d2.has_value());
 }
 
+// C(eps) = (eps / knee)^low below the knee and (eps / knee)^high above it (continuous), for every
+// m, from 10^10 examined pairs: two exact plateaus meeting at `knee`.
+chaos::CorrelationSumResult broken_power_law(std::size_t dims, double knee, double low, double high) {
+  auto s = power_law(dims, [](std::size_t) { return 1.0; });
+  const double total = 1e10;
+  for (std::size_t d = 0; d < dims; ++d)
+    for (std::size_t k = 0; k < s.radius.size(); ++k) {
+      const double r = s.radius[k] / knee;
+      const double c = 1e-5 * std::pow(r, r < 1.0 ? low : high);
+      s.correlation_sum[d][k] = c;
+      s.pairs[d][k] = static_cast<std::uint64_t>(std::llround(c * total));
+      s.examined[d][k] = static_cast<std::uint64_t>(total);
+    }
+  return s;
+}
+
+TEST(CorrelationDimension, APlateauAtSmallerScalesWithAnotherSlopeIsScaleDependent) {
+  // The Mackey-Glass tau = 30 shape: slope 3.0 at small radii, 2.4 at large ones. The large-scale
+  // plateau has more pairs, but D2 is the small-scale limit: neither is reported as D2.
+  const auto r = chaos::correlation_dimension(broken_power_law(5, 0.05, 3.0, 2.4));
+  ASSERT_EQ(r.status, chaos::D2Status::scale_dependent) << r.explanation;
+  EXPECT_FALSE(r.d2.has_value());
+  ASSERT_EQ(r.plateaus.size(), 2u);
+  EXPECT_NEAR(r.plateaus[0].slope, 2.4, 0.05);  // the best-supported one
+  EXPECT_NEAR(r.plateaus[1].slope, 3.0, 0.05);  // below it
+  EXPECT_LT(r.plateaus[1].radii.high, r.plateaus[0].radii.low);
+
+  // Means within twice the tolerance (2.40 against 2.60: allowances [2.28, 2.52] and [2.47, 2.73]
+  // overlap) are one plateau seen through oscillating slopes: saturated.
+  const auto same = chaos::correlation_dimension(broken_power_law(5, 0.05, 2.6, 2.4));
+  EXPECT_EQ(same.status, chaos::D2Status::saturated) << same.explanation;
+  ASSERT_EQ(same.plateaus.size(), 1u);
+
+  // A different slope only at larger scales (the attractor's edge) leaves the small-scale plateau
+  // alone when that one is chosen: here the small-scale stretch has the larger support.
+  const auto edge = chaos::correlation_dimension(broken_power_law(5, 0.4, 2.0, 1.0));
+  EXPECT_EQ(edge.status, chaos::D2Status::saturated) << edge.explanation;
+  ASSERT_TRUE(edge.d2.has_value());
+  EXPECT_NEAR(*edge.d2, 2.0, 0.05);
+}
+
+TEST(CorrelationDimension, APlateauTheHalvesDoNotReproduceIsWithdrawn) {
+  // Exact power laws stand in for the full record and its halves: the rule reads only the three
+  // results (the splitting itself is automatic_correlation_dimension's).
+  const auto at = [](double d) { return chaos::correlation_dimension(broken_power_law(5, 0.05, d, d)); };
+  const auto full = at(2.3);
+  ASSERT_EQ(full.status, chaos::D2Status::saturated) << full.explanation;
+
+  // Halves at 2.2 and 2.4: allowances [2.09, 2.31] and [2.28, 2.52] overlap: reproduced, unchanged.
+  auto same = full;
+  chaos::require_reproduced_by_halves(same, at(2.2), at(2.4));
+  EXPECT_EQ(same.status, chaos::D2Status::saturated) << same.explanation;
+  EXPECT_EQ(same.d2, full.d2);
+  ASSERT_TRUE(same.first_half_d2 && same.second_half_d2);
+  EXPECT_NEAR(*same.first_half_d2, 2.2, 1e-6);
+
+  // Halves at 1.97 and 2.5 (Sprott F at N = 10^4): withdrawn, with both halves' values reported.
+  auto apart = full;
+  chaos::require_reproduced_by_halves(apart, at(1.97), at(2.5));
+  EXPECT_EQ(apart.status, chaos::D2Status::not_reproduced);
+  EXPECT_FALSE(apart.d2.has_value());
+  EXPECT_FALSE(apart.d2_interval.has_value());
+  EXPECT_NE(apart.explanation.find("disagree"), std::string::npos) << apart.explanation;
+
+  // A half without a plateau: withdrawn too.
+  auto missing = full;
+  chaos::require_reproduced_by_halves(missing, at(2.3), chaos::CorrelationDimensionResult{});
+  EXPECT_EQ(missing.status, chaos::D2Status::not_reproduced);
+  EXPECT_EQ(*missing.second_half_status, chaos::D2Status::no_scaling_region);
+
+  // An unsure full record stays what it was.
+  chaos::CorrelationDimensionResult unsure;
+  unsure.status = chaos::D2Status::not_saturated;
+  chaos::require_reproduced_by_halves(unsure, at(2.3), at(2.3));
+  EXPECT_EQ(unsure.status, chaos::D2Status::not_saturated);
+}
+
 TEST(CorrelationDimension, SlopesGrowingWithDimensionAreNotSaturated) {
   // Noise-like: D2(m) = m for every m.
   const auto r = chaos::correlation_dimension(power_law(5, [](std::size_t m) { return double(m); }));

@@ -9,7 +9,8 @@
 //      information falls without a minimum, the autocorrelation's first zero crossing (a standard
 //      alternative, named as the source); if neither exists within max_delay, nothing further runs;
 //   3. embedding dimension m: Cao's E1 saturation (Cao 1997); none, nothing further runs;
-//   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp);
+//   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp); a
+//      saturated D2 must be reproduced by the two halves of the record (require_reproduced_by_halves);
 //   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
 //      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
 //      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
@@ -20,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "chaos/cao.hpp"
 #include "chaos/correlation_dimension.hpp"
@@ -36,6 +38,7 @@ struct AutomaticAnalysisOptions {
   std::size_t max_dimension = 10;    // of Cao's method
   std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
   std::size_t radii = 40;            // log-spaced from range/1000 to range/4
+  bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
   bool rosenstein = true, kantz = true;
   std::size_t threads = 1;           // results identical for any number
 };
@@ -60,6 +63,13 @@ std::size_t automatic_lyapunov_steps(std::size_t correlation_time, std::size_t p
 CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> x, std::size_t delay,
                                                         std::size_t theiler, std::size_t max_dimension,
                                                         std::size_t radii = 40);
+
+// D2 as the pipeline computes it: correlation sums of x with `sums`, and, when D2 saturates, the
+// halves check on the same radii (the first and the second half of x).
+CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
+                                                           bool check_halves = true);
+// The two halves of a record, as the halves check splits it: [0, n/2) and [n/2, n).
+std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x);
 
 // The Lyapunov settings the pipeline uses in embedding dimension m (w, tau, steps, period, three
 // dimensions), for callers that vary one of them around the automatic choice.

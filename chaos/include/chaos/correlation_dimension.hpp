@@ -12,7 +12,14 @@
 //     however long and flat;
 //  3. the saturated D2 needs one region shared by the `saturation_dimensions` highest dimensions
 //     that have an estimate, with their D2(m) agreeing within the tolerance; its interval is the
-//     range of all local slopes of those dimensions over the shared region.
+//     range of all local slopes of those dimensions over the shared region;
+//  4. D2 is the limit of small scales. If, at radii below that region, the same dimensions share a
+//     second admissible plateau (the same tolerance, support and length) whose allowance (mean +-
+//     tolerance * |mean|) does not overlap the first's, the slopes still change with scale (more than
+//     lacunarity's oscillation around one value, which stays within the allowances): the status is
+//     `scale_dependent`, both plateaus are reported and no D2 is given. (Mackey-Glass at tau = 30,
+//     N = 10^5: 2.39 over eps in [0.06, 0.3] of a range of 1.2, 3.05 over [0.0066, 0.012]; GP 1983
+//     report 3.0 +- 0.2.)
 // Radii where the pair counts stop changing (three or more consecutive radii with the same non-zero
 // count in the highest dimension) are reported: at those scales the data are a finite set of points.
 // Otherwise the result says "not saturated" (D2(m) keeps growing, as for noise) or "no scaling
@@ -30,7 +37,7 @@
 
 namespace chaos {
 
-enum class D2Status { saturated, not_saturated, no_scaling_region };
+enum class D2Status { saturated, not_saturated, no_scaling_region, scale_dependent, not_reproduced };
 const char* to_string(D2Status status) noexcept;
 
 struct CorrelationDimensionOptions {
@@ -38,6 +45,13 @@ struct CorrelationDimensionOptions {
   std::size_t saturation_dimensions = 3;
   std::uint64_t min_pairs = 100;
   void validate() const;
+};
+
+// A flat stretch of the local slopes shared by the highest dimensions.
+struct D2Plateau {
+  Interval radii;            // [low, high]
+  double slope = 0.0;        // mean local slope over the stretch and the dimensions
+  Interval slopes;           // their range
 };
 
 struct CorrelationDimensionResult {
@@ -52,6 +66,9 @@ struct CorrelationDimensionResult {
   std::optional<Interval> d2_interval;
   std::optional<Interval> scaling_region;   // radii [low, high] of the shared region
   std::vector<std::size_t> saturation_dimensions_used;
+  // The best-supported shared plateau and, when the status is scale_dependent, the disagreeing one
+  // at smaller radii (in that order).
+  std::vector<D2Plateau> plateaus;
   std::string explanation;                  // one sentence a user can read
   double eckmann_ruelle_limit = 0.0;        // 2 log10(points)
   bool exceeds_eckmann_ruelle = false;
@@ -61,10 +78,25 @@ struct CorrelationDimensionResult {
   // three consecutive radii: the data look like a finite set of points at smaller scales (periodic
   // with a rational period, or quantised). nullopt when the counts keep changing.
   std::optional<double> finite_set_below;
+  // The halves check (require_reproduced_by_halves), when it ran: each half's status and D2.
+  std::optional<D2Status> first_half_status, second_half_status;
+  std::optional<double> first_half_d2, second_half_d2;
 };
 
 CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,
                                                  const CorrelationDimensionOptions& options = {});
+
+// Reproducibility (the automatic pipeline's last D2 step). `first` and `second` are D2 from the
+// first and the second half of the same record, with the same delay, Theiler window, dimensions and
+// radii. A saturated `full` stays saturated only when both halves are saturated and their D2 agree
+// in the sense of step 4 (allowances mean +- tolerance * |mean| overlap); otherwise its status
+// becomes not_reproduced and its D2 is withdrawn (the plateau stays in `plateaus`). Two disjoint
+// records of the same attractor measure the same dimension; a plateau that one half does not show,
+// or shows at another height, came from that record's sampling, not from the attractor. (Sprott F,
+// N = 10^4: the full record reads 2.35, its halves 1.97 and 2.50; D_KY = 2.19.)
+void require_reproduced_by_halves(CorrelationDimensionResult& full, const CorrelationDimensionResult& first,
+                                  const CorrelationDimensionResult& second,
+                                  const CorrelationDimensionOptions& options = {});
 
 // Takens-Theiler estimate at radius index k: C(r_k) / integral_0^{r_k} C(r)/r dr, with C a power
 // law between grid radii (and below the first, with the first interval's exponent). Standard error
