@@ -114,7 +114,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     for (const auto d : top) curves.push_back(out.local_slope[d]);
     // The highest dimension has the fewest pairs: its count is the shared region's support.
     const auto shared = find_scaling_region(log_r, curves, options.region, support[top.back()]);
-    // Step 4: a second plateau at smaller radii, searched in the radii below the first.
+    // Step 4 (small-scale limit): a second plateau at smaller radii, searched below the first.
     std::optional<ScalingRegion> below;
     if (shared && shared->first >= options.region.min_points) {
       const std::size_t n = shared->first;
