@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <span>
 #include <sstream>
 
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
@@ -109,10 +109,9 @@ void run(D2Args& args) {
   CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
   if (args.halves && d2.status == D2Status::saturated) {
     // The same sums over each half of the record (same radii): the plateau must be reproduced.
-    const std::span<const double> all(x);
-    const std::size_t half = all.size() / 2;
-    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(all.first(half), args.sums), args.dimension),
-                                 correlation_dimension(correlation_sum(all.subspan(half), args.sums), args.dimension),
+    const auto [first, second] = record_halves(x);
+    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(first, args.sums), args.dimension),
+                                 correlation_dimension(correlation_sum(second, args.sums), args.dimension),
                                  args.dimension);
   }
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);

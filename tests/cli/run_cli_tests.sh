@@ -83,6 +83,15 @@ l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.3
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
 r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
 [[ $r == "[0.01,0.02,0.05,0.1]" ]] && pass || fail "--radius-list gave radius $r"
+# --halves: both halves are reported, and the verdict follows from them (saturated only when both
+# halves saturate within the allowance of each other; otherwise not_reproduced and no D2).
+h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
+  (.first_half.d2 // null) as $a | (.second_half.d2 // null) as $b |
+  [(.plateaus | length > 0),
+   (if .status == "saturated" then ($a != null and $b != null and (($a - $b) | fabs) <= 0.05 * ($a + $b))
+    elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
+    else false end)]')
+[[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
