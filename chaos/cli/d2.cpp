@@ -127,7 +127,9 @@ void run(D2Args& args) {
       .parameter("seed", args.sums.seed).parameter("threads", args.sums.threads)
       .parameter("tolerance", args.dimension.region.tolerance).parameter("min_points", args.dimension.region.min_points)
       .parameter("saturation_dimensions", args.dimension.saturation_dimensions)
-      .parameter("min_pairs", args.dimension.min_pairs).parameter("points", sums.points);
+      .parameter("min_pairs", args.dimension.min_pairs)
+      .parameter("max_region_radius", d2.max_region_radius)
+      .parameter("points", sums.points);
   std::ostream& out = report.stream();
   auto& j = report.json();
   j["dimension"] = sums.dimension;
@@ -224,6 +226,8 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-pairs", args->dimension.min_pairs, "radii with fewer close pairs are left out")
       ->capture_default_str();
+  command->add_option("--max-region-fraction", args->dimension.max_region_fraction,
+                      "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
   command->add_flag("--halves", args->halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
   command->add_option("--plot", args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");

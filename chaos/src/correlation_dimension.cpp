@@ -21,6 +21,10 @@ const char* to_string(D2Status status) noexcept {
 
 void CorrelationDimensionOptions::validate() const {
   region.validate();
+  if (!(max_region_fraction > 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the largest scaling-region radius, as a fraction of the range, must be positive (got " +
+                           std::to_string(max_region_fraction) + ")");
   if (saturation_dimensions < 1)
     throw InvalidInput(ErrorCode::invalid_parameter, "saturation needs at least 1 dimension (got 0)");
 }
@@ -66,6 +70,20 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     for (std::size_t k = 0; k < radii; ++k)
       support[d][k] = std::log(std::max(1.0, static_cast<double>(sums.pairs[d][k])));
 
+  // Regions stay at radii small against the diameter; the slopes above are reported, not searched.
+  std::size_t searched = radii;
+  if (std::isfinite(options.max_region_fraction) && sums.range > 0.0 &&
+      std::isfinite(options.max_region_fraction * sums.range)) {
+    out.max_region_radius = options.max_region_fraction * sums.range;
+    searched = static_cast<std::size_t>(
+        std::upper_bound(sums.radius.begin(), sums.radius.end(), *out.max_region_radius) - sums.radius.begin());
+  }
+  const auto searchable = [&](const std::vector<std::optional<double>>& slopes) {
+    std::vector<std::optional<double>> s = slopes;
+    for (std::size_t k = searched; k < s.size(); ++k) s[k].reset();
+    return s;
+  };
+
   // Steps 1-2: local slopes and a region per dimension.
   std::vector<std::vector<std::optional<double>>> log_c(dims, std::vector<std::optional<double>>(radii));
   for (std::size_t d = 0; d < dims; ++d) {
@@ -77,7 +95,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           sums.pairs[d][k] < sums.examined[d][k])
         log_c[d][k] = std::log(sums.correlation_sum[d][k]);
     out.local_slope.push_back(local_slopes(log_r, log_c[d], options.region.half_width));
-    const auto region = find_scaling_region(log_r, {out.local_slope[d]}, options.region, support[d]);
+    const auto region = find_scaling_region(log_r, {searchable(out.local_slope[d])}, options.region, support[d]);
     if (region) {
       out.d2_by_dimension.push_back(fit_slope(log_r, log_c[d], region->first, region->last));
       out.d2_by_dimension_interval.push_back(Interval{region->slope_min, region->slope_max});
@@ -105,13 +123,16 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     out.status = D2Status::no_scaling_region;
     why << "no dimension has a range of at least " << options.region.min_points << " radii with local slopes within "
         << options.region.tolerance * 100 << "% of their mean";
+    if (out.max_region_radius)
+      why << " at radii up to " << *out.max_region_radius << " (" << options.max_region_fraction
+          << " of the range: larger scales show the attractor's shape, not its dimension)";
   } else if (top.size() < options.saturation_dimensions) {
     out.status = D2Status::not_saturated;
     why << "only " << top.size() << " dimension(s) have a scaling region, " << options.saturation_dimensions
         << " are needed to judge saturation (" << list_d2() << ")";
   } else {
     std::vector<std::vector<std::optional<double>>> curves;
-    for (const auto d : top) curves.push_back(out.local_slope[d]);
+    for (const auto d : top) curves.push_back(searchable(out.local_slope[d]));
     // The highest dimension has the fewest pairs: its count is the shared region's support.
     const auto shared = find_scaling_region(log_r, curves, options.region, support[top.back()]);
     // Step 4 (small-scale limit): a second plateau at smaller radii, searched below the first.

@@ -1009,6 +1009,8 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
   result.pairs = std::move(totals.pairs);
   result.examined = std::move(totals.examined);
   result.points = options.reference_points > 0 ? options.reference_points : points;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  result.range = *hi - *lo;
   return result;
 }
 

@@ -162,6 +162,43 @@ TEST(CorrelationDimension, APlateauTheHalvesDoNotReproduceIsWithdrawn) {
   EXPECT_EQ(unsure.status, chaos::D2Status::not_saturated);
 }
 
+TEST(CorrelationDimension, MaxRegionFractionKeepsTheRegionAtSmallScales) {
+  // Slope 2.0 below eps = 0.1 and 2.6 above it (a shape bending the slope at large scales, as the
+  // curvature of a torus does); the series' range is 1, so a fraction of 0.1 allows radii <= 0.1.
+  auto sums = broken_power_law(5, 0.1, 2.0, 2.6);
+  sums.range = 1.0;
+  const auto open = chaos::correlation_dimension(sums);  // default: no limit
+  EXPECT_FALSE(open.max_region_radius.has_value());
+  ASSERT_FALSE(open.plateaus.empty());
+  EXPECT_GT(open.plateaus[0].radii.high, 0.5) << open.explanation;  // the large-scale plateau is seen
+
+  chaos::CorrelationDimensionOptions capped;
+  capped.max_region_fraction = 0.1;
+  const auto r = chaos::correlation_dimension(sums, capped);
+  ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
+  ASSERT_TRUE(r.max_region_radius.has_value());
+  EXPECT_DOUBLE_EQ(*r.max_region_radius, 0.1);
+  EXPECT_NEAR(*r.d2, 2.0, 1e-6);
+  EXPECT_LE(r.scaling_region->high, 0.1);
+  for (const auto& region : r.region_by_dimension) {
+    ASSERT_TRUE(region.has_value());
+    EXPECT_LE(region->high, 0.1);
+  }
+  EXPECT_EQ(r.local_slope[4].size(), sums.radius.size());  // slopes above the limit are still reported
+  ASSERT_TRUE(r.local_slope[4].back().has_value());
+
+  // A limit below every radius leaves no region, and the explanation names the limit.
+  capped.max_region_fraction = 0.001;
+  const auto none = chaos::correlation_dimension(sums, capped);
+  EXPECT_EQ(none.status, chaos::D2Status::no_scaling_region);
+  EXPECT_NE(none.explanation.find("of the range"), std::string::npos) << none.explanation;
+
+  for (const double bad : {0.0, -0.1, std::nan("")}) {
+    capped.max_region_fraction = bad;
+    EXPECT_THROW(chaos::correlation_dimension(sums, capped), chaos::InvalidInput) << bad;
+  }
+}
+
 TEST(CorrelationDimension, SlopesGrowingWithDimensionAreNotSaturated) {
   // Noise-like: D2(m) = m for every m.
   const auto r = chaos::correlation_dimension(power_law(5, [](std::size_t m) { return double(m); }));

@@ -54,6 +54,7 @@ struct CorrelationSumResult {
   std::vector<std::vector<std::uint64_t>> pairs;    // pairs closer than the radius
   std::vector<std::vector<std::uint64_t>> examined; // admissible pairs examined (all of them without a cap)
   std::size_t points = 0;                           // embedded points in the reference set
+  double range = 0.0;  // max - min of the series: the max-norm diameter of the embedded points is at most this
 };
 
 // n radii from r_min to r_max, equally spaced in log (TISEAN -r -R -#).
