@@ -11,6 +11,7 @@
 
 #include "chaos/error.hpp"
 #include "fftw.hpp"
+#include "numeric.hpp"
 #include "chaos/series.hpp"
 
 namespace chaos {
@@ -38,7 +39,8 @@ std::size_t smooth_size(std::size_t n) {
 
 AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max_lag) {
   const std::string what = "autocorrelation";
-  require_length(x, max_lag + 1, what,
+  // Saturated: max_lag + 1 wraps to 0 for the largest size_t.
+  require_length(x, detail::add_sat(max_lag, 1), what,
                  "max_lag = " + std::to_string(max_lag) + " needs N > max_lag (the largest lag must leave a pair)");
   require_finite(x, what);
   require_not_constant(x, what);

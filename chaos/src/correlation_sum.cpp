@@ -921,6 +921,11 @@ std::vector<double> log_radii(double r_min, double r_max, std::size_t n) {
   if (!(std::isfinite(r_min) && r_min > 0.0 && std::isfinite(r_max) && r_max > 0.0))
     refuse("radii must be finite and positive (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");
   if (n == 0) refuse("the number of radii must be at least 1 (got 0)");
+  // A log grid finer than this resolves nothing more in the local slopes; the cap keeps a
+  // mistyped count from asking for more memory than there is.
+  constexpr std::size_t max_radii = 10000;
+  if (n > max_radii)
+    refuse("the number of radii must be at most " + std::to_string(max_radii) + " (got " + std::to_string(n) + ")");
   if (n == 1) {
     if (r_min != r_max)
       refuse("one radius needs r_min = r_max (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "gnuplot.hpp"
+#include "option_checks.hpp"
 #include "progress_bar.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
@@ -141,6 +142,7 @@ int main(int argc, char** argv) {
   sim->add_flag("-q,--quiet", quiet, "no progress bar");
   sim->add_option("--plot", plot_path,
                   "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg");
+  cli_support::check_numeric_options(app);
 
   try {
     app.parse(argc, argv);

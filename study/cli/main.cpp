@@ -21,6 +21,7 @@
 
 #include "mechanism/error.hpp"
 #include "mpi_session.hpp"
+#include "option_checks.hpp"
 #include "pipeline.hpp"
 #include "progress_bar.hpp"
 #include "plots.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
   study::cli::PlotRequest plot;
   auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
   study::cli::add_plot_options(*plot_cmd, plot);
+  cli_support::check_numeric_options(app);
 
   try {
     app.parse(argc, argv);

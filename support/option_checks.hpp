@@ -1,0 +1,16 @@
+#pragma once
+// Refuses, while the command line is parsed, the numbers an option's type cannot hold. CLI11 2.1
+// reads "-1" into an unsigned option as 2^64-1 (strtoull wraps it), an out-of-range whole number
+// as its largest value, and "nan" or "inf" into a floating-point option. Every tool calls this
+// once, after all its options are registered, so no command meets such a value: a negative
+// count, a count past 2^64-1, a non-finite real. The message names the option and the value
+// (exit code: the tool's usage error, like any other value not of the option's type).
+
+#include <CLI/CLI.hpp>
+
+namespace cli_support {
+
+// Adds the checks to every option of `app` and of its subcommands, recursively.
+void check_numeric_options(CLI::App& app);
+
+}  // namespace cli_support
