@@ -31,6 +31,7 @@ Series load_series(const InputOptions& input) {
   options.dt = input.dt;
   Series series = read_series(input.file, options);
   require_finite(series.values, input.file);
+  require_scale(series.values, input.file);
   return series;
 }
 

@@ -36,6 +36,14 @@ std::vector<std::string_view> tokenize(std::string_view line) {
   return tokens;
 }
 
+// Six significant digits: enough for a bound or a magnitude in a message.
+std::string short_number(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
 bool parse_double(std::string_view token, double& value) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
@@ -120,6 +128,25 @@ void require_length(std::span<const double> x, std::size_t minimum, const std::s
     throw InvalidInput(ErrorCode::too_short, what + ": series too short: N = " + std::to_string(x.size()) +
                                                  " samples, but at least " + std::to_string(minimum) +
                                                  " are needed (" + reason + ")");
+}
+
+void require_scale(std::span<const double> x, const std::string& what) {
+  if (x.empty()) return;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double magnitude = std::max(std::fabs(*lo), std::fabs(*hi));
+  if (magnitude > largest_magnitude)
+    throw InvalidInput(ErrorCode::scale,
+                       what + ": the values reach " + short_number(magnitude) + " in magnitude, beyond the " +
+                           short_number(largest_magnitude) +
+                           " that the estimators' sums of squares can hold; divide the series by a power of ten "
+                           "(the estimates do not depend on the scale)");
+  const double spread = *hi - *lo;
+  if (spread > 0.0 && spread < smallest_spread)
+    throw InvalidInput(ErrorCode::scale,
+                       what + ": the values span only " + short_number(spread) + " (max - min), below the " +
+                           short_number(smallest_spread) +
+                           " that the estimators' squared distances can resolve; multiply the series by a power of "
+                           "ten (the estimates do not depend on the scale)");
 }
 
 }  // namespace chaos

@@ -276,6 +276,41 @@ expect_error 3 "length -l must be in 1..100000000 \(got 9223372036854775808\)" -
 expect_error 3 "iterations \+ transient = 9223372036854775808 is more than 1e15" -- spectrum henon --iterations 9223372036854775808
 expect_error 3 "highest of the 9223372036854775808 dimensions" -- lyapunov --dimensions 9223372036854775808 "$work/henon.dat"
 
+# Issue 16, item 4: extreme scales. A Lorenz series times 1e150 gave -nan autocorrelation rows, d2
+# asked for "at least 9223372036854775814" samples, and times 1e306 d2 and lyapunov fell back to
+# a wrong Theiler window and gave wrong numbers, all with exit 0. Every estimate is independent of
+# the scale: times a power of two (exact) the autocorrelation, the Theiler windows and lyapunov
+# are identical and d2 agrees to rounding (its log-spaced radii are not scaled exactly), as it does
+# times 1e+-100; beyond |x| = 1e120 or a spread below 1e-120 (series.hpp) the series is refused
+# with exit 3 (docs/input.md) and the numbers, never answered with NaN.
+scaled() { awk -v f="$1" '!/^#/ { printf "%.17g\n", $1 * f }' "$work/lorenz.dat" > "$work/scaled.dat"; }
+invariants() {
+  {
+    "$CHAOS" autocorrelation "$1" --json | jq -c '[.first_zero_crossing, .decorrelation_time, .autocorrelation]'
+    "$CHAOS" d2 "$1" --json | jq -c '[.status, .parameters.theiler]'
+    "$CHAOS" lyapunov "$1" --json | jq -c '[.status, .lambda, .points, .mean_neighbours, .parameters.theiler]'
+  } 2>&1
+}
+d2_of() { "$CHAOS" d2 "$1" --json | jq -r '"\(.d2) \(.takens_theiler)"'; }
+close() { awk -v a="$1" -v b="$2" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !((x[1] - y[1]) ^ 2 < 1e-18 && (x[2] - y[2]) ^ 2 < 1e-18) }'; }
+reference=$(invariants "$work/lorenz.dat")
+ref_d2=$(d2_of "$work/lorenz.dat")
+[[ $ref_d2 == *null* ]] && fail "the reference d2 has no answer to compare: $ref_d2"
+for f in 2^-390 2^-200 2^-1 2^7 2^200 2^390 1e-100 1e100; do
+  if [[ $f == 2^* ]]; then scaled "$(awk -v e="${f#2^}" 'BEGIN { printf "%.17g", 2 ^ e }')"; else scaled "$f"; fi
+  if [[ $f == 2^* ]]; then
+    [[ $(invariants "$work/scaled.dat") == "$reference" ]] && pass || fail "x $f changes the scale-free results"
+  fi
+  d2=$(d2_of "$work/scaled.dat")
+  close "$d2" "$ref_d2" && pass || fail "x $f: d2 and Takens-Theiler $d2, expected $ref_d2"
+done
+for f in 1e121 1e150 1e306 1e-170 1e-300 4.9e-324; do
+  scaled "$f"
+  for cmd in autocorrelation d2 lyapunov; do
+    expect_error 3 "\\[scale\\]: .*scaled.dat: the values (reach .* beyond the 1e\\+120|span only .* below the 1e-120)" -- "$cmd" "$work/scaled.dat"
+  done
+done
+
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"

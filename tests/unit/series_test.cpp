@@ -100,4 +100,18 @@ TEST(Checks, ConstantFiniteLength) {
   EXPECT_NO_THROW(chaos::require_not_constant(tiny, "s"));  // tiny but distinct values are dynamics
 }
 
+// Issue 16: beyond |x| = 1e120 or below a spread of 1e-120 the estimators' sums of squares
+// overflow or underflow; such a series is refused with its numbers and the bound (series.hpp).
+TEST(Checks, Scale) {
+  expect_refusal([] { chaos::require_scale(std::vector<double>{1.0, 2e150}, "s"); }, ErrorCode::scale,
+                 {"reach 2e+150", "1e+120", "divide the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{3e-171, 4e-171}, "s"); }, ErrorCode::scale,
+                 {"span only 1e-171", "1e-120", "multiply the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{5e-324, 1e-323}, "s"); }, ErrorCode::scale,
+                 {"span only"});
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{-1e120, 1e120}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{1e-120, 2e-120, 3e-120}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>(5, 1e-200), "s"));  // constant: named elsewhere
+}
+
 }  // namespace

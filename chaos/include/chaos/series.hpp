@@ -35,6 +35,14 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
 // Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
 void require_finite(std::span<const double> x, const std::string& what);
 void require_not_constant(std::span<const double> x, const std::string& what);
+// The estimators square and sum distances and FFT coefficients: beyond |x| = 1e120 those overflow
+// double, and below a spread (max - min) of 1e-120 they underflow, giving NaN or a silently wrong
+// answer. Inside these bounds every estimate is unchanged by scaling the series (issue 16), so a
+// series outside them is refused with its numbers and the advice to rescale it. A constant series
+// (spread 0) passes, for require_not_constant to name.
+inline constexpr double largest_magnitude = 1e120;
+inline constexpr double smallest_spread = 1e-120;
+void require_scale(std::span<const double> x, const std::string& what);
 void require_length(std::span<const double> x, std::size_t minimum, const std::string& what,
                     const std::string& reason);
 
