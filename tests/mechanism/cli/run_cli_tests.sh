@@ -63,6 +63,17 @@ expect 5 "no plot: the run wrote no samples" -- simulate -q -o /dev/null --set i
   --set run.transient=0.001 --set run.duration=0.001 --plot "$work/none.png"
 [[ ! -e $work/none.png ]] || fail "a run with no samples still drew $work/none.png"
 
+# Issue 16, item 5: runs that did nothing or never ended. A duration of 1.9e13 s wrapped the RK4
+# step count to 0 and "completed"; an output interval of 1e-300 s wrote rows until the disk was
+# full. Both are refused before the run (exit 3, README.md) with the numbers and the limit
+# (mechanism/scene.hpp: 1e12 steps, 1e8 rows).
+expect 3 "run.duration = 1.9e+13: with run.transient 0.0 s needs 1.9e+19 RK4 steps of 1e-06 s, more than the limit of 1e+12 steps" \
+  -- simulate -q --set run.duration=1.9e13 --set run.output_interval=0
+expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06 s, more than the limit of 1e+08 rows" \
+  -- simulate -q --set run.output_interval=1e-300
+expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --set integrator.max_steps=1e30
+[[ ! -s $work/out ]] || fail "a refused run wrote rows"
+
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2
   exit 1

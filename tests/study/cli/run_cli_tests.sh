@@ -32,6 +32,12 @@ expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/
 expect_message "is not a signal" "unknown signal"
 expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
 expect_message "cannot be opened" "missing scene file"
+# Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
+# negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
+expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
+expect_message "'-1' is negative" "negative periods"
+expect_code 3 "periods beyond any run" "$STUDY" sweep --periods 9223372036854775808 --keep 3 -o "$work/x"
+expect_message "point 0's run is too large" "periods beyond any run"
 [[ ! -e "$work/x/points" ]] || fail "a refused sweep left a result directory"
 
 # A small sweep: four points, the files of docs/study.md, the kept revolutions.
