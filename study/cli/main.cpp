@@ -120,7 +120,9 @@ int main(int argc, char** argv) {
     std::unique_ptr<study::ResultStore> store;
     auto open_store = [&](bool as_resume) {
       try {
-        store = std::make_unique<study::ResultStore>(out_dir, spec, as_resume);
+        // Rank 0's lock covers the other ranks, which open the directory only after it.
+        store = std::make_unique<study::ResultStore>(out_dir, spec, as_resume, root);
+        for (const auto& d : store->discarded()) std::cerr << "study: recomputing " << d << "\n";
         return true;
       } catch (const std::exception& e) {
         std::cerr << "study: " << e.what() << "\n";

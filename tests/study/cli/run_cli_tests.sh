@@ -83,6 +83,25 @@ expect_code 0 "resume after SIGKILL" "$STUDY" sweep "${long[@]}" -o "$work/k" --
 [[ $(jq -r .resumed_from_disk "$work/out") == "$before" ]] || fail "resume after SIGKILL did not keep the $before finished point(s): $(cat "$work/out")"
 cmp -s "$work/u/samples.tsv" "$work/k/samples.tsv" || fail "a sweep killed and resumed differs from an uninterrupted one"
 
+# Issue 16, item 1: a second sweep into a directory another sweep is writing is refused (exit 3,
+# docs/study.md: a refused request), naming the lock's holder; the first finishes untouched.
+"$STUDY" sweep "${long[@]}" -o "$work/l" >/dev/null 2>&1 &
+holder=$!
+for _ in $(seq 100); do [[ -s "$work/l/lock" ]] && break; sleep 0.05; done
+expect_code 3 "a second sweep into a held directory" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 20 --keep 3 -q -o "$work/l"
+expect_message "is in use by another sweep (process $holder holds" "a second sweep into a held directory"
+wait "$holder" || fail "the first sweep into the held directory failed"
+cmp -s "$work/u/samples.tsv" "$work/l/samples.tsv" || fail "the held directory's sweep differs from an uninterrupted one"
+
+# Issue 16, item 2: a point file cut short (there to 1000 bytes; here to half of its size) was
+# kept on --resume. It is recomputed, said on stderr, and the table equals the uninterrupted run's.
+size=$(stat -c %s "$work/u/points/000003.tsv")
+head -c $((size / 2)) "$work/u/points/000003.tsv" > "$work/cut.tsv" && mv "$work/cut.tsv" "$work/u/points/000003.tsv"
+expect_code 0 "resume over a truncated point file" "$STUDY" sweep "${long[@]}" -o "$work/u" --resume
+expect_message "recomputing point 3 (.*000003.tsv): is incomplete" "resume over a truncated point file"
+[[ $(jq -r .computed "$work/out") == 1 ]] || fail "resume over a truncated point file did not recompute one point: $(cat "$work/out")"
+cmp -s "$work/k/samples.tsv" "$work/u/samples.tsv" || fail "a recomputed truncated point gives another table"
+
 # Analysis columns, and plots of each kind.
 expect_code 0 "analysis" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=2e-4,5e-4 --axis driver.speed_rpm=4000,5000 --periods 8 --keep 5 --analysis -o "$work/c" -q
 [[ $(grep -vc '^#' "$work/c/analysis.tsv") == 4 ]] || fail "analysis.tsv should have one row per point"
