@@ -3,6 +3,7 @@
 #include "chaos/time_scales.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,15 +18,36 @@ namespace chaos::cli {
 void add_input_options(CLI::App& command, InputOptions& input) {
   command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")
       ->capture_default_str();
-  command.add_option("-c,--column", input.column, "column to read (1-based)")->capture_default_str();
+  add_column_option(command, input);
   command.add_option("-x,--skip", input.skip, "data rows to skip at the start")->capture_default_str();
   command.add_option("-l,--length", input.length, "data rows to use after the skip (default: all)");
   command.add_option("--dt", input.dt, "sampling interval, to report delays and times in time units too");
 }
 
+void add_column_option(CLI::App& command, InputOptions& input) {
+  command
+      .add_option_function<std::string>(
+          "-c,--column",
+          [&input](const std::string& text) {
+            if (!text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); })) {
+              if (!CLI::detail::lexical_cast(text, input.column))
+                throw CLI::ValidationError("--column", "'" + text + "' is larger than any column number");
+              input.column_name.clear();
+            } else if (!text.empty() && (text[0] == '-' || text[0] == '+')) {
+              throw CLI::ValidationError("--column", "'" + text + "' is neither a column number (1, 2, ...) nor a name");
+            } else {
+              input.column_name = text;
+            }
+          },
+          "column to read: its number (1-based) or its name in the file's header row")
+      ->type_name("NUMBER|NAME")
+      ->default_str("1");
+}
+
 Series load_series(const InputOptions& input) {
   ReadOptions options;
   options.column = input.column;
+  options.column_name = input.column_name;
   options.skip = input.skip;
   if (input.length) options.length = *input.length;
   options.dt = input.dt;

@@ -117,7 +117,7 @@ void run(D2Args& args) {
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
 
   Report report("d2", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", x.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", x.size())
       .parameter("dt", series.dt).parameter("delay", args.sums.delay).parameter("min_dimension", args.sums.min_dimension)
       .parameter("max_dimension", args.sums.max_dimension).parameter("theiler", args.sums.theiler)
       .parameter("theiler_source", theiler_source).parameter("norm", args.norm).parameter("search", args.search)

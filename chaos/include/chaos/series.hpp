@@ -17,10 +17,12 @@ namespace chaos {
 struct Series {
   std::vector<double> values;
   std::optional<double> dt;  // sampling interval in time units, when known
+  std::size_t column = 1;    // the column read (1-based), found by name when one was given
 };
 
 struct ReadOptions {
   std::size_t column = 1;  // 1-based, as in TISEAN
+  std::string column_name;  // when not empty: the header's column of this name, instead of `column`
   std::size_t skip = 0;    // data rows skipped after comments and blank lines are dropped
   std::size_t length = std::numeric_limits<std::size_t>::max();  // data rows used after the skip
   std::optional<double> dt;
@@ -29,6 +31,10 @@ struct ReadOptions {
 
 // Reads the series from a file; "-" reads standard input. Every refusal names the source, the line
 // and the rule: missing file, empty input, non-numeric token, NaN or infinity, missing column.
+// A UTF-8 byte-order mark at the start is skipped, and a first data line on which no token is a
+// number is a header (column names, as a spreadsheet's CSV export writes): it is not a data row,
+// and `column_name` picks a column by it. A refused token is shown cut to 60 bytes, with control
+// bytes and a byte-order mark made visible.
 Series read_series(const std::string& path, const ReadOptions& options = {});
 Series read_series(std::istream& in, const std::string& source_name, const ReadOptions& options = {});
 
