@@ -324,6 +324,19 @@ expect_error 2 "^--column: '-1' is neither a column number" -- mutual "$work/hen
 err=$("$CHAOS" mutual "$work/huge_token.dat" 2>&1)
 [[ ${#err} -lt 300 && $err == *"... (1000000 bytes)' is not a number"* ]] && pass || fail "a 1 MB token is echoed: ${err:0:300}"
 
+# Issue 16, item 8: chaos d2 on 10^6 points ran for over 15 minutes with no word. Above 2e5 points
+# (exact sums) it says so with the option that shortens it, and on a terminal it draws a progress
+# line after 2 s (util-linux `script` gives it one); -q silences both. Each run is cut after 4 s.
+"$CHAOS" generate lorenz -l 250000 --components x > "$work/long.dat"
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -o /dev/null 2>&1 >/dev/null)
+[[ $err == *"N = 250000 samples"*"--reference-points"* ]] && pass || fail "d2 on 250000 points gave no hint: ${err:0:300}"
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -q -o /dev/null 2>&1 >/dev/null)
+[[ -z $err ]] && pass || fail "d2 -q still writes to stderr: ${err:0:300}"
+if command -v script >/dev/null; then
+  tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 2 -o /dev/null" /dev/null | tr '\r' '\n')
+  grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
+fi
+
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
