@@ -8,9 +8,16 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace cli_support {
 
 // Adds the checks to every option of `app` and of its subcommands, recursively.
 void check_numeric_options(CLI::App& app);
+
+// When the first argument is neither an option nor one of `app`'s subcommands, the message that
+// names it and lists the commands (CLI11 says only "A subcommand is required", and with --help
+// after it prints the main help and exits 0); else empty. The caller exits with its usage error.
+std::string unknown_subcommand(const CLI::App& app, int argc, const char* const* argv);
 
 }  // namespace cli_support

@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
   register_validate(app);
   register_zoo(app);
   cli_support::check_numeric_options(app);
+  if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    std::cerr << "chaos: " << unknown << "\n";
+    return usage_error;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
   auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
   study::cli::add_plot_options(*plot_cmd, plot);
   cli_support::check_numeric_options(app);
+  if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    if (root) std::cerr << "study: " << unknown << "\n";
+    return usage_error;
+  }
 
   try {
     app.parse(argc, argv);

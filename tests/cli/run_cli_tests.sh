@@ -337,6 +337,18 @@ if command -v script >/dev/null; then
   grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
 fi
 
+# Issue 16, item 7: "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
+# the main help with exit 0; -o naming the input file overwrote the data; an unwritable -o failed
+# only after the work. An unknown command is a usage error (2) naming it; a bad -o is refused
+# before any work with exit 3 (docs/input.md: invalid input), the data untouched.
+expect_error 2 "^chaos: unknown command 'foo'; the commands are: generate, mutual" -- foo
+expect_error 2 "^chaos: unknown command 'foo'" -- foo --help
+cp "$work/henon.dat" "$work/data.dat"
+expect_error 3 "-o .*data.dat is the input file" -- mutual "$work/data.dat" -o "$work/data.dat"
+expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "$work/data.dat"
+cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
+expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
+
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"

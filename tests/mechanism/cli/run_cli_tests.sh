@@ -74,6 +74,10 @@ expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06
 expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --set integrator.max_steps=1e30
 [[ ! -s $work/out ]] || fail "a refused run wrote rows"
 
+# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
+expect 2 "unknown command 'foo'" -- foo --help
+
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2
   exit 1

@@ -32,6 +32,9 @@ expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/
 expect_message "is not a signal" "unknown signal"
 expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
 expect_message "cannot be opened" "missing scene file"
+# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+expect_code 2 "unknown command" "$STUDY" foo --help
+expect_message "unknown command 'foo'; the commands are: sweep, pipeline, plot" "unknown command"
 # Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
