@@ -15,6 +15,12 @@ namespace cli_support {
 // Adds the checks to every option of `app` and of its subcommands, recursively.
 void check_numeric_options(CLI::App& app);
 
+// Makes every repeatable (vector) option take one value per occurrence (a comma-separated list
+// still splits where the option has a delimiter). CLI11 lets such an option swallow every
+// argument after it, so "--set k=v scene.toml" read the scene as another --set (issue 16); now
+// the file is left to the positional argument, and several values need the option repeated.
+void one_value_per_occurrence(CLI::App& app);
+
 // When the first argument is neither an option nor one of `app`'s subcommands, the message that
 // names it and lists the commands (CLI11 says only "A subcommand is required", and with --help
 // after it prints the main help and exits 0); else empty. The caller exits with its usage error.

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   register_validate(app);
   register_zoo(app);
   cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
     std::cerr << "chaos: " << unknown << "\n";
     return usage_error;

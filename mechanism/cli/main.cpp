@@ -143,6 +143,7 @@ int main(int argc, char** argv) {
   sim->add_option("--plot", plot_path,
                   "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg");
   cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
     std::cerr << "mechanism: " << unknown << "\n";
     return usage_error;

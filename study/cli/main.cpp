@@ -83,6 +83,7 @@ int main(int argc, char** argv) {
   auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
   study::cli::add_plot_options(*plot_cmd, plot);
   cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
     if (root) std::cerr << "study: " << unknown << "\n";
     return usage_error;

@@ -337,6 +337,16 @@ if command -v script >/dev/null; then
   grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
 fi
 
+# Issue 16, item 7: the README's order, options first and the file last, read the file as another
+# value of a list option (d2 --radius-list a,b FILE, section -c 1 FILE). Each list option takes
+# one argument per occurrence (comma-separated), so the file is the file.
+a=$("$CHAOS" d2 --radius-list 0.05,0.1,0.2 "$work/henon.dat" -d 1 -M 3 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
+b=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --radius-list 0.05,0.1,0.2 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
+[[ -n $a && $a == "$b" ]] && pass || fail "d2 --radius-list a,b FILE: '$a', expected '$b'"
+"$CHAOS" generate lorenz -l 2000 --components all > "$work/xyz.dat"
+a=$("$CHAOS" section -c 1,2 "$work/xyz.dat" --stroboscopic 10 | grep -vc '^#')
+[[ $a == 200 ]] && pass || fail "section -c 1,2 FILE gave $a rows, expected 2000 / 10"
+
 # Issue 16, item 7: "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
 # the main help with exit 0; -o naming the input file overwrote the data; an unwritable -o failed
 # only after the work. An unknown command is a usage error (2) naming it; a bad -o is refused

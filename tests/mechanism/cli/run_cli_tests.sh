@@ -74,6 +74,11 @@ expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06
 expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --set integrator.max_steps=1e30
 [[ ! -s $work/out ]] || fail "a refused run wrote rows"
 
+# Issue 16, item 7: a scene file after --set k=v was read as another --set value ("must be
+# KEY=VALUE"). Each --set takes one value; the file is the scene, the override applies.
+"$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
+grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
+
 # Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
