@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
   sweep->add_option("-o,--output", out_dir, "result directory (docs/study.md lists its files)")->required();
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
-  sweep->add_flag("-q,--quiet", quiet, "no progress bar");
+  sweep->add_flag("-q,--quiet", quiet, "no progress bar and no warnings about the scene");
 
   study::cli::PipelineRequest pipeline;
   auto* pipeline_cmd = app.add_subcommand("pipeline", "the correlation-dimension pipeline of one scene, with the six panels of the seed's Fig. 7");
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     for (std::string s; std::getline(list, s, ',');)
       if (!s.empty()) spec.signals.push_back(s);
     spec.validate();
-    if (root)
+    if (root && !quiet)
       for (const auto& w : mechanism::scene_warnings(study::point_scene(spec, 0))) std::cerr << "study: warning: " << w << "\n";
 
     // Rank 0 creates the directory; the others open it once it exists (as a resume of the same spec).

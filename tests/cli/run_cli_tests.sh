@@ -364,6 +364,9 @@ for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum 
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 
+# Issue 16, item 7: a typo in --filter ran nothing and exited 0; it is refused (exit 3) by name.
+expect_error 3 "--filter 'henon.x.caoo' matches no case id" -- validate --filter henon.x.caoo
+
 # validate lists the compiled-in reference table.
 "$CHAOS" validate --list | grep -q "henon.x.cao.embedding_dimension" && pass || fail "validate --list"
 

@@ -36,6 +36,10 @@ expect 3 "is not a signal" -- simulate -q --set run.duration=0.001 --signals t,n
 expect 2 "" -- simulate --no-such-flag
 # The seed's printed mu_s < mu_k is accepted with a warning.
 expect 0 "no stiction peak" -- scene
+# Issue 16, item 8: the warnings printed on every run; simulate -q silences them.
+expect 0 "no stiction peak" -- simulate --set run.duration=0.001 -o /dev/null
+expect 0 "" -- simulate -q --set run.duration=0.001 -o /dev/null
+[[ ! -s $work/err ]] || fail "simulate -q still warns: $(head -c 300 "$work/err")"
 
 # A short run: the table's header holds the resolved scene; the JSON summary has its keys.
 "$m" simulate -q --set run.duration=0.002 --signals t,slider_y > "$work/run.tsv" 2> /dev/null || fail "simulate"

@@ -45,6 +45,7 @@ expect_message "point 0's run is too large" "periods beyond any run"
 
 # A small sweep: four points, the files of docs/study.md, the kept revolutions.
 expect_code 0 "small sweep" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/a" -q --threads 2
+grep -q "warning" "$work/err" && fail "sweep -q still warns about the scene: $(head -c 300 "$work/err")"
 for f in spec.txt samples.tsv points.tsv timing.tsv points/000003.tsv; do [[ -s "$work/a/$f" ]] || fail "missing $f"; done
 rows=$(grep -vc '^#' "$work/a/samples.tsv")
 [[ $rows == 12 ]] || fail "samples.tsv has $rows rows, expected 4 points x 3 revolutions"
