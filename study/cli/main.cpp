@@ -153,6 +153,9 @@ int main(int argc, char** argv) {
     study::SweepProgress progress;
     try {
       progress = study::run_sweep(spec, *store, exec);
+    } catch (const study::StudyIoError& e) {
+      std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
+      failure = io_error;
     } catch (const study::StudyError& e) {
       std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
       failure = invalid_request;
@@ -188,6 +191,9 @@ int main(int argc, char** argv) {
                               {"wall_seconds", wall}};
     std::cout << summary.dump(2) << "\n";
     return failed ? points_failed : ok;
+  } catch (const study::StudyIoError& e) {
+    std::cerr << "study: " << e.what() << "\n";
+    return io_error;
   } catch (const study::StudyError& e) {
     std::cerr << "study: " << e.what() << "\n";
     return invalid_request;

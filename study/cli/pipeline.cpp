@@ -71,7 +71,7 @@ bool run_pipeline(const PipelineRequest& r) {
   }
   if (!r.series_output.empty()) {
     std::ofstream f(r.series_output);
-    if (!f) throw StudyError("--series", r.series_output, "cannot be written");
+    if (!f) throw StudyIoError("--series", r.series_output, "cannot be written");
     f << "# t\tslider_y\tslider_vy\n" << std::setprecision(12);
     for (std::size_t i = 0; i < t.size(); ++i) f << t[i] << '\t' << y[i] << '\t' << vy[i] << '\n';
   }

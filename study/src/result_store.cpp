@@ -121,11 +121,16 @@ void write_atomically(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
   {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw StudyError("output", tmp.string(), "cannot be written");
+    if (!f) throw StudyIoError("output", tmp.string(), std::string("cannot be written: ") + std::strerror(errno));
     const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 &&
                     ::fsync(fileno(f)) == 0;
+    const int error = errno;
     std::fclose(f);
-    if (!ok) throw StudyError("output", tmp.string(), "could not be written completely (disk full?)");
+    if (!ok) {
+      std::remove(tmp.c_str());  // a full disk left samples.tsv.tmp.PID behind (issue 16)
+      throw StudyIoError("output", tmp.string(),
+                         std::string("could not be written completely (") + std::strerror(error) + ")");
+    }
   }
   fs::rename(tmp, path);
 }

@@ -126,6 +126,9 @@ expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-p
 [[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
 [[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
 [[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+# Issue 16, item 7: an output that cannot be written exited 3; docs/study.md says 4 (input/output).
+expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
+expect_message "cannot be written" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18
 [[ $(jq -r .analysis.delay_samples "$work/out") == 18 ]] || fail "--delay 18 not used"
 

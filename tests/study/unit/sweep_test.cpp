@@ -212,6 +212,14 @@ TEST(Sweep, ResumeRecomputesADamagedPointFile) {
   fs::remove_all(dir);
 }
 
+// Issue 16, item 7: a result that cannot be written is an input/output error (exit 4 in
+// docs/study.md), not a refused request (3), and leaves no temporary file.
+TEST(Sweep, AnUnwritableResultIsAnIoError) {
+  const fs::path dir = scratch("unwritable");
+  EXPECT_THROW(study::write_atomically(dir / "missing" / "samples.tsv", "text"), study::StudyIoError);
+  fs::remove_all(dir);
+}
+
 TEST(Sweep, ContinuationStartsFromThePreviousFinalState) {
   study::SweepSpec spec = short_spec();
   spec.initial = study::InitialConditions::continuation;
