@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -44,6 +45,8 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 mechanism::Scene load_scene(const SceneOptions& o) {
   std::string text;
   if (!o.file.empty()) {
+    // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+    if (std::filesystem::is_directory(o.file)) throw mechanism::InvalidParameter("scene", o.file, "is a directory, not a scene file");
     std::ifstream in(o.file);
     if (!in) throw mechanism::InvalidParameter("scene", o.file, "cannot be opened (missing or unreadable file)");
     std::stringstream buffer;

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -33,6 +34,8 @@ namespace {
 enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_request = 3, io_error = 4, points_failed = 5 };
 
 std::string read_text(const std::string& path) {
+  // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+  if (std::filesystem::is_directory(path)) throw study::StudyError("scene", path, "is a directory, not a scene file");
   std::ifstream in(path);
   if (!in) throw study::StudyError("scene", path, "cannot be opened (missing or unreadable file)");
   std::stringstream s;

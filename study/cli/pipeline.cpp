@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -36,6 +37,7 @@ bool run_pipeline(const PipelineRequest& r) {
   if (!(r.analysis.interval > 0.0)) throw StudyError("--analysis-interval", exact(r.analysis.interval), "must be > 0 s");
   std::string text;
   if (!r.scene_file.empty()) {
+    if (std::filesystem::is_directory(r.scene_file)) throw StudyError("scene", r.scene_file, "is a directory, not a scene file");
     std::ifstream in(r.scene_file);
     if (!in) throw StudyError("scene", r.scene_file, "cannot be opened (missing or unreadable file)");
     std::stringstream s;

@@ -56,6 +56,8 @@ void SweepSpec::validate() const {
       throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
     if (analysis.samples_per_period == 1)
       throw StudyError("--analysis-samples-per-period", "1", "must be 0 (use --analysis-interval) or at least 2");
+    if (analysis.max_delay < 1 && analysis.given_delay == 0)
+      throw StudyError("--max-delay", "0", "must be at least 1 sample (the mutual-information minimum is searched from 1)");
     if (analysis.max_dimension < 2)
       throw StudyError("--max-dimension", std::to_string(analysis.max_dimension), "must be at least 2");
   }

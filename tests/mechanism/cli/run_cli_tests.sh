@@ -83,6 +83,9 @@ expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --
 "$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
 grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
 
+# Issue 16, item 7: a directory given as the scene ran the built-in scene; it is refused (exit 3).
+expect 3 "is a directory, not a scene file" -- simulate -q "$work"
+
 # Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help

@@ -35,6 +35,12 @@ expect_message "cannot be opened" "missing scene file"
 # Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
 expect_code 2 "unknown command" "$STUDY" foo --help
 expect_message "unknown command 'foo'; the commands are: sweep, pipeline, plot" "unknown command"
+# Issue 16, items 6-7: a directory as the scene ran the built-in scene and spec.txt recorded the
+# directory; --max-delay 0 failed every point's analysis with exit 0. Both are refused up front.
+expect_code 3 "directory as scene" "$STUDY" sweep "$work" -o "$work/x"
+expect_message "is a directory, not a scene file" "directory as scene"
+expect_code 3 "max-delay 0" "$STUDY" sweep --analysis --max-delay 0 -o "$work/x"
+expect_message "max-delay = 0: must be at least 1 sample" "max-delay 0"
 # Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
