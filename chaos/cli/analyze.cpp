@@ -233,7 +233,7 @@ void register_analyze(CLI::App& app) {
   CLI::App* command = app.add_subcommand("analyze", "choose and justify delay, Theiler window and embedding dimension; "
                                                     "then D2, the largest Lyapunov exponent and a nonlinearity test");
   command->add_option("file", args->input.file, "input file or - for stdin (default: built-in Lorenz x series)");
-  command->add_option("-c,--column", args->input.column, "column to read (1-based)")->capture_default_str();
+  add_column_option(*command, args->input);
   command->add_option("-x,--skip", args->input.skip, "data rows to skip")->capture_default_str();
   command->add_option("-l,--length", args->input.length, "data rows to use");
   command->add_option("--dt", args->input.dt, "sampling interval");

@@ -25,7 +25,7 @@ void run(const AutocorrelationArgs& args) {
   const auto decay = decorrelation_time(result);
 
   Report report("autocorrelation", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", n)
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", n)
       .parameter("dt", series.dt).parameter("max_lag", max_lag);
   std::ostream& out = report.stream();
   const double dt = series.dt.value_or(1.0);

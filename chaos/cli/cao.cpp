@@ -21,7 +21,7 @@ void run(CaoArgs& args) {
   const CaoResult result = cao(series.values, args.options);
 
   Report report("cao", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
       .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
       .parameter("norm", args.norm).parameter("saturation_level", args.options.saturation_level)

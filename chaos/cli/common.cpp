@@ -3,10 +3,16 @@
 #include "chaos/time_scales.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "chaos/autocorrelation.hpp"
 #include "chaos/error.hpp"
@@ -17,26 +23,83 @@ namespace chaos::cli {
 void add_input_options(CLI::App& command, InputOptions& input) {
   command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")
       ->capture_default_str();
-  command.add_option("-c,--column", input.column, "column to read (1-based)")->capture_default_str();
+  add_column_option(command, input);
   command.add_option("-x,--skip", input.skip, "data rows to skip at the start")->capture_default_str();
   command.add_option("-l,--length", input.length, "data rows to use after the skip (default: all)");
   command.add_option("--dt", input.dt, "sampling interval, to report delays and times in time units too");
 }
 
+void add_column_option(CLI::App& command, InputOptions& input) {
+  command
+      .add_option_function<std::string>(
+          "-c,--column",
+          [&input](const std::string& text) {
+            if (!text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); })) {
+              if (!CLI::detail::lexical_cast(text, input.column))
+                throw CLI::ValidationError("--column", "'" + text + "' is larger than any column number");
+              input.column_name.clear();
+            } else if (!text.empty() && (text[0] == '-' || text[0] == '+')) {
+              throw CLI::ValidationError("--column", "'" + text + "' is neither a column number (1, 2, ...) nor a name");
+            } else {
+              input.column_name = text;
+            }
+          },
+          "column to read: its number (1-based) or its name in the file's header row")
+      ->type_name("NUMBER|NAME")
+      ->default_str("1");
+}
+
 Series load_series(const InputOptions& input) {
   ReadOptions options;
   options.column = input.column;
+  options.column_name = input.column_name;
   options.skip = input.skip;
   if (input.length) options.length = *input.length;
   options.dt = input.dt;
   Series series = read_series(input.file, options);
   require_finite(series.values, input.file);
+  require_scale(series.values, input.file);
   return series;
 }
 
+namespace {
+
+// Why -o PATH must be refused before any work, or empty: PATH is the input file (writing the
+// result there would destroy the data), or it cannot be written. Checked without creating PATH.
+std::string output_refusal(const std::string& path, const CLI::Option* input) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (input && input->count() > 0) {
+    const std::string in = input->results().front();
+    if (in != "-" && (in == path || fs::equivalent(in, path, ec)))
+      return "-o " + path + " is the input file; writing the result there would overwrite the data";
+  }
+  if (fs::is_directory(path, ec)) return "-o " + path + " is a directory";
+  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  const bool exists = fs::exists(path, ec);
+  if (!exists && !fs::is_directory(parent, ec)) return "-o " + path + ": the directory " + parent.string() + " does not exist";
+  if (::access(exists ? path.c_str() : parent.c_str(), exists ? W_OK : W_OK | X_OK) != 0)
+    return "-o " + path + ": cannot write " + (exists ? "the file" : "into " + parent.string()) + " (" +
+           std::strerror(errno) + ")";
+  return {};
+}
+
+}  // namespace
+
 void add_output_options(CLI::App& command, OutputOptions& output) {
   command.add_flag("--json", output.json, "write one JSON object instead of the table");
-  command.add_option("-o,--output", output.path, "write to this file instead of standard output");
+  // Checked while the command line is read, before any work (issue 16: -o naming the input file
+  // overwrote the data; an unwritable -o failed only after the whole computation). The input is
+  // the command's "file" argument, when it has one.
+  const CLI::Option* input = command.get_option_no_throw("file");
+  command.add_option("-o,--output", output.path, "write to this file instead of standard output")
+      ->check(CLI::Validator(
+          [input](std::string& path) {
+            if (const std::string why = output_refusal(path, input); !why.empty())
+              throw InvalidInput(ErrorCode::io, why);
+            return std::string();
+          },
+          "", "writable file"));
 }
 
 std::string number(double value) {

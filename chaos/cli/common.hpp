@@ -29,6 +29,7 @@ enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_input
 struct InputOptions {
   std::string file = "-";
   std::size_t column = 1;
+  std::string column_name;  // -c NAME: the column of that name in the file's header row
   std::size_t skip = 0;
   std::optional<std::size_t> length;
   std::optional<double> dt;
@@ -36,6 +37,8 @@ struct InputOptions {
 
 // Registers [file|-] -c -x -l --dt.
 void add_input_options(CLI::App& command, InputOptions& input);
+// -c,--column: a number (1-based) or the name of a column in the file's header row.
+void add_column_option(CLI::App& command, InputOptions& input);
 Series load_series(const InputOptions& input);
 
 struct OutputOptions {

@@ -1,8 +1,12 @@
 // chaos d2: correlation sums C(eps, m) for m = min..max in one pass, local slopes, the scaling
 // region chosen automatically, D2 per m and saturated with intervals, and a Takens-Theiler check.
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <iostream>
 #include <sstream>
 
 #include "chaos/automatic_analysis.hpp"
@@ -11,6 +15,7 @@
 #include "chaos/error.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "progress_bar.hpp"
 
 namespace chaos::cli {
 
@@ -29,7 +34,12 @@ struct D2Args {
   std::string search = "box";
   std::string plot;
   bool halves = false;
+  bool quiet = false;
 };
+
+// Exact sums over more points than this take minutes to hours (the pairs grow as N^2): the user is
+// told before the wait, with the option that shortens it.
+constexpr std::size_t long_run_points = 200'000;
 
 CorrelationSearch parse_search(const std::string& name) {
   if (name == "box") return CorrelationSearch::box_assisted;
@@ -105,6 +115,14 @@ void run(D2Args& args) {
   const double r_min = args.r_min.value_or(range / 1000.0);
   args.sums.radii = args.radius_list.empty() ? log_radii(r_min, r_max, args.radii) : args.radius_list;
 
+  if (!args.quiet && x.size() > long_run_points && args.sums.reference_points == 0 && args.sums.pairs_per_radius == 0)
+    std::cerr << "chaos d2: N = " << x.size() << " samples: the exact correlation sums count about "
+              << number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size()))
+              << " pairs and may take long; --reference-points 20000 counts from a random subset of "
+                 "reference points in a fraction of the time (-q silences this)\n";
+  // A progress line on a terminal's stderr (ProgressBar draws after 2 s, so short runs show none).
+  cli_support::ProgressBar bar(!args.quiet && isatty(fileno(stderr)));
+  args.sums.progress = [&bar](double fraction) { bar.update(fraction, "correlation sums"); };
   const CorrelationSumResult sums = correlation_sum(x, args.sums);
   CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
   if (args.halves && d2.status == D2Status::saturated) {
@@ -117,7 +135,7 @@ void run(D2Args& args) {
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
 
   Report report("d2", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", x.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", x.size())
       .parameter("dt", series.dt).parameter("delay", args.sums.delay).parameter("min_dimension", args.sums.min_dimension)
       .parameter("max_dimension", args.sums.max_dimension).parameter("theiler", args.sums.theiler)
       .parameter("theiler_source", theiler_source).parameter("norm", args.norm).parameter("search", args.search)
@@ -209,7 +227,7 @@ void register_d2(CLI::App& app) {
   command->add_option("--radius-list", args->radius_list, "explicit increasing radii (comma-separated), instead of -r -R -#")
       ->delimiter(',');
   command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
-  command->add_option("--search", args->search, "box (box-assisted), kd (kd-tree) or brute")->capture_default_str();
+  command->add_option("--search", args->search, "box (box-assisted, the fastest), kd (kd-tree, often tens of times slower) or brute (the definition, slowest)")->capture_default_str();
   command->add_option("-N,--pairs-per-radius", args->sums.pairs_per_radius,
                       "stop counting a radius after this many close pairs (0: exact)")
       ->capture_default_str();
@@ -228,6 +246,7 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-region-fraction", args->dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
+  command->add_flag("-q,--quiet", args->quiet, "no progress line and no long-run hint on standard error");
   command->add_flag("--halves", args->halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
   command->add_option("--plot", args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");

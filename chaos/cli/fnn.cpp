@@ -20,7 +20,7 @@ void run(FnnArgs& args) {
   const FnnResult result = false_nearest_neighbors(series.values, args.options);
 
   Report report("fnn", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
       .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
       .parameter("rtol", args.options.rtol).parameter("atol", args.options.atol).parameter("norm", args.norm)

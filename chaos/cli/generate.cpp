@@ -55,7 +55,6 @@ void list_zoo(std::ostream& out) {
 
 // A zoo system that is not one of the reference systems of generate.hpp.
 Trajectory generate_zoo(const ZooEntry& entry, const GenerateArgs& args, const std::map<std::string, double>& settings) {
-  if (args.length == 0) throw InvalidInput(ErrorCode::invalid_parameter, "length -l must be at least 1 (got 0)");
   return zoo_trajectory(entry, args.length, settings, args.seed);
 }
 
@@ -69,6 +68,12 @@ void run(const GenerateArgs& args) {
     return;
   }
   if (args.system.empty()) throw InvalidInput(ErrorCode::invalid_parameter, "a system name is required (or --list)");
+  // Every sample of every component is held in memory before it is written: 10^8 samples of a
+  // three-component flow are 2.4 GB, and a larger -l is more likely a typo than a plan.
+  constexpr std::size_t max_length = 100'000'000;
+  if (args.length == 0 || args.length > max_length)
+    throw InvalidInput(ErrorCode::invalid_parameter, "length -l must be in 1.." + std::to_string(max_length) +
+                                                         " (got " + std::to_string(args.length) + ")");
   const auto kind = system_from_name(args.system);
   const ZooEntry* entry = kind ? nullptr : find_zoo_system(args.system);
   if (!kind && !entry)
@@ -84,7 +89,6 @@ void run(const GenerateArgs& args) {
   request.length = args.length;
   request.seed = args.seed;
   request.parameters = parse_settings(args.settings);
-  if (args.length == 0) throw InvalidInput(ErrorCode::invalid_parameter, "length -l must be at least 1 (got 0)");
   const Trajectory trajectory = generate(request);
   std::vector<std::pair<std::string, double>> parameters;
   for (const auto& p : system_parameters(*kind)) {

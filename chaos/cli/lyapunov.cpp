@@ -131,7 +131,7 @@ void run(LyapunovArgs& args) {
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
   Report report("lyapunov", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", x.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", x.size())
       .parameter("dt", series.dt).parameter("method", args.method).parameter("dimension", args.options.dimension)
       .parameter("delay", args.options.delay).parameter("theiler", args.options.theiler)
       .parameter("theiler_source", theiler_source).parameter("steps", args.options.steps)

@@ -6,6 +6,7 @@
 
 #include "chaos/error.hpp"
 #include "common.hpp"
+#include "option_checks.hpp"
 
 int main(int argc, char** argv) {
   using namespace chaos::cli;
@@ -27,6 +28,12 @@ int main(int argc, char** argv) {
   register_density(app);
   register_validate(app);
   register_zoo(app);
+  cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
+  if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    std::cerr << "chaos: " << unknown << "\n";
+    return usage_error;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

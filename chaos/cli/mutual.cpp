@@ -28,7 +28,7 @@ void run(MutualArgs& args) {
   const auto minimum = first_minimum(result);
 
   Report report("mutual", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("max_delay", args.options.max_delay).parameter("boxes", args.options.boxes)
       .parameter("estimator", args.estimator).parameter("units", std::string("nats"));
   std::ostream& out = report.stream();

@@ -63,7 +63,7 @@ void run(NonlinearityArgs& args) {
   const NonlinearityTestResult r = nonlinearity_test(x, o);
 
   Report report("nonlinearity", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("statistic", args.statistic).parameter("alternative", args.alternative)
       .parameter("count", o.surrogates).parameter("seed", o.seed).parameter("method", args.method)
       .parameter("max_iterations", o.surrogate.max_iterations).parameter("delay", args.delay);

@@ -179,7 +179,7 @@ void run(SectionArgs& a) {
     return;
   }
   report.write_header(out);
-  if (a.hyperplane) out << "# return_time: since the previous crossing; nan for the first\n";
+  if (a.hyperplane) out << "# return_time: since the previous crossing; none for the first\n";
   out << "# time";
   for (std::size_t c : a.columns) out << "\tcolumn_" << c;
   if (a.hyperplane) out << "\treturn_time";
@@ -187,7 +187,7 @@ void run(SectionArgs& a) {
   for (std::size_t j = 0; j < section_times.size(); ++j) {
     out << number(section_times[j]);
     for (double v : points[j]) out << "\t" << number(v);
-    if (a.hyperplane) out << "\t" << (has_return[j] ? number(return_times[j]) : std::string("nan"));
+    if (a.hyperplane) out << "\t" << (has_return[j] ? number(return_times[j]) : std::string("none"));
     out << "\n";
   }
 }

@@ -43,7 +43,7 @@ void run(SurrogatesArgs& args) {
   const std::vector<Surrogate> made = surrogates(x, args.count, args.seed, args.options);
 
   Report report("surrogates", args.output);
-  report.parameter("file", args.input.file).parameter("column", args.input.column).parameter("N", series.values.size())
+  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
       .parameter("dt", series.dt).parameter("method", args.method).parameter("count", args.count)
       .parameter("seed", args.seed).parameter("max_iterations", args.options.max_iterations)
       .parameter("tolerance", args.options.tolerance).parameter("end_match", args.end_match);

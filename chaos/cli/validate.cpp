@@ -1,8 +1,10 @@
 // chaos validate: run every reference case of references/references.tsv on this machine and show
 // reference, source, band, measured value and verdict. Exit code 4 if any case fails.
 
+#include <algorithm>
 #include <iostream>
 
+#include "chaos/error.hpp"
 #include "chaos/validation.hpp"
 #include "common.hpp"
 
@@ -19,6 +21,11 @@ struct ValidateArgs {
 std::string band(const Reference& r) { return "[" + number(r.low) + ", " + number(r.high) + "]"; }
 
 void run(const ValidateArgs& args) {
+  // A typo in --filter ran nothing and exited 0, as if every case had passed (issue 16).
+  if (!args.filter.empty() && std::none_of(reference_table().begin(), reference_table().end(),
+                                           [&](const Reference& r) { return r.id.find(args.filter) != std::string::npos; }))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "--filter '" + args.filter + "' matches no case id (chaos validate --list shows them)");
   Report report("validate", args.output);
   report.parameter("filter", args.filter.empty() ? std::string("(all)") : args.filter);
   std::ostream& out = report.stream();

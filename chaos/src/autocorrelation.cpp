@@ -11,6 +11,7 @@
 
 #include "chaos/error.hpp"
 #include "fftw.hpp"
+#include "numeric.hpp"
 #include "chaos/series.hpp"
 
 namespace chaos {
@@ -38,13 +39,18 @@ std::size_t smooth_size(std::size_t n) {
 
 AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max_lag) {
   const std::string what = "autocorrelation";
-  require_length(x, max_lag + 1, what,
+  // Saturated: max_lag + 1 wraps to 0 for the largest size_t.
+  require_length(x, detail::add_sat(max_lag, 1), what,
                  "max_lag = " + std::to_string(max_lag) + " needs N > max_lag (the largest lag must leave a pair)");
   require_finite(x, what);
   require_not_constant(x, what);
   const std::size_t n = x.size();
+  // r(k) does not depend on the scale, but the sums of squares below overflow beyond |x| ~ 1e150
+  // and underflow below ~ 1e-160 (NaN rows, issue 16): work on x divided by the power of two near
+  // its largest magnitude, which is exact.
+  const std::vector<double> y = detail::scaled_by_power_of_two(x, detail::scale_exponent(x));
   double mean = 0.0;
-  for (const double v : x) mean += v;
+  for (const double v : y) mean += v;
   mean /= static_cast<double>(n);
 
   // Zero padding to L >= N + max_lag: the circular correlation of the padded series equals the
@@ -63,7 +69,7 @@ AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max
     forward = std::make_unique<Plan>(fftw_plan_dft_r2c_1d(size, real.get(), spectrum.get(), FFTW_ESTIMATE));
     backward = std::make_unique<Plan>(fftw_plan_dft_c2r_1d(size, spectrum.get(), real.get(), FFTW_ESTIMATE));
   }
-  for (std::size_t t = 0; t < n; ++t) real[t] = x[t] - mean;
+  for (std::size_t t = 0; t < n; ++t) real[t] = y[t] - mean;
   for (std::size_t t = n; t < l; ++t) real[t] = 0.0;
   forward->execute();
   // Wiener-Khinchin: the inverse transform of |X|^2 is the autocovariance sum (times L, FFTW's

@@ -44,6 +44,9 @@ BifurcationDiagram map_bifurcation(const MapFamily& f, std::span<const double> p
 
 void DensityMapOptions::validate() const {
   if (bins == 0) throw InvalidInput(ErrorCode::invalid_parameter, "density map: bins must be >= 1 (got 0)");
+  if (bins > max_density_bins)
+    throw InvalidInput(ErrorCode::invalid_parameter, "density map: bins must be at most " + std::to_string(max_density_bins) +
+                                                         " (got " + std::to_string(bins) + ")");
   if (low.has_value() != high.has_value()) throw InvalidInput(ErrorCode::invalid_parameter, "density map: give both ends of the range or neither");
   if (low && (!std::isfinite(*low) || !std::isfinite(*high) || !(*low < *high))) {
     throw InvalidInput(ErrorCode::invalid_parameter, "density map: the range [" + format_number(*low) + ", " + format_number(*high) +

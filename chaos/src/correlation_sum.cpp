@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -163,6 +164,7 @@ struct Problem {
   Norm norm = Norm::max;
   std::size_t threads = 1;
   const AccBins* bins = nullptr;
+  const std::function<void(double)>* progress = nullptr;  // CorrelationSumOptions::progress, when set
 
   double at(std::size_t i, std::size_t k) const noexcept { return y[i + k * tau]; }
 };
@@ -170,18 +172,32 @@ struct Problem {
 // Runs f(task, worker) for every task on min(threads, tasks) workers that take tasks from a shared
 // counter. Which worker runs a task varies; the callers only add integers per worker, so the sums
 // do not depend on it.
+// With `progress`, the calling thread reports the fraction of tasks taken, each time it grows by
+// a thousandth (the other workers only count).
 template <class F>
-void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f) {
+void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f,
+                    const std::function<void(double)>* progress = nullptr) {
   const std::size_t workers = std::max<std::size_t>(1, std::min(threads, tasks));
+  std::size_t reported = 0;  // thousandths
+  const auto report = [&](std::size_t taken) {
+    const std::size_t now = std::min(taken, tasks) * 1000 / std::max<std::size_t>(tasks, 1);
+    if (progress && now > reported && now < 1000) (*progress)(static_cast<double>(reported = now) / 1000.0);
+  };
   if (workers == 1) {
-    for (std::size_t t = 0; t < tasks; ++t) f(t, std::size_t{0});
+    for (std::size_t t = 0; t < tasks; ++t) {
+      f(t, std::size_t{0});
+      report(t + 1);
+    }
     return;
   }
   std::atomic<std::size_t> next{0};
   std::vector<std::exception_ptr> errors(workers);
   const auto body = [&](std::size_t worker) {
     try {
-      for (std::size_t t; (t = next.fetch_add(1, std::memory_order_relaxed)) < tasks;) f(t, worker);
+      for (std::size_t t; (t = next.fetch_add(1, std::memory_order_relaxed)) < tasks;) {
+        f(t, worker);
+        if (worker == 0) report(t + 1);
+      }
     } catch (...) {
       errors[worker] = std::current_exception();
       next.store(tasks);
@@ -266,7 +282,7 @@ Histogram brute_exact(const Problem& pb) {
     const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
     for (std::size_t i = t * chunk_points; i < end; ++i)
       for (std::size_t j = i + pb.w + 1; j < pb.points; ++j) brute_pair<N>(pb, i, j, hist);
-  });
+  }, pb.progress);
   return sum_histograms(parts);
 }
 
@@ -608,7 +624,7 @@ Histogram box_grid(const Problem& pb, const Grid& g) {
       while (hi < next.end && not_right_of(p, hi)) ++hi;
       grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd);
     }
-  });
+  }, pb.progress);
   return sum_histograms(parts);
 }
 
@@ -654,7 +670,7 @@ std::vector<std::vector<Count>> kd_exact(const Problem& pb) {
     for (std::size_t i = t * chunk_points; i < end; ++i)
       for (std::size_t mi = 0; mi < pb.nm; ++mi)
         for (std::size_t k = 0; k < pb.nr; ++k) sums[mi * pb.nr + k] += trees[mi].count_within(i, pb.radii[k], query);
-  });
+  }, pb.progress);
   const Histogram total = sum_histograms(parts);
   std::vector<std::vector<Count>> pairs(pb.nm, std::vector<Count>(pb.nr));
   for (std::size_t mi = 0; mi < pb.nm; ++mi)
@@ -804,7 +820,7 @@ Totals reference_walk(const Problem& pb, const ReferenceCounter& counter, const 
         counter.count(order[u], need, cum[worker].data(), scratch[worker]);
         for (std::size_t k = 0; k < stride; ++k) sums[worker][k] += cum[worker][k];
       }
-    });
+    }, pb.progress);
     const Histogram total = sum_histograms(sums);
     Count examined = 0;
     for (const std::size_t i : order) examined += admissible_partners(i, pb.points, pb.w);
@@ -921,6 +937,11 @@ std::vector<double> log_radii(double r_min, double r_max, std::size_t n) {
   if (!(std::isfinite(r_min) && r_min > 0.0 && std::isfinite(r_max) && r_max > 0.0))
     refuse("radii must be finite and positive (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");
   if (n == 0) refuse("the number of radii must be at least 1 (got 0)");
+  // A log grid finer than this resolves nothing more in the local slopes; the cap keeps a
+  // mistyped count from asking for more memory than there is.
+  constexpr std::size_t max_radii = 10000;
+  if (n > max_radii)
+    refuse("the number of radii must be at most " + std::to_string(max_radii) + " (got " + std::to_string(n) + ")");
   if (n == 1) {
     if (r_min != r_max)
       refuse("one radius needs r_min = r_max (got r_min = " + number(r_min) + ", r_max = " + number(r_max) + ")");
@@ -994,6 +1015,7 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
   pb.norm = options.norm;
   pb.threads = options.threads;
   pb.bins = &bins;
+  if (options.progress) pb.progress = &options.progress;
 
   Totals totals = options.norm == Norm::max ? compute<MaxNorm>(pb, options) : compute<EuclideanNorm>(pb, options);
 

@@ -12,6 +12,7 @@ const char* to_string(ErrorCode code) noexcept {
     case ErrorCode::too_short: return "too_short";
     case ErrorCode::constant: return "constant";
     case ErrorCode::invalid_parameter: return "invalid_parameter";
+    case ErrorCode::scale: return "scale";
   }
   return "unknown";
 }

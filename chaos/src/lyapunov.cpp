@@ -458,6 +458,16 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
     refuse("Lyapunov exponent: the sampling interval dt must be positive and finite (got dt = " +
            detail::format_number(*dt) + ")");
   fit.validate();
+  options.validate();
+  // The highest dimension needs the longest series: refuse it before the lower curves are
+  // computed (a huge --dimensions would otherwise compute curve after curve until one is refused).
+  const std::size_t highest = detail::add_sat(options.dimension, fit.dimensions - 1);
+  const std::size_t span = detail::mul_sat(highest - 1, options.delay);
+  require_length(x, detail::add_sat(detail::add_sat(span, options.steps), detail::add_sat(detail::mul_sat(2, options.theiler), 3)),
+                 "largest Lyapunov exponent",
+                 "N >= (m-1) tau + steps + 2 w + 3 for the highest of the " + std::to_string(fit.dimensions) +
+                     " dimensions fitted, m = " + std::to_string(highest) + ", with tau = " + std::to_string(options.delay) +
+                     ", steps = " + std::to_string(options.steps) + ", w = " + std::to_string(options.theiler));
   LyapunovResult result;
   result.curve = divergence_curve(x, options);
   std::vector<DivergenceCurve> curves{result.curve};

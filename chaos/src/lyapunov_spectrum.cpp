@@ -236,6 +236,10 @@ void MapSpectrumOptions::validate() const {
     refuse("lyapunov spectrum: iterations must be a positive whole multiple of renormalisation_interval (got "
            "iterations = " + std::to_string(iterations) + ", renormalisation_interval = " +
            std::to_string(renormalisation_interval) + ")");
+  // As for flows' steps: a count no run could finish is refused rather than started.
+  if (static_cast<double>(iterations) + static_cast<double>(transient) > max_count)
+    refuse("lyapunov spectrum: iterations + transient = " + num(static_cast<double>(iterations) + static_cast<double>(transient)) +
+           " is more than 1e15 iterations");
 }
 
 double kaplan_yorke_dimension(std::span<const double> exponents) {

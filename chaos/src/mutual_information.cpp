@@ -8,6 +8,7 @@
 
 #include "chaos/error.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
@@ -102,7 +103,7 @@ MutualInformationResult mutual_information(std::span<const double> x, const Mutu
   const std::string what = "mutual information";
   // At the largest delay N - max_delay pairs remain; fewer pairs than boxes per axis cannot fill
   // even the marginal partition.
-  require_length(x, options.max_delay + options.boxes, what,
+  require_length(x, detail::add_sat(options.max_delay, options.boxes), what,
                  "max_delay = " + std::to_string(options.max_delay) + " and boxes = " +
                      std::to_string(options.boxes) + " need N >= max_delay + boxes, so the largest delay "
                      "keeps at least one pair per box");

@@ -176,6 +176,9 @@ void NonlinearityTestOptions::validate() const {
       alternative != Alternative::larger)
     refuse("nonlinearity test: unknown alternative " + std::to_string(static_cast<int>(alternative)));
   if (surrogates < 1) refuse("nonlinearity test: at least 1 surrogate is needed (got 0)");
+  if (surrogates > max_surrogates)
+    refuse("nonlinearity test: at most " + std::to_string(max_surrogates) + " surrogates (got " +
+           std::to_string(surrogates) + ")");
   if (time_reversal_delay < 1) refuse("nonlinearity test: time_reversal_delay must be at least 1 sample (got 0)");
   surrogate.validate();
   prediction.validate();

@@ -1,8 +1,10 @@
 #include "chaos/series.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -36,10 +38,58 @@ std::vector<std::string_view> tokenize(std::string_view line) {
   return tokens;
 }
 
+// Six significant digits: enough for a bound or a magnitude in a message.
+std::string short_number(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
 bool parse_double(std::string_view token, double& value) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   return ec == std::errc() && end == token.data() + token.size();
+}
+
+constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
+
+// A token as a message shows it: at most 60 bytes (a 1 MB token echoed whole buries the message),
+// a byte-order mark as <BOM>, control bytes as \xHH.
+std::string shown(std::string_view token) {
+  constexpr std::size_t limit = 60;
+  std::string out;
+  std::size_t i = 0;
+  for (; i < token.size() && i < limit; ++i) {
+    if (token.substr(i, 3) == byte_order_mark) {
+      out += "<BOM>";
+      i += 2;
+      continue;
+    }
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+    } else {
+      out += token[i];
+    }
+  }
+  if (i < token.size()) out += "... (" + std::to_string(token.size()) + " bytes)";
+  return out;
+}
+
+// A header names columns: every token starts like a name, not like a number ("1e999" and "2.5.3"
+// are bad numbers, not names), and none is NaN or infinity spelled out.
+bool is_header(const std::vector<std::string_view>& tokens) {
+  for (const auto token : tokens) {
+    const char c = token.front();
+    if ((c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.') return false;
+    std::string lower(token);
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (lower == "nan" || lower == "inf" || lower == "infinity") return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -58,27 +108,54 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   options.validate();
   Series series;
   series.dt = options.dt;
+  series.column = options.column;
   std::string line;
   std::size_t line_number = 0;
   std::size_t data_rows = 0;
+  std::vector<std::string> header;  // the column names, when the first data line holds them
+  bool first = true;
+  const auto where = [&] { return source_name + ":" + std::to_string(line_number) + ": "; };
   while (series.values.size() < options.length && std::getline(in, line)) {
     ++line_number;
+    if (line_number == 1 && std::string_view(line).substr(0, 3) == byte_order_mark) line.erase(0, 3);
     const auto tokens = tokenize(line);
     if (tokens.empty()) continue;  // blank line or comment
+    if (first) {
+      first = false;
+      if (is_header(tokens)) {
+        for (const auto t : tokens) header.emplace_back(t);
+        if (!options.column_name.empty()) {
+          const auto at = std::find(header.begin(), header.end(), options.column_name);
+          if (at == header.end()) {
+            std::string names;
+            for (const auto& h : header) names += (names.empty() ? "" : ", ") + shown(h);
+            throw InvalidInput(ErrorCode::parse, where() + "no column named '" + shown(options.column_name) +
+                                                     "' in the header (" + names + ")");
+          }
+          series.column = static_cast<std::size_t>(at - header.begin()) + 1;
+        }
+        continue;
+      }
+      if (!options.column_name.empty())
+        throw InvalidInput(ErrorCode::parse, where() + "-c " + shown(options.column_name) +
+                                                 " names a column, but the first data line is not a header of names");
+    }
     if (data_rows++ < options.skip) continue;
-    if (tokens.size() < options.column)
-      throw InvalidInput(ErrorCode::parse, source_name + ":" + std::to_string(line_number) + ": column " +
-                                               std::to_string(options.column) + " requested but the line has only " +
-                                               std::to_string(tokens.size()) + " column(s)");
-    const std::string_view token = tokens[options.column - 1];
+    const std::size_t column = series.column;
+    if (tokens.size() < column)
+      throw InvalidInput(ErrorCode::parse, where() + "column " + std::to_string(column) +
+                                               " requested but the line has only " + std::to_string(tokens.size()) +
+                                               " column(s)");
+    const std::string_view token = tokens[column - 1];
     double value = 0.0;
     if (!parse_double(token, value))
-      throw InvalidInput(ErrorCode::parse, source_name + ":" + std::to_string(line_number) + ": column " +
-                                               std::to_string(options.column) + ": '" + std::string(token) +
-                                               "' is not a number");
+      throw InvalidInput(ErrorCode::parse, where() + "column " + std::to_string(column) + ": '" + shown(token) +
+                                               "' is not a number" +
+                                               (token.find(byte_order_mark) != std::string_view::npos
+                                                    ? " (a UTF-8 byte-order mark inside the file; remove it)"
+                                                    : std::string()));
     if (!std::isfinite(value))
-      throw InvalidInput(ErrorCode::non_finite, source_name + ":" + std::to_string(line_number) + ": column " +
-                                                    std::to_string(options.column) + ": '" + std::string(token) +
+      throw InvalidInput(ErrorCode::non_finite, where() + "column " + std::to_string(column) + ": '" + shown(token) +
                                                     "' is not finite; NaN and infinity are refused");
     series.values.push_back(value);
   }
@@ -88,7 +165,8 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
                                              (options.skip > 0 ? " after skipping " + std::to_string(options.skip) +
                                                                      " row(s) (-x); the input has " +
                                                                      std::to_string(data_rows) + " data row(s)"
-                                                               : std::string(" (only blank lines or # comments)")));
+                                                               : header.empty() ? std::string(" (only blank lines or # comments)")
+                                                                                : std::string(" (only a header row)")));
   return series;
 }
 
@@ -120,6 +198,25 @@ void require_length(std::span<const double> x, std::size_t minimum, const std::s
     throw InvalidInput(ErrorCode::too_short, what + ": series too short: N = " + std::to_string(x.size()) +
                                                  " samples, but at least " + std::to_string(minimum) +
                                                  " are needed (" + reason + ")");
+}
+
+void require_scale(std::span<const double> x, const std::string& what) {
+  if (x.empty()) return;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double magnitude = std::max(std::fabs(*lo), std::fabs(*hi));
+  if (magnitude > largest_magnitude)
+    throw InvalidInput(ErrorCode::scale,
+                       what + ": the values reach " + short_number(magnitude) + " in magnitude, beyond the " +
+                           short_number(largest_magnitude) +
+                           " that the estimators' sums of squares can hold; divide the series by a power of ten "
+                           "(the estimates do not depend on the scale)");
+  const double spread = *hi - *lo;
+  if (spread > 0.0 && spread < smallest_spread)
+    throw InvalidInput(ErrorCode::scale,
+                       what + ": the values span only " + short_number(spread) + " (max - min), below the " +
+                           short_number(smallest_spread) +
+                           " that the estimators' squared distances can resolve; multiply the series by a power of "
+                           "ten (the estimates do not depend on the scale)");
 }
 
 }  // namespace chaos

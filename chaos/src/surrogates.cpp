@@ -356,6 +356,9 @@ const SurrogateOptions& SurrogateGenerator::options() const noexcept { return im
 
 std::vector<Surrogate> surrogates(std::span<const double> x, std::size_t count, std::uint64_t seed,
                                   const SurrogateOptions& options) {
+  if (count > max_surrogates)
+    throw InvalidInput(ErrorCode::invalid_parameter, "surrogates: at most " + std::to_string(max_surrogates) +
+                                                         " surrogates (got " + std::to_string(count) + ")");
   SurrogateGenerator generator(x, options);
   Random seeds(seed);
   std::vector<Surrogate> out;

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -19,6 +20,7 @@
 #include <unistd.h>
 
 #include "gnuplot.hpp"
+#include "option_checks.hpp"
 #include "progress_bar.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
@@ -32,6 +34,7 @@ enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_scene
 struct SceneOptions {
   std::string file;
   std::vector<std::string> overrides;
+  bool quiet = false;  // simulate -q: no progress bar and no scene warnings
 };
 
 void add_scene_options(CLI::App& cmd, SceneOptions& o) {
@@ -42,6 +45,8 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 mechanism::Scene load_scene(const SceneOptions& o) {
   std::string text;
   if (!o.file.empty()) {
+    // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+    if (std::filesystem::is_directory(o.file)) throw mechanism::InvalidParameter("scene", o.file, "is a directory, not a scene file");
     std::ifstream in(o.file);
     if (!in) throw mechanism::InvalidParameter("scene", o.file, "cannot be opened (missing or unreadable file)");
     std::stringstream buffer;
@@ -49,7 +54,8 @@ mechanism::Scene load_scene(const SceneOptions& o) {
     text = buffer.str();
   }
   mechanism::Scene scene = mechanism::read_scene(text, o.overrides, o.file.empty() ? "scene" : o.file);
-  for (const auto& w : mechanism::scene_warnings(scene)) std::cerr << "mechanism: warning: " << w << "\n";
+  if (!o.quiet)
+    for (const auto& w : mechanism::scene_warnings(scene)) std::cerr << "mechanism: warning: " << w << "\n";
   return scene;
 }
 
@@ -130,7 +136,7 @@ int main(int argc, char** argv) {
   scene_cmd->add_flag("--default", print_default, "print the built-in seed scene with a comment on every key");
 
   SceneOptions sim_opts;
-  bool json = false, strobe = false, quiet = false;
+  bool json = false, strobe = false;
   std::string out_path, signals, plot_path;
   auto* sim = app.add_subcommand("simulate", "integrate the scene and write the chosen signals");
   add_scene_options(*sim, sim_opts);
@@ -138,9 +144,15 @@ int main(int argc, char** argv) {
   sim->add_option("--signals", signals, "comma-separated columns to write (default: all; see docs/mechanism/simulate.md)");
   sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)");
   sim->add_flag("--json", json, "write a JSON summary to standard output (the table then goes only to -o FILE)");
-  sim->add_flag("-q,--quiet", quiet, "no progress bar");
+  sim->add_flag("-q,--quiet", sim_opts.quiet, "no progress bar and no warnings about the scene");
   sim->add_option("--plot", plot_path,
                   "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg");
+  cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
+  if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    std::cerr << "mechanism: " << unknown << "\n";
+    return usage_error;
+  }
 
   try {
     app.parse(argc, argv);
@@ -219,7 +231,7 @@ int main(int argc, char** argv) {
         keep_for_plot(ev);
       };
     }
-    cli_support::ProgressBar bar(!quiet && isatty(fileno(stderr)));
+    cli_support::ProgressBar bar(!sim_opts.quiet && isatty(fileno(stderr)));
     observer.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
     const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
     if (json) {

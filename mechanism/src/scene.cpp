@@ -433,9 +433,36 @@ void check_consistency(const Scene& s) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),
                            "must not exceed the crank period (" + format_number(s.driver.period()) + " s)");
   }
+  check_run_size(s);
 }
 
 }  // namespace
+
+void check_run_size(const Scene& s) {
+  if (s.integrator.max_steps > max_run_steps)
+    throw InvalidParameter("integrator.max_steps", format_number(s.integrator.max_steps),
+                           "must be at most " + format_number(max_run_steps));
+  const double simulated = s.run.transient + s.run.duration;
+  // RK4 steps the period in equal steps no longer than integrator.step; dopri5 needs at least
+  // one step per integrator.max_step.
+  const bool rk4 = s.integrator.method == IntegratorMethod::rk4;
+  const double longest = rk4 ? s.driver.period() / std::ceil(s.driver.period() / s.integrator.step - 1e-9)
+                             : s.integrator.max_step;
+  const double steps = simulated / longest;
+  if (!(steps <= max_run_steps))
+    throw InvalidParameter("run.duration", format_number(s.run.duration),
+                           "with run.transient " + format_number(s.run.transient) + " s needs " + format_number(steps) +
+                               (rk4 ? " RK4 steps of " : " dopri5 steps of at most ") + format_number(longest) +
+                               " s, more than the limit of " + format_number(max_run_steps) + " steps");
+  if (s.run.output_interval > 0.0) {
+    const double rows = s.run.duration / s.run.output_interval;
+    if (!(rows <= max_output_rows))
+      throw InvalidParameter("run.output_interval", format_number(s.run.output_interval),
+                             "gives " + format_number(rows) + " rows over run.duration " + format_number(s.run.duration) +
+                                 " s, more than the limit of " + format_number(max_output_rows) +
+                                 " rows (use a longer interval, or 0 with run.stroboscopic)");
+  }
+}
 
 std::string_view default_scene_toml() {
   static const std::string text =

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -21,6 +22,7 @@
 
 #include "mechanism/error.hpp"
 #include "mpi_session.hpp"
+#include "option_checks.hpp"
 #include "pipeline.hpp"
 #include "progress_bar.hpp"
 #include "plots.hpp"
@@ -32,6 +34,8 @@ namespace {
 enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_request = 3, io_error = 4, points_failed = 5 };
 
 std::string read_text(const std::string& path) {
+  // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+  if (std::filesystem::is_directory(path)) throw study::StudyError("scene", path, "is a directory, not a scene file");
   std::ifstream in(path);
   if (!in) throw study::StudyError("scene", path, "cannot be opened (missing or unreadable file)");
   std::stringstream s;
@@ -72,7 +76,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
   sweep->add_option("-o,--output", out_dir, "result directory (docs/study.md lists its files)")->required();
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
-  sweep->add_flag("-q,--quiet", quiet, "no progress bar");
+  sweep->add_flag("-q,--quiet", quiet, "no progress bar and no warnings about the scene");
 
   study::cli::PipelineRequest pipeline;
   auto* pipeline_cmd = app.add_subcommand("pipeline", "the correlation-dimension pipeline of one scene, with the six panels of the seed's Fig. 7");
@@ -81,6 +85,12 @@ int main(int argc, char** argv) {
   study::cli::PlotRequest plot;
   auto* plot_cmd = app.add_subcommand("plot", "draw a figure from a result directory");
   study::cli::add_plot_options(*plot_cmd, plot);
+  cli_support::check_numeric_options(app);
+  cli_support::one_value_per_occurrence(app);
+  if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
+    if (root) std::cerr << "study: " << unknown << "\n";
+    return usage_error;
+  }
 
   try {
     app.parse(argc, argv);
@@ -110,7 +120,7 @@ int main(int argc, char** argv) {
     for (std::string s; std::getline(list, s, ',');)
       if (!s.empty()) spec.signals.push_back(s);
     spec.validate();
-    if (root)
+    if (root && !quiet)
       for (const auto& w : mechanism::scene_warnings(study::point_scene(spec, 0))) std::cerr << "study: warning: " << w << "\n";
 
     // Rank 0 creates the directory; the others open it once it exists (as a resume of the same spec).
@@ -118,7 +128,9 @@ int main(int argc, char** argv) {
     std::unique_ptr<study::ResultStore> store;
     auto open_store = [&](bool as_resume) {
       try {
-        store = std::make_unique<study::ResultStore>(out_dir, spec, as_resume);
+        // Rank 0's lock covers the other ranks, which open the directory only after it.
+        store = std::make_unique<study::ResultStore>(out_dir, spec, as_resume, root);
+        for (const auto& d : store->discarded()) std::cerr << "study: recomputing " << d << "\n";
         return true;
       } catch (const std::exception& e) {
         std::cerr << "study: " << e.what() << "\n";
@@ -144,6 +156,9 @@ int main(int argc, char** argv) {
     study::SweepProgress progress;
     try {
       progress = study::run_sweep(spec, *store, exec);
+    } catch (const study::StudyIoError& e) {
+      std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
+      failure = io_error;
     } catch (const study::StudyError& e) {
       std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
       failure = invalid_request;
@@ -179,6 +194,9 @@ int main(int argc, char** argv) {
                               {"wall_seconds", wall}};
     std::cout << summary.dump(2) << "\n";
     return failed ? points_failed : ok;
+  } catch (const study::StudyIoError& e) {
+    std::cerr << "study: " << e.what() << "\n";
+    return io_error;
   } catch (const study::StudyError& e) {
     std::cerr << "study: " << e.what() << "\n";
     return invalid_request;

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -36,6 +37,7 @@ bool run_pipeline(const PipelineRequest& r) {
   if (!(r.analysis.interval > 0.0)) throw StudyError("--analysis-interval", exact(r.analysis.interval), "must be > 0 s");
   std::string text;
   if (!r.scene_file.empty()) {
+    if (std::filesystem::is_directory(r.scene_file)) throw StudyError("scene", r.scene_file, "is a directory, not a scene file");
     std::ifstream in(r.scene_file);
     if (!in) throw StudyError("scene", r.scene_file, "cannot be opened (missing or unreadable file)");
     std::stringstream s;
@@ -71,7 +73,7 @@ bool run_pipeline(const PipelineRequest& r) {
   }
   if (!r.series_output.empty()) {
     std::ofstream f(r.series_output);
-    if (!f) throw StudyError("--series", r.series_output, "cannot be written");
+    if (!f) throw StudyIoError("--series", r.series_output, "cannot be written");
     f << "# t\tslider_y\tslider_vy\n" << std::setprecision(12);
     for (std::size_t i = 0; i < t.size(); ++i) f << t[i] << '\t' << y[i] << '\t' << vy[i] << '\n';
   }

@@ -11,19 +11,9 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
   PointResult r;
   r.point = point;
   r.coordinates = spec.grid.coordinates(point);
-  mechanism::Scene scene = point_scene(spec, point);
+  const mechanism::Scene scene = point_run_scene(spec, point);
   const double period = scene.driver.period();
   const std::size_t transient = spec.periods - spec.keep;
-  // Outputs start at the end of the transient; the analysed series is the last analysis.periods
-  // revolutions, so it may begin inside the transient when it is longer than `keep`.
-  const std::size_t first_output =
-      spec.analyse ? std::min(transient, spec.periods - spec.analysis.periods) : transient;
-  scene.run.transient = static_cast<double>(first_output) * period;
-  scene.run.duration = static_cast<double>(spec.periods - first_output) * period;
-  scene.run.stroboscopic = true;
-  const double interval =
-      spec.analysis.samples_per_period ? period / static_cast<double>(spec.analysis.samples_per_period) : spec.analysis.interval;
-  scene.run.output_interval = spec.analyse ? interval : 0.0;
   mechanism::SliderCrank system(scene);
 
   const auto table = mechanism::signal_table(system);
@@ -59,7 +49,7 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
     r.summary.message = "started fresh: the previous point's state has another size";
   if (spec.analyse) {
     if (r.summary.status == mechanism::SimulationStatus::completed) {
-      r.analysis = analyse_series(series, interval, spec.analysis);
+      r.analysis = analyse_series(series, scene.run.output_interval, spec.analysis);
     } else {
       SeriesAnalysis a;
       a.status = std::string("not analysed: the simulation ended with ") + mechanism::to_string(r.summary.status);

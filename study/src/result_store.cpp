@@ -1,10 +1,15 @@
 #include "study/result_store.hpp"
 
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include "study/error.hpp"
@@ -72,40 +77,134 @@ std::string first_difference(const std::string& a, const std::string& b) {
   }
 }
 
+// FNV-1a, 64 bits, as 16 hex digits: a point file names the spec it was computed for.
+std::string text_hash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+// Takes DIR/lock for this process (released by close or exit, even a kill). Refuses, naming the
+// holder's process id written in the file, when another sweep holds it.
+int take_lock(const fs::path& dir) {
+  const fs::path path = dir / "lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw StudyError("-o", path.string(), std::string("cannot be opened: ") + std::strerror(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    char holder[64] = {};
+    const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+    ::close(fd);
+    std::string who = n > 0 ? std::string(holder, static_cast<std::size_t>(n)) : std::string();
+    while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+    if (error != EWOULDBLOCK) throw StudyError("-o", path.string(), std::string("cannot be locked: ") + std::strerror(error));
+    throw StudyError("-o", dir.string(),
+                     "is in use by another sweep (" + (who.empty() ? std::string("process unknown") : who) +
+                         " holds " + path.string() + "); wait for it to finish or choose another directory");
+  }
+  const std::string me = "process " + std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
+    ::close(fd);
+    throw StudyError("-o", path.string(), "cannot be written");
+  }
+  return fd;
+}
+
 }  // namespace
 
 void write_atomically(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
   {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw StudyError("output", tmp.string(), "cannot be written");
+    if (!f) throw StudyIoError("output", tmp.string(), std::string("cannot be written: ") + std::strerror(errno));
     const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 &&
                     ::fsync(fileno(f)) == 0;
+    const int error = errno;
     std::fclose(f);
-    if (!ok) throw StudyError("output", tmp.string(), "could not be written completely (disk full?)");
+    if (!ok) {
+      std::remove(tmp.c_str());  // a full disk left samples.tsv.tmp.PID behind (issue 16)
+      throw StudyIoError("output", tmp.string(),
+                         std::string("could not be written completely (") + std::strerror(error) + ")");
+    }
   }
   fs::rename(tmp, path);
 }
 
-ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume)
-    : dir_(std::move(dir)), spec_(spec), header_(spec.describe()) {
+ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume, bool lock)
+    : dir_(std::move(dir)), spec_(spec), header_(spec.describe()), spec_hash_(text_hash(header_)) {
   const fs::path spec_file = dir_ / "spec.txt";
-  if (fs::exists(spec_file)) {
-    if (!resume)
-      throw StudyError("-o", dir_.string(),
-                       "already holds a sweep; add --resume to continue it, or choose a new directory");
-    const std::string old = read_file(spec_file);
-    if (old != header_)
-      throw StudyError("--resume", dir_.string(),
-                       "the directory holds another sweep; first difference: " + first_difference(header_, old));
-  } else if (fs::exists(dir_) && !fs::is_directory(dir_)) {
-    throw StudyError("-o", dir_.string(), "exists and is not a directory");
+  if (fs::exists(dir_) && !fs::is_directory(dir_)) throw StudyError("-o", dir_.string(), "exists and is not a directory");
+  // The lock comes before anything is read: two sweeps started at once into one directory would
+  // otherwise both find it empty and mix their points (issue 16).
+  const bool existed = fs::exists(dir_);
+  fs::create_directories(dir_);
+  if (lock) lock_fd_ = take_lock(dir_);
+  try {
+    if (fs::exists(spec_file)) {
+      if (!resume)
+        throw StudyError("-o", dir_.string(),
+                         "already holds a sweep; add --resume to continue it, or choose a new directory");
+      const std::string old = read_file(spec_file);
+      if (old != header_)
+        throw StudyError("--resume", dir_.string(),
+                         "the directory holds another sweep; first difference: " + first_difference(header_, old));
+    }
+    fs::create_directories(dir_ / "points");
+    if (!fs::exists(spec_file)) write_atomically(spec_file, header_);
+  } catch (...) {
+    // A refused request leaves no directory behind that it created itself.
+    if (lock_fd_ >= 0) ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (!existed) fs::remove_all(dir_);
+    throw;
   }
-  fs::create_directories(dir_ / "points");
-  if (!fs::exists(spec_file)) write_atomically(spec_file, header_);
+  if (!lock) return;  // another rank holds the lock and has cleaned the directory
   // A killed run leaves at most one temporary file per point it was writing: never a result.
   for (const auto& entry : fs::directory_iterator(dir_ / "points"))
     if (entry.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(entry.path());
+  // A point file cut short (a full disk, a copy interrupted), edited, or left by another spec is
+  // deleted, so the sweep recomputes that point instead of assembling what is left of it.
+  for (std::size_t p = 0; p < spec_.grid.size(); ++p) {
+    const fs::path path = point_path(p);
+    if (!fs::exists(path)) continue;
+    const std::string why = check_point_file(p, read_file(path));
+    if (why.empty()) continue;
+    discarded_.push_back("point " + std::to_string(p) + " (" + path.string() + "): " + why);
+    fs::remove(path);
+  }
+}
+
+ResultStore::~ResultStore() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+std::string ResultStore::check_point_file(std::size_t point, const std::string& text) const {
+  if (text.rfind("# study point " + std::to_string(point) + "\n", 0) != 0) return "does not begin with its header";
+  if (text.size() < 4 || text.compare(text.size() - 4, 4, "end\n") != 0) return "is incomplete (no end line)";
+  std::istringstream in(text);
+  std::map<std::string, std::vector<std::string>> fields;
+  std::size_t samples = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    auto f = split_tabs(line);
+    if (f[0] == "sample") ++samples;
+    else fields[f[0]] = std::move(f);
+  }
+  if (!fields.count("spec") || fields["spec"].size() < 2 || fields["spec"][1] != spec_hash_)
+    return "was computed for another spec (its hash is not " + spec_hash_ + ")";
+  for (const char* key : {"coordinates", "status", "counters", "wall_seconds", "final_state"})
+    if (!fields.count(key)) return std::string("has no ") + key + " line";
+  if (spec_.analyse && !fields.count("analysis")) return "has no analysis line";
+  const auto& counters = fields["counters"];
+  if (counters.size() < 8) return "has a short counters line";
+  if (counters[7] != std::to_string(samples))
+    return "has " + std::to_string(samples) + " sample rows where its counters say " + counters[7];
+  return {};
 }
 
 fs::path ResultStore::point_path(std::size_t point) const {
@@ -118,7 +217,7 @@ bool ResultStore::finished(std::size_t point) const { return fs::exists(point_pa
 
 void ResultStore::write(const PointResult& r) const {
   std::ostringstream o;
-  o << "# study point " << r.point << "\ncoordinates";
+  o << "# study point " << r.point << "\nspec\t" << spec_hash_ << "\ncoordinates";
   for (double c : r.coordinates) o << "\t" << exact(c);
   const auto& s = r.summary;
   o << "\nstatus\t" << mechanism::to_string(s.status) << "\t" << one_line(s.message) << "\n"
@@ -148,6 +247,7 @@ void ResultStore::write(const PointResult& r) const {
     for (std::size_t k = 1; k < row.size(); ++k) o << "\t" << number(row[k]);
     o << "\n";
   }
+  o << "end\n";  // the last line: a file without it was cut short
   write_atomically(point_path(r.point), o.str());
 }
 
@@ -189,7 +289,10 @@ void ResultStore::assemble() const {
   std::string timing = "# wall seconds per point (the only output that differs between runs)\n# point\twall_seconds\n";
   for (std::size_t p = 0; p < grid.size(); ++p) {
     if (!finished(p)) throw StudyError("assemble", "point " + std::to_string(p), "is not finished");
-    std::istringstream in(read_file(point_path(p)));
+    const std::string text = read_file(point_path(p));
+    if (const std::string why = check_point_file(p, text); !why.empty())
+      throw StudyError("point file", point_path(p).string(), why + "; run the sweep again with --resume to recompute it");
+    std::istringstream in(text);
     std::string prefix = std::to_string(p);
     for (double c : grid.coordinates(p)) {
       prefix += '\t';
@@ -201,7 +304,7 @@ void ResultStore::assemble() const {
       auto f = split_tabs(line);
       if (f[0] == "sample") {
         samples += prefix + "\t" + join_from(f, 1) + "\n";
-      } else {
+      } else if (f[0] != "end") {
         fields[f[0]] = f;
       }
     }

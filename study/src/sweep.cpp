@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "mechanism/error.hpp"
 #include "mechanism/signals.hpp"
 #include "mechanism/slider_crank.hpp"
 #include "study/error.hpp"
@@ -19,6 +20,30 @@ mechanism::Scene point_scene(const SweepSpec& spec, std::size_t point) {
   return mechanism::read_scene(spec.scene_text, overrides, spec.scene_source);
 }
 
+mechanism::Scene point_run_scene(const SweepSpec& spec, std::size_t point) {
+  mechanism::Scene scene = point_scene(spec, point);
+  const double period = scene.driver.period();
+  const std::size_t transient = spec.periods - spec.keep;
+  // Outputs start at the end of the transient; the analysed series is the last analysis.periods
+  // revolutions, so it may begin inside the transient when it is longer than `keep`.
+  const std::size_t first_output =
+      spec.analyse ? std::min(transient, spec.periods - spec.analysis.periods) : transient;
+  scene.run.transient = static_cast<double>(first_output) * period;
+  scene.run.duration = static_cast<double>(spec.periods - first_output) * period;
+  scene.run.stroboscopic = true;
+  const double interval =
+      spec.analysis.samples_per_period ? period / static_cast<double>(spec.analysis.samples_per_period) : spec.analysis.interval;
+  scene.run.output_interval = spec.analyse ? interval : 0.0;
+  try {
+    mechanism::check_run_size(scene);
+  } catch (const mechanism::InvalidParameter& e) {
+    // The run's times come from the sweep's options, so the message names those.
+    throw StudyError("--periods", std::to_string(spec.periods),
+                     "point " + std::to_string(point) + "'s run is too large (" + std::string(e.what()) + ")");
+  }
+  return scene;
+}
+
 void SweepSpec::validate() const {
   if (periods == 0) throw StudyError("--periods", "0", "a point runs at least one revolution");
   if (keep == 0 || keep > periods)
@@ -31,6 +56,8 @@ void SweepSpec::validate() const {
       throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
     if (analysis.samples_per_period == 1)
       throw StudyError("--analysis-samples-per-period", "1", "must be 0 (use --analysis-interval) or at least 2");
+    if (analysis.max_delay < 1 && analysis.given_delay == 0)
+      throw StudyError("--max-delay", "0", "must be at least 1 sample (the mutual-information minimum is searched from 1)");
     if (analysis.max_dimension < 2)
       throw StudyError("--max-dimension", std::to_string(analysis.max_dimension), "must be at least 2");
   }
@@ -38,7 +65,7 @@ void SweepSpec::validate() const {
   // Every point's scene must be valid (an axis may run into a refused value, e.g. clearance 0) and
   // have the signals asked for (the table is the same for every point of a sweep over numbers).
   for (std::size_t p = 0; p < grid.size(); ++p) {
-    const mechanism::Scene scene = point_scene(*this, p);
+    const mechanism::Scene scene = point_run_scene(*this, p);
     if (p > 0) continue;
     const mechanism::SliderCrank system(scene);
     const auto table = mechanism::signal_table(system);

@@ -185,9 +185,9 @@ done
 # (analytic): up at 1.3 and 4.1, down at 2.6, with y = t^2 there and return times their differences.
 awk 'BEGIN { for (i = 0; i <= 60; i++) { t = i * 0.1; printf "%.12g\t%.12g\t%.12g\n", t, (t - 1.3) * (t - 2.6) * (t - 4.1), t * t } }' > "$work/cubic.dat"
 got=$("$CHAOS" section "$work/cubic.dat" --time-column 1 --hyperplane 2 --level 0 --direction both | grep -v '^#')
-ok=$(awk -F'\t' 'BEGIN { split("1.3 2.6 4.1", r, " "); split("nan 1.3 1.5", d, " "); bad = 0 }
+ok=$(awk -F'\t' 'BEGIN { split("1.3 2.6 4.1", r, " "); split("none 1.3 1.5", d, " "); bad = 0 }
   { n++; e = (($1 - r[n]) ^ 2 < 1e-18) && ($2 == 0) && (($3 - r[n] * r[n]) ^ 2 < 1e-18);
-    if (n == 1) e = e && $4 == "nan"; else e = e && (($4 - d[n]) ^ 2 < 1e-18);
+    if (n == 1) e = e && $4 == "none"; else e = e && (($4 - d[n]) ^ 2 < 1e-18);
     if (!e) bad = 1 }
   END { print (n == 3 && !bad) ? "yes" : "no" }' <<<"$got")
 [[ $ok == yes ]] && pass || fail "section --hyperplane on the cubic gave: $got"
@@ -252,10 +252,120 @@ expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
 
+# Issue 16, negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
+# autocorrelation, "internal error: vector::..." in d2, surrogates and analyze, 6.7 GB in density).
+# A value the option's type cannot hold is a usage error, exit 2 (docs/input.md), naming the option.
+expect_error 2 "^--max-delay: '-1' is negative" -- mutual -D -1 "$work/henon.dat"
+expect_error 2 "^--max-lag: '-1' is negative" -- autocorrelation -D -1 "$work/henon.dat"
+expect_error 2 "^--max-delay: '-2' is negative" -- mutual -D -2 "$work/henon.dat"
+expect_error 2 "^--radii: '-1' is negative" -- d2 -# -1 "$work/henon.dat"
+expect_error 2 "^--count: '-1' is negative" -- surrogates -n -1 "$work/henon.dat"
+expect_error 2 "^--surrogates: '-1' is negative" -- analyze --surrogates -1 "$work/henon.dat"
+expect_error 2 "^--bins: '-1' is negative" -- density -b -1 "$work/pv.dat"
+expect_error 2 "^--max-delay: '99999999999999999999' is larger than 18446744073709551615" -- mutual -D 99999999999999999999 "$work/henon.dat"
+expect_error 2 "^--level: 'nan' is not a finite number" -- cao --level nan "$work/henon.dat"
+expect_error 2 "^--min-radius: 'inf' is not a finite number" -- d2 -r inf "$work/henon.dat"
+# The largest whole number is a number, so each command bounds it before it allocates (exit 3).
+expect_error 3 "N = 3000 samples, but at least 18446744073709551615.*max_lag = 18446744073709551615" -- autocorrelation -D 18446744073709551615 "$work/henon.dat"
+expect_error 3 "N = 3000 samples, but at least 18446744073709551615.*max_delay = 18446744073709551615" -- mutual -D 18446744073709551615 "$work/henon.dat"
+expect_error 3 "bins must be at most 100000 \(got 18446744073709551615\)" -- density -b 18446744073709551615 "$work/pv.dat"
+expect_error 3 "number of radii must be at most 10000 \(got 9223372036854775808\)" -- d2 -# 9223372036854775808 "$work/henon.dat"
+expect_error 3 "at most 10000 surrogates \(got 9223372036854775808\)" -- surrogates -n 9223372036854775808 "$work/henon.dat"
+expect_error 3 "at most 10000 surrogates \(got 9223372036854775808\)" -- analyze --surrogates 9223372036854775808 "$work/henon.dat"
+expect_error 3 "length -l must be in 1..100000000 \(got 9223372036854775808\)" -- generate henon -l 9223372036854775808
+expect_error 3 "iterations \+ transient = 9223372036854775808 is more than 1e15" -- spectrum henon --iterations 9223372036854775808
+expect_error 3 "highest of the 9223372036854775808 dimensions" -- lyapunov --dimensions 9223372036854775808 "$work/henon.dat"
+
+# Issue 16, item 4: extreme scales. A Lorenz series times 1e150 gave -nan autocorrelation rows, d2
+# asked for "at least 9223372036854775814" samples, and times 1e306 d2 and lyapunov fell back to
+# a wrong Theiler window and gave wrong numbers, all with exit 0. Every estimate is independent of
+# the scale: times a power of two (exact) the autocorrelation, the Theiler windows and lyapunov
+# are identical and d2 agrees to rounding (its log-spaced radii are not scaled exactly), as it does
+# times 1e+-100; beyond |x| = 1e120 or a spread below 1e-120 (series.hpp) the series is refused
+# with exit 3 (docs/input.md) and the numbers, never answered with NaN.
+scaled() { awk -v f="$1" '!/^#/ { printf "%.17g\n", $1 * f }' "$work/lorenz.dat" > "$work/scaled.dat"; }
+invariants() {
+  {
+    "$CHAOS" autocorrelation "$1" --json | jq -c '[.first_zero_crossing, .decorrelation_time, .autocorrelation]'
+    "$CHAOS" d2 "$1" --json | jq -c '[.status, .parameters.theiler]'
+    "$CHAOS" lyapunov "$1" --json | jq -c '[.status, .lambda, .points, .mean_neighbours, .parameters.theiler]'
+  } 2>&1
+}
+d2_of() { "$CHAOS" d2 "$1" --json | jq -r '"\(.d2) \(.takens_theiler)"'; }
+close() { awk -v a="$1" -v b="$2" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !((x[1] - y[1]) ^ 2 < 1e-18 && (x[2] - y[2]) ^ 2 < 1e-18) }'; }
+reference=$(invariants "$work/lorenz.dat")
+ref_d2=$(d2_of "$work/lorenz.dat")
+[[ $ref_d2 == *null* ]] && fail "the reference d2 has no answer to compare: $ref_d2"
+for f in 2^-390 2^-200 2^-1 2^7 2^200 2^390 1e-100 1e100; do
+  if [[ $f == 2^* ]]; then scaled "$(awk -v e="${f#2^}" 'BEGIN { printf "%.17g", 2 ^ e }')"; else scaled "$f"; fi
+  if [[ $f == 2^* ]]; then
+    [[ $(invariants "$work/scaled.dat") == "$reference" ]] && pass || fail "x $f changes the scale-free results"
+  fi
+  d2=$(d2_of "$work/scaled.dat")
+  close "$d2" "$ref_d2" && pass || fail "x $f: d2 and Takens-Theiler $d2, expected $ref_d2"
+done
+for f in 1e121 1e150 1e306 1e-170 1e-300 4.9e-324; do
+  scaled "$f"
+  for cmd in autocorrelation d2 lyapunov; do
+    expect_error 3 "\\[scale\\]: .*scaled.dat: the values (reach .* beyond the 1e\\+120|span only .* below the 1e-120)" -- "$cmd" "$work/scaled.dat"
+  done
+done
+
+# Issue 16, item 8: a spreadsheet's CSV with a UTF-8 byte-order mark and a "time,value" header
+# failed with "'time' is not a number". It is read (docs/input.md), the column chosen by number or
+# by name; a name not in the header is refused with the names; a huge bad token is cut.
+{ printf '\xEF\xBB\xBFtime,value\n'; awk '!/^#/ { printf "%d,%s\n", NR, $1 }' "$work/henon.dat"; } > "$work/henon.csv"
+by_number=$("$CHAOS" mutual "$work/henon.dat" | grep -v '^#')
+[[ $("$CHAOS" mutual "$work/henon.csv" -c value | grep -v '^#') == "$by_number" ]] && pass || fail "mutual -c value on the CSV differs from the plain file"
+[[ $("$CHAOS" mutual "$work/henon.csv" -c 2 | grep -v '^#') == "$by_number" ]] && pass || fail "mutual -c 2 on the CSV differs from the plain file"
+expect_error 3 "henon.csv:1: no column named 'valeur' in the header \(time, value\)" -- mutual "$work/henon.csv" -c valeur
+expect_error 2 "^--column: '-1' is neither a column number" -- mutual "$work/henon.csv" -c -1
+{ echo 1; echo 2; head -c 1000000 /dev/zero | tr '\0' x; echo; } > "$work/huge_token.dat"
+err=$("$CHAOS" mutual "$work/huge_token.dat" 2>&1)
+[[ ${#err} -lt 300 && $err == *"... (1000000 bytes)' is not a number"* ]] && pass || fail "a 1 MB token is echoed: ${err:0:300}"
+
+# Issue 16, item 8: chaos d2 on 10^6 points ran for over 15 minutes with no word. Above 2e5 points
+# (exact sums) it says so with the option that shortens it, and on a terminal it draws a progress
+# line after 2 s (util-linux `script` gives it one); -q silences both. Each run is cut after 4 s.
+"$CHAOS" generate lorenz -l 250000 --components x > "$work/long.dat"
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -o /dev/null 2>&1 >/dev/null)
+[[ $err == *"N = 250000 samples"*"--reference-points"* ]] && pass || fail "d2 on 250000 points gave no hint: ${err:0:300}"
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -q -o /dev/null 2>&1 >/dev/null)
+[[ -z $err ]] && pass || fail "d2 -q still writes to stderr: ${err:0:300}"
+if command -v script >/dev/null; then
+  tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 2 -o /dev/null" /dev/null | tr '\r' '\n')
+  grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
+fi
+
+# Issue 16, item 7: the README's order, options first and the file last, read the file as another
+# value of a list option (d2 --radius-list a,b FILE, section -c 1 FILE). Each list option takes
+# one argument per occurrence (comma-separated), so the file is the file.
+a=$("$CHAOS" d2 --radius-list 0.05,0.1,0.2 "$work/henon.dat" -d 1 -M 3 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
+b=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --radius-list 0.05,0.1,0.2 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
+[[ -n $a && $a == "$b" ]] && pass || fail "d2 --radius-list a,b FILE: '$a', expected '$b'"
+"$CHAOS" generate lorenz -l 2000 --components all > "$work/xyz.dat"
+a=$("$CHAOS" section -c 1,2 "$work/xyz.dat" --stroboscopic 10 | grep -vc '^#')
+[[ $a == 200 ]] && pass || fail "section -c 1,2 FILE gave $a rows, expected 2000 / 10"
+
+# Issue 16, item 7: "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
+# the main help with exit 0; -o naming the input file overwrote the data; an unwritable -o failed
+# only after the work. An unknown command is a usage error (2) naming it; a bad -o is refused
+# before any work with exit 3 (docs/input.md: invalid input), the data untouched.
+expect_error 2 "^chaos: unknown command 'foo'; the commands are: generate, mutual" -- foo
+expect_error 2 "^chaos: unknown command 'foo'" -- foo --help
+cp "$work/henon.dat" "$work/data.dat"
+expect_error 3 "-o .*data.dat is the input file" -- mutual "$work/data.dat" -o "$work/data.dat"
+expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "$work/data.dat"
+cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
+expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
+
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
+
+# Issue 16, item 7: a typo in --filter ran nothing and exited 0; it is refused (exit 3) by name.
+expect_error 3 "--filter 'henon.x.caoo' matches no case id" -- validate --filter henon.x.caoo
 
 # validate lists the compiled-in reference table.
 "$CHAOS" validate --list | grep -q "henon.x.cao.embedding_dimension" && pass || fail "validate --list"

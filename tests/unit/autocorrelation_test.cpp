@@ -126,6 +126,28 @@ void expect_refused(F&& f, chaos::ErrorCode code, const std::string& fragment) {
   }
 }
 
+// Issue 16: a Lorenz series times 1e150 gave -nan rows and a wrong zero crossing, and so did one
+// below 1e-170 or in denormals. r(k) does not depend on the scale: times a power of two it is the
+// same bit for bit (the series is divided by a power of two internally, which is exact), and even
+// in denormals, where few bits are left, it stays a finite correlation with the same crossing.
+TEST(Autocorrelation, IndependentOfTheScale) {
+  const std::vector<double> x = chaos::lorenz(3000).components[0];
+  const chaos::AutocorrelationResult reference = chaos::autocorrelation(x, 300);
+  for (const int exponent : {-1000, -600, 500, 1000}) {
+    std::vector<double> y(x);
+    for (double& v : y) v = std::ldexp(v, exponent);
+    EXPECT_EQ(chaos::autocorrelation(y, 300).correlation, reference.correlation) << "x 2^" << exponent;
+  }
+  std::vector<double> denormal(x);
+  for (double& v : denormal) v = std::ldexp(v, -1060);  // |x| <= 20 * 2^-1060 < 2^-1022
+  const chaos::AutocorrelationResult r = chaos::autocorrelation(denormal, 300);
+  for (const double v : r.correlation) {
+    ASSERT_TRUE(std::isfinite(v));
+    ASSERT_LE(std::fabs(v), 1.0 + 1e-12);
+  }
+  EXPECT_EQ(chaos::first_zero_crossing(r), chaos::first_zero_crossing(reference));
+}
+
 TEST(Autocorrelation, RefusesInvalidInput) {
   using chaos::ErrorCode;
   std::vector<double> x = {1, 2, 3, 4, 5};

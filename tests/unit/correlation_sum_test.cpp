@@ -219,6 +219,27 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnLorenz) {
   expect_all_modes_exact(x, options(17, 1, 5, 400, radii, Norm::euclidean));
 }
 
+// Issue 16: chaos d2 draws a progress line from this callback. It is called with growing fractions
+// below 1, in every exact search mode and on 1 or 2 threads, and the counts do not depend on it.
+TEST(CorrelationSum, ProgressIsReportedAndChangesNothing) {
+  const auto x = chaos::lorenz(3000).components[0];
+  for (const auto search : {CorrelationSearch::box_assisted, CorrelationSearch::kd_tree, CorrelationSearch::brute_force})
+    for (const std::size_t threads : {1u, 2u}) {
+      auto o = options(17, 1, 3, 10, chaos::log_radii(0.25, 5.0, 8), Norm::max);
+      o.search = search;
+      o.threads = threads;
+      const auto quiet = chaos::correlation_sum(x, o);
+      std::vector<double> seen;
+      o.progress = [&seen](double f) { seen.push_back(f); };
+      const auto reported = chaos::correlation_sum(x, o);
+      EXPECT_EQ(reported.pairs, quiet.pairs);
+      ASSERT_FALSE(seen.empty()) << chaos::to_string(search) << ", " << threads << " thread(s)";
+      EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+      EXPECT_GT(seen.front(), 0.0);
+      EXPECT_LT(seen.back(), 1.0);
+    }
+}
+
 TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
   // Integer data and integer radii: many distances equal a radius exactly, and strict < must
   // leave them out (max norm: |dx| = r; Euclidean: e.g. (3, 4) -> 5, (6, 8) -> 10). Expected

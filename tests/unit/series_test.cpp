@@ -56,6 +56,44 @@ TEST(ReadSeries, NumberFormats) {
   EXPECT_EQ(values[3], 4.9e-324);  // the smallest subnormal survives parsing
 }
 
+// Issue 16, item 8: a spreadsheet's CSV ("time,value" header, often after a UTF-8 byte-order
+// mark) failed with "'time' is not a number". The mark is skipped, a first data line with no
+// number on it is a header, and a column can be named by it; -x and -l count the rows after it.
+TEST(ReadSeries, HeaderRowByteOrderMarkAndColumnNames) {
+  const std::string csv = "\xEF\xBB\xBFtime,value\n0,1.5\n1,2.5\n2,3.5\n";
+  EXPECT_EQ(read(csv).values, (std::vector<double>{0, 1, 2}));
+  ReadOptions by_name;
+  by_name.column_name = "value";
+  const chaos::Series named = read(csv, by_name);
+  EXPECT_EQ(named.values, (std::vector<double>{1.5, 2.5, 3.5}));
+  EXPECT_EQ(named.column, 2u);
+  by_name.skip = 1;
+  by_name.length = 1;
+  EXPECT_EQ(read(csv, by_name).values, (std::vector<double>{2.5}));
+  ReadOptions missing;
+  missing.column_name = "valeur";
+  expect_refusal([&] { read(csv, missing); }, ErrorCode::parse, {"input.dat:1", "no column named 'valeur'", "(time, value)"});
+  expect_refusal([&] { read("1\n2\n", missing); }, ErrorCode::parse, {"input.dat:1", "not a header"});
+  expect_refusal([] { read("time,value\n"); }, ErrorCode::empty, {"only a header row"});
+  // A line with a number on it is data, so a bad token there is still refused.
+  expect_refusal([] { read("1,three\n", ReadOptions{2}); }, ErrorCode::parse, {"'three' is not a number"});
+}
+
+// A refused token is cut to 60 bytes (a 1 MB token was echoed whole) and a byte-order mark
+// inside the file, invisible in a terminal, is shown as <BOM> and named.
+TEST(ReadSeries, RefusedTokensAreShownShortAndVisible) {
+  try {
+    read("1\n" + std::string(1'000'000, 'x') + "\n");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_LT(std::string(e.what()).size(), 200u);
+    EXPECT_NE(std::string(e.what()).find("... (1000000 bytes)"), std::string::npos) << e.what();
+  }
+  expect_refusal([] { read("1\n\xEF\xBB\xBF" "2\n"); }, ErrorCode::parse, {"'<BOM>2' is not a number", "byte-order mark"});
+  expect_refusal([] { read("1\n2\x01\n"); }, ErrorCode::parse, {"'2\\x01' is not a number"});
+  expect_refusal([] { read("nan\n1\n"); }, ErrorCode::non_finite, {"input.dat:1"});  // not a header
+}
+
 TEST(ReadSeries, DtTravelsWithTheSeries) {
   ReadOptions options;
   options.dt = 0.01;
@@ -98,6 +136,20 @@ TEST(Checks, ConstantFiniteLength) {
                  {"N = 50", "at least 100", "m = 3, tau = 40"});
   const std::vector<double> tiny{1e-300, 2e-300};
   EXPECT_NO_THROW(chaos::require_not_constant(tiny, "s"));  // tiny but distinct values are dynamics
+}
+
+// Issue 16: beyond |x| = 1e120 or below a spread of 1e-120 the estimators' sums of squares
+// overflow or underflow; such a series is refused with its numbers and the bound (series.hpp).
+TEST(Checks, Scale) {
+  expect_refusal([] { chaos::require_scale(std::vector<double>{1.0, 2e150}, "s"); }, ErrorCode::scale,
+                 {"reach 2e+150", "1e+120", "divide the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{3e-171, 4e-171}, "s"); }, ErrorCode::scale,
+                 {"span only 1e-171", "1e-120", "multiply the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{5e-324, 1e-323}, "s"); }, ErrorCode::scale,
+                 {"span only"});
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{-1e120, 1e120}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{1e-120, 2e-120, 3e-120}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>(5, 1e-200), "s"));  // constant: named elsewhere
 }
 
 }  // namespace

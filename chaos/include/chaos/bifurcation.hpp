@@ -46,10 +46,15 @@ enum class BinRule {
   freedman_diaconis,  // width 2 IQR n^(-1/3) on the pooled samples (Freedman & Diaconis 1981), at most `bins`
 };
 
+// More bins than this resolve nothing a plot or a table can show, and each parameter value holds
+// a density per bin: the cap keeps a mistyped count (issue 16: -b -1 read as 2^64-1) from
+// allocating gigabytes.
+inline constexpr std::size_t max_density_bins = 100000;
+
 struct DensityMapOptions {
   DensityEstimator estimator = DensityEstimator::histogram;
   BinRule bin_rule = BinRule::freedman_diaconis;
-  std::size_t bins = 200;           // the count (fixed) or the cap (Freedman-Diaconis); >= 1
+  std::size_t bins = 200;           // the count (fixed) or the cap (Freedman-Diaconis); 1..max_density_bins
   std::optional<double> low, high;  // the common range, both or neither; default: pooled min/max, padded
   double padding = 0.05;            // fraction of the pooled span added on each side (>= 0)
   std::optional<double> bandwidth;  // kernel: one bandwidth for all; default Silverman's per parameter value

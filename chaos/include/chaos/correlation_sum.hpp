@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,9 @@ struct CorrelationSumOptions {
   std::size_t reference_points = 0;
   std::uint64_t seed = 1;
   std::size_t threads = 1;  // results are identical for any thread count
+  // Called from the calling thread with the fraction of the counting done (in thousandths, below
+  // 1), for a progress display; the counts do not depend on it. Not called under a pairs cap.
+  std::function<void(double)> progress;
   void validate() const;
 };
 

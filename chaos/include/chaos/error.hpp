@@ -15,6 +15,7 @@ enum class ErrorCode {
   too_short,          // too few samples for the requested dimension, delay or window
   constant,           // zero variance: no dynamics to analyse
   invalid_parameter,  // a parameter outside its domain (m = 0, tau = 0, negative radius, ...)
+  scale,              // values too large or too finely spread for the sums of squares in double
 };
 
 // Returns a stable lower-case name for messages and JSON ("too_short", ...).

@@ -17,10 +17,12 @@ namespace chaos {
 struct Series {
   std::vector<double> values;
   std::optional<double> dt;  // sampling interval in time units, when known
+  std::size_t column = 1;    // the column read (1-based), found by name when one was given
 };
 
 struct ReadOptions {
   std::size_t column = 1;  // 1-based, as in TISEAN
+  std::string column_name;  // when not empty: the header's column of this name, instead of `column`
   std::size_t skip = 0;    // data rows skipped after comments and blank lines are dropped
   std::size_t length = std::numeric_limits<std::size_t>::max();  // data rows used after the skip
   std::optional<double> dt;
@@ -29,12 +31,24 @@ struct ReadOptions {
 
 // Reads the series from a file; "-" reads standard input. Every refusal names the source, the line
 // and the rule: missing file, empty input, non-numeric token, NaN or infinity, missing column.
+// A UTF-8 byte-order mark at the start is skipped, and a first data line on which no token is a
+// number is a header (column names, as a spreadsheet's CSV export writes): it is not a data row,
+// and `column_name` picks a column by it. A refused token is shown cut to 60 bytes, with control
+// bytes and a byte-order mark made visible.
 Series read_series(const std::string& path, const ReadOptions& options = {});
 Series read_series(std::istream& in, const std::string& source_name, const ReadOptions& options = {});
 
 // Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
 void require_finite(std::span<const double> x, const std::string& what);
 void require_not_constant(std::span<const double> x, const std::string& what);
+// The estimators square and sum distances and FFT coefficients: beyond |x| = 1e120 those overflow
+// double, and below a spread (max - min) of 1e-120 they underflow, giving NaN or a silently wrong
+// answer. Inside these bounds every estimate is unchanged by scaling the series (issue 16), so a
+// series outside them is refused with its numbers and the advice to rescale it. A constant series
+// (spread 0) passes, for require_not_constant to name.
+inline constexpr double largest_magnitude = 1e120;
+inline constexpr double smallest_spread = 1e-120;
+void require_scale(std::span<const double> x, const std::string& what);
 void require_length(std::span<const double> x, std::size_t minimum, const std::string& what,
                     const std::string& reason);
 

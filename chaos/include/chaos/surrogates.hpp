@@ -85,7 +85,11 @@ class SurrogateGenerator {
   std::unique_ptr<Impl> impl_;
 };
 
-// `count` surrogates; surrogate k uses the k-th draw of chaos::Random(seed).next() as its seed,
+// A rank test with K surrogates resolves p down to 1/(K+1): beyond 10^4 more surrogates add
+// nothing but time, and each holds a copy of the series. Larger counts are refused.
+inline constexpr std::size_t max_surrogates = 10000;
+
+// `count` surrogates (at most max_surrogates); surrogate k uses the k-th draw of chaos::Random(seed).next() as its seed,
 // so it does not depend on how many others are made.
 std::vector<Surrogate> surrogates(std::span<const double> x, std::size_t count, std::uint64_t seed,
                                   const SurrogateOptions& options = {});

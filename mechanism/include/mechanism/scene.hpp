@@ -124,6 +124,14 @@ struct IntegratorSettings {
   double max_steps = 1e9;      // accepted + rejected steps before a run reports step_limit
 };
 
+// Refused before a run starts (read_scene, check_run_size): more simulated steps, or more
+// time-series rows, than these. No run of the seed's comes near them (about 1e7 steps and 1e5
+// rows); beyond them a run would not finish or would fill the disk (issue 16: a duration of
+// 1.9e13 s wrapped the step count to 0 and "completed"; an output interval of 1e-300 s wrote rows
+// until the disk was full). integrator.max_steps stays the run-time limit below them.
+inline constexpr double max_run_steps = 1e12;
+inline constexpr double max_output_rows = 1e8;
+
 struct RunSettings {
   double duration = 0.06;         // simulated time after the transient, s (5 crank periods)
   double transient = 0.0;         // simulated time run but not written, s
@@ -155,6 +163,11 @@ std::string_view default_scene_toml();
 // `source` names the text in messages (a file name).
 Scene read_scene(std::string_view toml_text, const std::vector<std::string>& overrides = {},
                  std::string_view source = "scene");
+
+// Throws InvalidParameter when the run needs more than max_run_steps steps (from its duration,
+// transient and step) or writes more than max_output_rows rows, or integrator.max_steps exceeds
+// max_run_steps. read_scene calls it; so does a caller that sets the run's times itself.
+void check_run_size(const Scene& scene);
 
 // The resolved scene as TOML, every key with its value (defaults included).
 std::string to_toml(const Scene& scene);

@@ -1,6 +1,7 @@
 #pragma once
-// The one exception of the study layer: a refused request, naming what was refused, the value and
-// the rule (as mechanism::InvalidParameter and chaos::InvalidInput do for their libraries).
+// The exceptions of the study layer: a refused request, naming what was refused, the value and
+// the rule (as mechanism::InvalidParameter and chaos::InvalidInput do for their libraries), and
+// its kind for a result that could not be written (exit 4 in docs/study.md, not 3).
 
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,11 @@ class StudyError : public std::invalid_argument {
  public:
   StudyError(const std::string& what, const std::string& value, const std::string& rule)
       : std::invalid_argument(what + " = " + value + ": " + rule) {}
+};
+
+class StudyIoError : public StudyError {
+ public:
+  using StudyError::StudyError;
 };
 
 }  // namespace study

@@ -40,7 +40,8 @@ struct SweepSpec {
   AnalysisOptions analysis;
 
   // Refuses keep = 0, keep > periods, analysis periods > periods, an empty signal list, and an axis
-  // key or value the scene refuses (checked by building every point's scene).
+  // key or value the scene refuses or a run too large to finish (checked by building every
+  // point's run scene).
   void validate() const;
   // Canonical text: one "key = value" line per setting, the resolved base scene last.
   std::string describe() const;
@@ -48,5 +49,9 @@ struct SweepSpec {
 
 // The scene of point p, validated by the mechanism library.
 mechanism::Scene point_scene(const SweepSpec& spec, std::size_t point);
+// The same with the run the sweep makes of it: spec.periods revolutions, outputs from the end of
+// the transient (or from the analysed series' start), stroboscopic samples, the analysed series'
+// interval. Refused (mechanism::check_run_size) when that run is too large to finish.
+mechanism::Scene point_run_scene(const SweepSpec& spec, std::size_t point);
 
 }  // namespace study

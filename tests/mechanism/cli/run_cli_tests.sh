@@ -36,6 +36,10 @@ expect 3 "is not a signal" -- simulate -q --set run.duration=0.001 --signals t,n
 expect 2 "" -- simulate --no-such-flag
 # The seed's printed mu_s < mu_k is accepted with a warning.
 expect 0 "no stiction peak" -- scene
+# Issue 16, item 8: the warnings printed on every run; simulate -q silences them.
+expect 0 "no stiction peak" -- simulate --set run.duration=0.001 -o /dev/null
+expect 0 "" -- simulate -q --set run.duration=0.001 -o /dev/null
+[[ ! -s $work/err ]] || fail "simulate -q still warns: $(head -c 300 "$work/err")"
 
 # A short run: the table's header holds the resolved scene; the JSON summary has its keys.
 "$m" simulate -q --set run.duration=0.002 --signals t,slider_y > "$work/run.tsv" 2> /dev/null || fail "simulate"
@@ -62,6 +66,29 @@ expect 5 "step limit" -- simulate -q --set integrator.max_steps=10 --set run.dur
 expect 5 "no plot: the run wrote no samples" -- simulate -q -o /dev/null --set integrator.max_steps=10 \
   --set run.transient=0.001 --set run.duration=0.001 --plot "$work/none.png"
 [[ ! -e $work/none.png ]] || fail "a run with no samples still drew $work/none.png"
+
+# Issue 16, item 5: runs that did nothing or never ended. A duration of 1.9e13 s wrapped the RK4
+# step count to 0 and "completed"; an output interval of 1e-300 s wrote rows until the disk was
+# full. Both are refused before the run (exit 3, README.md) with the numbers and the limit
+# (mechanism/scene.hpp: 1e12 steps, 1e8 rows).
+expect 3 "run.duration = 1.9e+13: with run.transient 0.0 s needs 1.9e+19 RK4 steps of 1e-06 s, more than the limit of 1e+12 steps" \
+  -- simulate -q --set run.duration=1.9e13 --set run.output_interval=0
+expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06 s, more than the limit of 1e+08 rows" \
+  -- simulate -q --set run.output_interval=1e-300
+expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --set integrator.max_steps=1e30
+[[ ! -s $work/out ]] || fail "a refused run wrote rows"
+
+# Issue 16, item 7: a scene file after --set k=v was read as another --set value ("must be
+# KEY=VALUE"). Each --set takes one value; the file is the scene, the override applies.
+"$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
+grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
+
+# Issue 16, item 7: a directory given as the scene ran the built-in scene; it is refused (exit 3).
+expect 3 "is a directory, not a scene file" -- simulate -q "$work"
+
+# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
+expect 2 "unknown command 'foo'" -- foo --help
 
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2

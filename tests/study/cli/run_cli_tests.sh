@@ -32,10 +32,26 @@ expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/
 expect_message "is not a signal" "unknown signal"
 expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
 expect_message "cannot be opened" "missing scene file"
+# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+expect_code 2 "unknown command" "$STUDY" foo --help
+expect_message "unknown command 'foo'; the commands are: sweep, pipeline, plot" "unknown command"
+# Issue 16, items 6-7: a directory as the scene ran the built-in scene and spec.txt recorded the
+# directory; --max-delay 0 failed every point's analysis with exit 0. Both are refused up front.
+expect_code 3 "directory as scene" "$STUDY" sweep "$work" -o "$work/x"
+expect_message "is a directory, not a scene file" "directory as scene"
+expect_code 3 "max-delay 0" "$STUDY" sweep --analysis --max-delay 0 -o "$work/x"
+expect_message "max-delay = 0: must be at least 1 sample" "max-delay 0"
+# Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
+# negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
+expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
+expect_message "'-1' is negative" "negative periods"
+expect_code 3 "periods beyond any run" "$STUDY" sweep --periods 9223372036854775808 --keep 3 -o "$work/x"
+expect_message "point 0's run is too large" "periods beyond any run"
 [[ ! -e "$work/x/points" ]] || fail "a refused sweep left a result directory"
 
 # A small sweep: four points, the files of docs/study.md, the kept revolutions.
 expect_code 0 "small sweep" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/a" -q --threads 2
+grep -q "warning" "$work/err" && fail "sweep -q still warns about the scene: $(head -c 300 "$work/err")"
 for f in spec.txt samples.tsv points.tsv timing.tsv points/000003.tsv; do [[ -s "$work/a/$f" ]] || fail "missing $f"; done
 rows=$(grep -vc '^#' "$work/a/samples.tsv")
 [[ $rows == 12 ]] || fail "samples.tsv has $rows rows, expected 4 points x 3 revolutions"
@@ -77,6 +93,25 @@ expect_code 0 "resume after SIGKILL" "$STUDY" sweep "${long[@]}" -o "$work/k" --
 [[ $(jq -r .resumed_from_disk "$work/out") == "$before" ]] || fail "resume after SIGKILL did not keep the $before finished point(s): $(cat "$work/out")"
 cmp -s "$work/u/samples.tsv" "$work/k/samples.tsv" || fail "a sweep killed and resumed differs from an uninterrupted one"
 
+# Issue 16, item 1: a second sweep into a directory another sweep is writing is refused (exit 3,
+# docs/study.md: a refused request), naming the lock's holder; the first finishes untouched.
+"$STUDY" sweep "${long[@]}" -o "$work/l" >/dev/null 2>&1 &
+holder=$!
+for _ in $(seq 100); do [[ -s "$work/l/lock" ]] && break; sleep 0.05; done
+expect_code 3 "a second sweep into a held directory" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 20 --keep 3 -q -o "$work/l"
+expect_message "is in use by another sweep (process $holder holds" "a second sweep into a held directory"
+wait "$holder" || fail "the first sweep into the held directory failed"
+cmp -s "$work/u/samples.tsv" "$work/l/samples.tsv" || fail "the held directory's sweep differs from an uninterrupted one"
+
+# Issue 16, item 2: a point file cut short (there to 1000 bytes; here to half of its size) was
+# kept on --resume. It is recomputed, said on stderr, and the table equals the uninterrupted run's.
+size=$(stat -c %s "$work/u/points/000003.tsv")
+head -c $((size / 2)) "$work/u/points/000003.tsv" > "$work/cut.tsv" && mv "$work/cut.tsv" "$work/u/points/000003.tsv"
+expect_code 0 "resume over a truncated point file" "$STUDY" sweep "${long[@]}" -o "$work/u" --resume
+expect_message "recomputing point 3 (.*000003.tsv): is incomplete" "resume over a truncated point file"
+[[ $(jq -r .computed "$work/out") == 1 ]] || fail "resume over a truncated point file did not recompute one point: $(cat "$work/out")"
+cmp -s "$work/k/samples.tsv" "$work/u/samples.tsv" || fail "a recomputed truncated point gives another table"
+
 # Analysis columns, and plots of each kind.
 expect_code 0 "analysis" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=2e-4,5e-4 --axis driver.speed_rpm=4000,5000 --periods 8 --keep 5 --analysis -o "$work/c" -q
 [[ $(grep -vc '^#' "$work/c/analysis.tsv") == 4 ]] || fail "analysis.tsv should have one row per point"
@@ -97,6 +132,9 @@ expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-p
 [[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
 [[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
 [[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+# Issue 16, item 7: an output that cannot be written exited 3; docs/study.md says 4 (input/output).
+expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
+expect_message "cannot be written" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18
 [[ $(jq -r .analysis.delay_samples "$work/out") == 18 ]] || fail "--delay 18 not used"
 

@@ -149,6 +149,77 @@ TEST(Sweep, ResumeRecomputesOnlyMissingPoints) {
   fs::remove_all(dir);
 }
 
+// Issue 16, item 1: two sweeps writing one directory at once mixed their points. The directory's
+// lock refuses the second, naming the holder's process; it is free again once the first closes.
+TEST(Sweep, ASecondSweepIntoAHeldDirectoryIsRefused) {
+  const study::SweepSpec spec = short_spec();
+  const fs::path dir = scratch("lock");
+  {
+    study::ResultStore first(dir, spec, false);
+    try {
+      study::ResultStore second(dir, spec, true);
+      ADD_FAILURE() << "a second store of a held directory was opened";
+    } catch (const study::StudyError& e) {
+      EXPECT_NE(std::string(e.what()).find("in use by another sweep (process " + std::to_string(::getpid())),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_NO_THROW(study::ResultStore(dir, spec, true));
+  fs::remove_all(dir);
+}
+
+// Issue 16, item 2: a point file cut short was kept on resume (2 of 50 rows, one cut in half).
+// Every point file is checked on resume (end line, spec hash, sample count): a bad one is deleted
+// and recomputed, and the tables equal an uninterrupted run's.
+TEST(Sweep, ResumeRecomputesADamagedPointFile) {
+  const study::SweepSpec spec = short_spec();
+  const fs::path dir = scratch("damaged");
+  {
+    study::ResultStore store(dir, spec, false);
+    study::run_sweep(spec, store, {});
+    store.assemble();
+  }
+  const std::string before = slurp(dir / "samples.tsv");
+  const auto rewrite = [&](const char* name, const std::string& text) {
+    std::ofstream(dir / "points" / name, std::ios::binary | std::ios::trunc) << text;
+  };
+  const std::string whole = slurp(dir / "points" / "000001.tsv");
+  rewrite("000001.tsv", whole.substr(0, whole.size() / 2));  // truncated
+  std::string other_spec = slurp(dir / "points" / "000002.tsv");
+  const auto at = other_spec.find("spec\t") + 5;
+  other_spec[at] = other_spec[at] == '0' ? '1' : '0';  // another spec's hash
+  rewrite("000002.tsv", other_spec);
+  {
+    study::ResultStore store(dir, spec, true);
+    ASSERT_EQ(store.discarded().size(), 2u);
+    EXPECT_NE(store.discarded()[0].find("point 1"), std::string::npos);
+    EXPECT_NE(store.discarded()[0].find("incomplete"), std::string::npos) << store.discarded()[0];
+    EXPECT_NE(store.discarded()[1].find("another spec"), std::string::npos) << store.discarded()[1];
+    const study::SweepProgress p = study::run_sweep(spec, store, {});
+    EXPECT_EQ(p.done, 2u);
+    EXPECT_EQ(p.skipped, 1u);
+    store.assemble();
+  }
+  EXPECT_EQ(slurp(dir / "samples.tsv"), before);
+  // A sample row dropped from a file that still ends properly is caught by the count.
+  const std::string again = slurp(dir / "points" / "000000.tsv");
+  const auto row = again.find("\nsample\t") + 1;
+  rewrite("000000.tsv", again.substr(0, row) + again.substr(again.find('\n', row) + 1));
+  study::ResultStore store(dir, spec, true);
+  ASSERT_EQ(store.discarded().size(), 1u);
+  EXPECT_NE(store.discarded()[0].find("2 sample rows where its counters say 3"), std::string::npos) << store.discarded()[0];
+  fs::remove_all(dir);
+}
+
+// Issue 16, item 7: a result that cannot be written is an input/output error (exit 4 in
+// docs/study.md), not a refused request (3), and leaves no temporary file.
+TEST(Sweep, AnUnwritableResultIsAnIoError) {
+  const fs::path dir = scratch("unwritable");
+  EXPECT_THROW(study::write_atomically(dir / "missing" / "samples.tsv", "text"), study::StudyIoError);
+  fs::remove_all(dir);
+}
+
 TEST(Sweep, ContinuationStartsFromThePreviousFinalState) {
   study::SweepSpec spec = short_spec();
   spec.initial = study::InitialConditions::continuation;
@@ -170,8 +241,12 @@ TEST(Sweep, ContinuationStartsFromThePreviousFinalState) {
     store.assemble();
   }
   {
-    study::ResultStore store(b, spec, false);
-    study::run_sweep(spec, store, {});
+    {
+      // Closed before the resume, as a killed run's lock is released: two stores of one
+      // directory at once are refused (the lock of result_store.hpp).
+      study::ResultStore store(b, spec, false);
+      study::run_sweep(spec, store, {});
+    }
     fs::remove(b / "points" / "000002.tsv");
     study::ResultStore again(b, spec, true);
     EXPECT_EQ(study::run_sweep(spec, again, {}).done, 1u);
