@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -29,6 +30,7 @@ struct ZooArgs {
   std::size_t threads = 1;
   std::string output;
   bool quiet = false;
+  std::string series;  // write this case's series instead of running the suite
 };
 
 std::string num(const std::optional<double>& v, int digits = 4) {
@@ -74,8 +76,40 @@ struct Tally {
   }
 };
 
+// The exact series a case is analysed with (the N = 10^4 rows use its first 10^4 samples), so that
+// any row of docs/zoo.md can be reproduced with chaos d2, lyapunov or analyze.
+void write_case_series(const ZooArgs& args) {
+  ZooSuiteOptions options;
+  options.fast = args.fast;
+  options.only = {args.series};
+  options.threads = args.threads;
+  const std::vector<ZooCase> cases = zoo_cases(options);
+  if (cases.empty())
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "zoo: no case is named '" + args.series + "' (the names are the first column of docs/zoo.md)");
+  const ZooCase& c = cases.front();
+  const std::vector<double> x = c.series(c.length);
+  OutputOptions output;
+  output.path = args.output;
+  Report report("zoo", output);
+  report.parameter("case", c.name).parameter("kind", to_string(c.kind)).parameter("description", c.description)
+      .parameter("N", x.size()).parameter("dt", c.dt);
+  std::ostream& out = report.stream();
+  report.write_header(out);
+  out << "# x\n";
+  for (const double v : x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    out << buffer << "\n";
+  }
+}
+
 void run(const ZooArgs& args) {
   if (args.threads == 0) throw InvalidInput(ErrorCode::invalid_parameter, "zoo: --threads must be at least 1 (got 0)");
+  if (!args.series.empty()) {
+    write_case_series(args);
+    return;
+  }
   ZooSuiteOptions options;
   options.fast = args.fast;
   options.grid = !args.no_grid;
@@ -246,6 +280,8 @@ void register_zoo(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-o,--output", args->output, "write the Markdown report here (default: standard output)");
   command->add_flag("-q,--quiet", args->quiet, "no progress on standard error");
+  command->add_option("--series", args->series,
+                      "write the series of this case (full precision, one value per line) instead of running the suite");
   command->callback([args] { run(*args); });
 }
 

@@ -246,6 +246,12 @@ grep -q "Confident and wrong: \*\*0\*\*" "$work/zoo.md" && pass || fail "zoo.md 
 grep -q "^| random_walk | random_walk |.*not_run" "$work/zoo.md" && pass || fail "zoo: the random walk was analysed"
 expect_error 3 "no case matches --only" -- zoo --only no_such_case -q
 expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
+# zoo --series writes a case's exact series: the sine at a period of 317/3 samples has exactly 317
+# distinct values (control_signals.hpp: odd p, pure sine) in the full 10^5-sample record.
+"$CHAOS" zoo --series periodic_rational -o "$work/rational.dat" && pass || fail "zoo --series periodic_rational"
+[[ $(grep -vc '^#' "$work/rational.dat") == 100000 ]] && pass || fail "zoo --series: not 10^5 samples"
+[[ $(grep -v '^#' "$work/rational.dat" | sort -u | wc -l) == 317 ]] && pass || fail "zoo --series: not 317 distinct values"
+expect_error 3 "no case is named 'no_such_case'" -- zoo --series no_such_case
 
 # analyze on a random walk: non-stationary, said with advice, nothing estimated, exit 0.
 "$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"
