@@ -125,12 +125,11 @@ void run(D2Args& args) {
   args.sums.progress = [&bar](double fraction) { bar.update(fraction, "correlation sums"); };
   const CorrelationSumResult sums = correlation_sum(x, args.sums);
   CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
-  if (args.halves && d2.status == D2Status::saturated) {
-    // The same sums over each half of the record (same radii): the plateau must be reproduced.
-    const auto [first, second] = record_halves(x);
-    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(first, args.sums), args.dimension),
-                                 correlation_dimension(correlation_sum(second, args.sums), args.dimension),
-                                 args.dimension);
+  if (args.halves) {
+    // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
+    CorrelationSumOptions halves = args.sums;
+    halves.progress = nullptr;  // the bar has shown the full record's sums
+    check_record_halves(d2, x, halves, args.dimension);
   }
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
 

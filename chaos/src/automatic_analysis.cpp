@@ -35,18 +35,23 @@ std::pair<std::span<const double>, std::span<const double>> record_halves(std::s
 CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
                                                            bool check_halves) {
   CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, sums));
-  if (!check_halves || d2.status != D2Status::saturated) return d2;
+  if (check_halves) check_record_halves(d2, x, sums);
+  return d2;
+}
+
+void check_record_halves(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
+                         const CorrelationDimensionOptions& options) {
+  if (d2.status != D2Status::saturated) return;
   const auto [first, second] = record_halves(x);
   try {
-    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(first, sums)),
-                                 correlation_dimension(correlation_sum(second, sums)));
+    require_reproduced_by_halves(d2, correlation_dimension(correlation_sum(first, sums), options),
+                                 correlation_dimension(correlation_sum(second, sums), options), options);
   } catch (const InvalidInput& e) {
     // A half too short to embed in the highest dimension: the plateau cannot be reproduced.
     const CorrelationDimensionResult none;  // no_scaling_region
-    require_reproduced_by_halves(d2, none, none);
+    require_reproduced_by_halves(d2, none, none, options);
     d2.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
   }
-  return d2;
 }
 
 LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,

@@ -88,6 +88,7 @@ bool run_pipeline(const PipelineRequest& r) {
                      {"delay_seconds", a.delay ? nlohmann::json(static_cast<double>(*a.delay) * a.interval) : nlohmann::json(nullptr)},
                      {"delay_source", r.analysis.given_delay ? "given (--delay)" : "first mutual-information minimum"},
                      {"theiler_samples", a.theiler},
+                     {"theiler_source", a.theiler_source},
                      {"cao_dimension", opt(a.embedding_dimension)},
                      {"E1", a.E1},
                      {"E2", a.E2},

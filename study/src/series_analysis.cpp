@@ -4,11 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "chaos/autocorrelation.hpp"
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/cao.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/mutual_information.hpp"
+#include "chaos/time_scales.hpp"
 
 namespace study {
 
@@ -40,9 +41,11 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
       return r;
     }
     stage = "autocorrelation";
-    const std::size_t max_lag = std::max<std::size_t>(1, std::min<std::size_t>(x.size() / 4, 5000));
-    const auto decay = chaos::decorrelation_time(chaos::autocorrelation(x, max_lag));
-    r.theiler = std::max(*r.delay, decay ? static_cast<std::size_t>(std::ceil(*decay)) : max_lag);
+    // The library's window (time_scales.hpp), as chaos analyze and the zoo use it: the 1/e time or
+    // half the dominant oscillation period, the longer; here at least the delay too.
+    const chaos::TimeScales scales = chaos::time_scales(x);
+    r.theiler = std::max(*r.delay, scales.theiler);
+    r.theiler_source = *r.delay > scales.theiler ? "the delay, longer than " + scales.theiler_source : scales.theiler_source;
 
     stage = "Cao's method";
     chaos::CaoOptions cao;
@@ -65,7 +68,9 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
     const chaos::CorrelationSumResult sums = chaos::correlation_sum(x, cs);
     r.radius = sums.radius;
     r.correlation_sum = sums.correlation_sum;
-    const chaos::CorrelationDimensionResult d = chaos::correlation_dimension(sums);
+    chaos::CorrelationDimensionResult d = chaos::correlation_dimension(sums);
+    stage = "the halves check";
+    chaos::check_record_halves(d, x, cs);  // a saturated D2 must be reproduced by both halves
     r.d2_status = chaos::to_string(d.status);
     r.d2 = d.d2;
     if (d.d2_interval) {

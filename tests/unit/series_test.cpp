@@ -76,7 +76,9 @@ TEST(ReadSeries, HeaderRowByteOrderMarkAndColumnNames) {
   expect_refusal([&] { read("1\n2\n", missing); }, ErrorCode::parse, {"input.dat:1", "not a header"});
   expect_refusal([] { read("time,value\n"); }, ErrorCode::empty, {"only a header row"});
   // A line with a number on it is data, so a bad token there is still refused.
-  expect_refusal([] { read("1,three\n", ReadOptions{2}); }, ErrorCode::parse, {"'three' is not a number"});
+  ReadOptions second;
+  second.column = 2;
+  expect_refusal([&] { read("1,three\n", second); }, ErrorCode::parse, {"'three' is not a number"});
 }
 
 // A refused token is cut to 60 bytes (a 1 MB token was echoed whole) and a byte-order mark

@@ -68,6 +68,11 @@ CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> 
 // halves check on the same radii (the first and the second half of x).
 CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
                                                            bool check_halves = true);
+// The halves check for a D2 already computed from x with `sums` and `options`: when it saturated,
+// the same sums and rules over each half (require_reproduced_by_halves). A half too short to embed
+// counts as not reproducing the plateau, and the explanation says why.
+void check_record_halves(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
+                         const CorrelationDimensionOptions& options = {});
 // The two halves of a record, as the halves check splits it: [0, n/2) and [n/2, n).
 std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x);
 

@@ -3,10 +3,13 @@
 // chaos library's estimators and their honest "no answer" results:
 //   delay      the first minimum of the mutual information (Fraser & Swinney 1986), none if it
 //              has no minimum up to max_delay (then nothing below is computed);
-//   theiler    the autocorrelation's 1/e time (at least the delay), as `chaos analyze`;
+//   theiler    the longer of the autocorrelation's 1/e time and half the dominant oscillation
+//              period (chaos/time_scales.hpp), at least the delay, as `chaos analyze`;
 //   Cao        E1(m), E2(m) for m = 1..max_dimension (Cao 1997) and E1's saturation dimension;
 //   D2         correlation sums for m = 1..max_dimension with the automatic scaling region
-//              (chaos/correlation_dimension.hpp): saturated with its interval, or the reason not.
+//              (chaos/correlation_dimension.hpp): saturated with its interval, or the reason not;
+//              a saturated D2 must be reproduced by the record's two halves (check_record_halves),
+//              else its status is not_reproduced and no D2 is given.
 // A constant series (a slider resting on the guide) is reported as such, with no estimates.
 
 #include <cstddef>
@@ -36,11 +39,12 @@ struct SeriesAnalysis {
   double interval = 0.0;
   std::optional<std::size_t> delay;   // samples
   std::size_t theiler = 0;            // samples
+  std::string theiler_source;         // which time scale set it, in words
   std::vector<std::size_t> dimension; // Cao's m
   std::vector<double> E1, E2;
   std::optional<std::size_t> embedding_dimension;  // Cao's E1 saturation (none: not saturated or stochastic)
   double e2_deviation = 0.0;          // max |E2(m) - 1|: 0 for a stochastic series (Cao 1997)
-  std::string d2_status = "not computed";  // saturated | not_saturated | no_scaling_region
+  std::string d2_status = "not computed";  // chaos::D2Status as text (saturated, not_saturated, not_reproduced, ...)
   std::optional<double> d2, d2_low, d2_high;
   std::vector<std::optional<double>> d2_by_dimension;  // per m = 1..max_dimension
   // The curves behind the numbers (seed Fig. 7 b, d, e): I(delay) for delay 0..max_delay in nats,
