@@ -2,7 +2,8 @@
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
 // Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene,
-// 5 the integration could not continue (the summary says when and why).
+// 5 the integration could not continue, or reached the end with its energy balance too far off to
+// trust (status energy_defect; the summary says when and why).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -260,6 +261,10 @@ int main(int argc, char** argv) {
       } else {
         plot_trajectories(plot, scene, system.journal_names(), plot_path);
       }
+    }
+    if (s.status == mechanism::SimulationStatus::energy_defect) {
+      std::cerr << "mechanism: the run reached its end but is not to be trusted: " << s.message << "\n";
+      return integration_failed;
     }
     if (s.status != mechanism::SimulationStatus::completed) {
       std::cerr << "mechanism: the integration stopped: " << s.message << "\n";

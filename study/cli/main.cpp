@@ -4,8 +4,8 @@
 //   study pipeline [scene.toml] [--set k=v]... [--plot FILE]   (seed Fig. 7 for one scene)
 //   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
 // Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output,
-// 5 the sweep finished but some points' simulations did not complete (their status says why), or
-// the pipeline's simulation did not complete.
+// 5 the sweep finished but some points' simulations did not complete or ended energy_defect (their
+// status says why), or the pipeline's simulation did not.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
