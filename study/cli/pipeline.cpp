@@ -12,6 +12,7 @@
 #include "mechanism/simulate.hpp"
 #include "study/error.hpp"
 #include "study/grid.hpp"
+#include "study/sweep.hpp"
 
 namespace study::cli {
 
@@ -34,7 +35,7 @@ bool run_pipeline(const PipelineRequest& r) {
   if (r.analysis.periods == 0 || r.analysis.periods > r.periods)
     throw StudyError("--analysis-periods", std::to_string(r.analysis.periods),
                      "must be 1 .. --periods (" + std::to_string(r.periods) + ")");
-  if (!(r.analysis.interval > 0.0)) throw StudyError("--analysis-interval", exact(r.analysis.interval), "must be > 0 s");
+  validate_analysis(r.analysis);
   std::string text;
   if (!r.scene_file.empty()) {
     if (std::filesystem::is_directory(r.scene_file)) throw StudyError("scene", r.scene_file, "is a directory, not a scene file");

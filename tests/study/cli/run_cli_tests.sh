@@ -41,6 +41,21 @@ expect_code 3 "directory as scene" "$STUDY" sweep "$work" -o "$work/x"
 expect_message "is a directory, not a scene file" "directory as scene"
 expect_code 3 "max-delay 0" "$STUDY" sweep --analysis --max-delay 0 -o "$work/x"
 expect_message "max-delay = 0: must be at least 1 sample" "max-delay 0"
+# Issue 16, item 6: --max-dimension 1000 failed every point's analysis with exit 0; the range is
+# 2 .. 33 (study/sweep.hpp: Eckmann-Ruelle and Takens on the mechanism's 1e8-row limit), checked
+# before the run by sweep and pipeline alike.
+expect_code 3 "max-dimension 1000" "$STUDY" sweep --analysis --max-dimension 1000 -o "$work/x"
+expect_message "max-dimension = 1000: must be 2 .. 33" "max-dimension 1000"
+expect_code 3 "pipeline max-dimension 34" "$STUDY" pipeline --max-dimension 34
+expect_message "max-dimension = 34: must be 2 .. 33" "pipeline max-dimension 34"
+expect_code 3 "pipeline max-delay 0" "$STUDY" pipeline --max-delay 0
+expect_message "max-delay = 0: must be at least 1 sample" "pipeline max-delay 0"
+# ... and when the analysis fails at every point (here 2 samples per revolution over 1 revolution:
+# 3 samples, too short for any estimator) the sweep exits 5 (docs/study.md) and says so.
+expect_code 5 "every analysis failed" "$STUDY" sweep -q "${fast[@]}" --axis joint.slider.clearance=1e-4,2e-4 --periods 4 --keep 1 \
+  --analysis --analysis-periods 1 --analysis-samples-per-period 2 -o "$work/no_analysis"
+expect_message "the analysis failed at all 2 analysed points (the first: series too short: 3 samples)" "every analysis failed"
+[[ $(jq -r .analysis_failed "$work/out") == 2 ]] || fail "every analysis failed: the summary's analysis_failed is $(jq -r .analysis_failed "$work/out"), expected 2"
 # Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"

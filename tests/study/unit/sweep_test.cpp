@@ -276,6 +276,31 @@ TEST(Sweep, RefusesImpossibleSpecs) {
   EXPECT_THROW(spec.validate(), study::StudyError);
 }
 
+TEST(Sweep, AnalysisDimensionRange) {
+  // 2 .. 33: 2 log10(1e8 samples, the mechanism's row limit) = 16 is the largest dimension any
+  // analysed series resolves (Eckmann-Ruelle), 2 * 16 + 1 = 33 embeds it (Takens); issue 16's
+  // --max-dimension 1000 ran and failed every point's analysis.
+  EXPECT_EQ(study::largest_analysis_dimension(), 33u);
+  study::SweepSpec spec = short_spec();
+  spec.analyse = true;
+  spec.analysis.periods = 2;
+  for (const std::size_t m : {2, 12, 33}) {
+    spec.analysis.max_dimension = m;
+    EXPECT_NO_THROW(spec.validate()) << m;
+  }
+  for (const std::size_t m : {1, 34, 1000}) {
+    spec.analysis.max_dimension = m;
+    try {
+      spec.validate();
+      ADD_FAILURE() << "--max-dimension " << m << " accepted";
+    } catch (const study::StudyError& e) {
+      EXPECT_NE(std::string(e.what()).find("--max-dimension = " + std::to_string(m) + ": must be 2 .. 33"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Sweep, RefusesAStartStateOfTheWrongSize) {
   const study::SweepSpec spec = short_spec();
   const mechanism::State wrong = mechanism::State::Zero(3);
