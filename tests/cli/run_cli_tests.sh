@@ -358,6 +358,19 @@ expect_error 3 "-o .*data.dat is the input file" -- mutual "$work/data.dat" -o "
 expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "$work/data.dat"
 cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
 expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
+# Issue 16, item 7: an unwritable --plot failed only after the work. Every command with --plot
+# (d2, lyapunov, density) refuses it with -o's rules while reading the command line: exit 3 and
+# the message naming --plot and the path, before the series is read (a missing series file is not
+# what the message names).
+for cmd in d2 lyapunov; do
+  expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
+    "$cmd" "$work/henon.dat" --plot "$work/no_such_dir/p.png"
+  expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png" -- "$cmd" "$work/no_such_file.dat" --plot "$work/no_such_dir/p.png"
+done
+expect_error 3 "--plot .*/d2_dir.png is a directory" -- d2 "$work/henon.dat" --plot "$(mkdir -p "$work/d2_dir.png" && echo "$work/d2_dir.png")"
+cp "$work/pv.dat" "$work/pv.svg"
+expect_error 3 "--plot .*pv.svg is the input file" -- density "$work/pv.svg" --plot "$work/pv.svg"
+cmp -s "$work/pv.dat" "$work/pv.svg" && pass || fail "density --plot naming the input file changed the data"
 
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do

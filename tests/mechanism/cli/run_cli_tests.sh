@@ -90,6 +90,20 @@ expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --
 "$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
 grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
 
+# Issue 16, item 7: -o naming the input overwrote it, and an unwritable -o or --plot failed only
+# after the whole run. Both are refused while the command line is read (exit 3, README.md), with
+# the option and the path named; a run of 1e13 s would be refused too, so the message shows the
+# output was checked first.
+cp "$work/default.toml" "$work/scene.toml"
+expect 3 "-o .*scene.toml is the input file" -- simulate -q "$work/scene.toml" -o "$work/scene.toml"
+cmp -s "$work/default.toml" "$work/scene.toml" || fail "-o naming the scene file changed it"
+expect 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- simulate -q -o "$work/no_such_dir/out.tsv" \
+  --set run.duration=1e13
+expect 3 "-o $work is a directory" -- simulate -q -o "$work" --set run.duration=1e13
+expect 3 "--plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- simulate -q --json \
+  --plot "$work/no_such_dir/p.png" --set run.duration=1e13
+expect 3 "--plot: the file must end in .png or .svg" -- simulate -q --json --plot "$work/p.pdf" --set run.duration=1e13
+
 # Issue 16, item 7: a directory given as the scene ran the built-in scene; it is refused (exit 3).
 expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 
