@@ -252,6 +252,15 @@ expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
 
+# Issue 16, item 8: on the logistic map analyze took delay 17, a noise-floor minimum of the mutual
+# information, and called the series stochastic. A map decorrelates within one sample (its
+# autocorrelation is below 1/e at lag 1), so the delay is 1 (chaos/automatic_analysis.hpp), and
+# then the r = 4 map's known values come out: D2 = 1 (an absolutely continuous invariant density)
+# and lambda = ln 2 = 0.693 per sample (Ott, Chaos in Dynamical Systems, 2002), within 15% and 10%.
+"$CHAOS" generate logistic -l 10000 > "$work/logistic.dat"
+l=$("$CHAOS" analyze "$work/logistic.dat" --json | jq -c '[.delay, (.delay_source | test("lag 1")), .stochastic, .d2_status, (.d2 > 0.85 and .d2 < 1.15), (.lambda > 0.62 and .lambda < 0.76)]')
+[[ $l == '[1,true,false,"saturated",true,true]' ]] && pass || fail "analyze on the logistic map gave $l"
+
 # Issue 16, negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
 # autocorrelation, "internal error: vector::..." in d2, surrogates and analyze, 6.7 GB in density).
 # A value the option's type cannot hold is a usage error, exit 2 (docs/input.md), naming the option.
