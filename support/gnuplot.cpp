@@ -19,9 +19,9 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
-std::string plot_extension_refusal(const std::string& path) {
+std::string plot_extension_refusal(const std::string& path, const std::string& option) {
   if (ends_with(path, ".png") || ends_with(path, ".svg")) return {};
-  return "--plot: the file must end in .png or .svg (got '" + path + "')";
+  return option + ": the file must end in .png or .svg (got '" + path + "')";
 }
 
 void render(const std::string& script, const std::string& path) {

@@ -6,6 +6,8 @@
 
 #include <unistd.h>
 
+#include "gnuplot.hpp"
+
 namespace cli_support {
 
 std::string output_refusal(const std::string& option, const std::string& path, const std::string& input) {
@@ -21,6 +23,19 @@ std::string output_refusal(const std::string& option, const std::string& path, c
   if (::access(exists ? path.c_str() : parent.c_str(), exists ? W_OK : W_OK | X_OK) != 0)
     return named + ": cannot write " + (exists ? "the file" : "into " + parent.string()) + " (" + std::strerror(errno) + ")";
   return {};
+}
+
+void check_output_option(CLI::Option* option, const std::string& name, const CLI::Option* input, bool plot,
+                         std::function<void(const std::string& why, bool io)> refuse) {
+  option->check(CLI::Validator(
+      [=](std::string& path) {
+        if (plot)
+          if (const std::string why = plot_extension_refusal(path, name); !why.empty()) refuse(why, false);
+        const std::string in = input && input->count() > 0 ? input->results().front() : std::string();
+        if (const std::string why = output_refusal(name, path, in); !why.empty()) refuse(why, true);
+        return std::string();
+      },
+      "", plot ? "FILE.png|FILE.svg" : "FILE"));
 }
 
 }  // namespace cli_support

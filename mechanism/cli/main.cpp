@@ -40,18 +40,10 @@ struct OutputRefused : std::runtime_error {
 };
 
 // Refuses -o and --plot before the run (issue 16: -o naming the input overwrote it, and an
-// unwritable -o or --plot failed only after the whole simulation): the rules of output_path.hpp,
-// the scene file as the input, and for a plot the extension.
+// unwritable -o or --plot failed only after the whole simulation): output_path.hpp's rules, the
+// scene file as the input.
 void check_output(CLI::Option* option, const char* name, const CLI::Option* scene, bool plot) {
-  option->check(CLI::Validator(
-      [=](std::string& path) {
-        if (plot)
-          if (const std::string why = cli_support::plot_extension_refusal(path); !why.empty()) throw OutputRefused(why);
-        const std::string input = scene->count() > 0 ? scene->results().front() : std::string();
-        if (const std::string why = cli_support::output_refusal(name, path, input); !why.empty()) throw OutputRefused(why);
-        return std::string();
-      },
-      "", plot ? "FILE.png|FILE.svg" : "FILE"));
+  cli_support::check_output_option(option, name, scene, plot, [](const std::string& why, bool) { throw OutputRefused(why); });
 }
 
 struct SceneOptions {

@@ -100,6 +100,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (root) app.exit(e);
     return e.get_exit_code() == 0 ? ok : usage_error;
+  } catch (const study::StudyIoError& e) {  // an output file refused while parsing (outputs.hpp)
+    if (root) std::cerr << "study: " << e.what() << "\n";
+    return io_error;
+  } catch (const study::StudyError& e) {
+    if (root) std::cerr << "study: " << e.what() << "\n";
+    return invalid_request;
   }
   try {
     if (pipeline_cmd->parsed()) {

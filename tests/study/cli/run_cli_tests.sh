@@ -157,9 +157,19 @@ expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-p
 [[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
 [[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
 [[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+# Issue 16, item 7: an unwritable --plot, --series or plot -o failed only after the work; all are
+# refused while the command line is read, exit 4 (input/output, docs/study.md), the file named;
+# a plot that is not .png or .svg exits 3. The run of 10^12 periods would be refused too (exit 3),
+# so exit 4 shows the file was checked first.
+expect_code 4 "pipeline --plot into a missing directory" "$STUDY" pipeline --periods 1000000000000 --plot "$work/no_dir/fig7.png"
+expect_message "--plot .*/no_dir/fig7.png: the directory .*no_dir does not exist" "pipeline --plot into a missing directory"
+expect_code 3 "pipeline --plot not png or svg" "$STUDY" pipeline --periods 1000000000000 --plot "$work/fig7.pdf"
+expect_message "--plot: the file must end in .png or .svg" "pipeline --plot not png or svg"
+expect_code 4 "plot -o into a missing directory" "$STUDY" plot "$work/no_such_sweep" --figure bifurcation -o "$work/no_dir/b.png"
+expect_message "-o .*/no_dir/b.png: the directory .*no_dir does not exist" "plot -o into a missing directory"
 # Issue 16, item 7: an output that cannot be written exited 3; docs/study.md says 4 (input/output).
 expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
-expect_message "cannot be written" "unwritable --series"
+expect_message "--series .*/no_dir/series.tsv: the directory .*no_dir does not exist" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18
 [[ $(jq -r .analysis.delay_samples "$work/out") == 18 ]] || fail "--delay 18 not used"
 
