@@ -4,15 +4,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-
-#include <unistd.h>
 
 #include "chaos/autocorrelation.hpp"
 #include "chaos/error.hpp"
