@@ -19,6 +19,11 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+std::string plot_extension_refusal(const std::string& path, const std::string& option) {
+  if (ends_with(path, ".png") || ends_with(path, ".svg")) return {};
+  return option + ": the file must end in .png or .svg (got '" + path + "')";
+}
+
 void render(const std::string& script, const std::string& path) {
   std::string terminal;
   if (ends_with(path, ".png")) {
@@ -26,7 +31,7 @@ void render(const std::string& script, const std::string& path) {
   } else if (ends_with(path, ".svg")) {
     terminal = "svg size 1000,800 dynamic font 'sans,10'";
   } else {
-    throw PlotError(PlotError::Kind::bad_extension, "--plot: the file must end in .png or .svg (got '" + path + "')");
+    throw PlotError(PlotError::Kind::bad_extension, plot_extension_refusal(path));
   }
   const auto script_path = std::filesystem::temp_directory_path() /
                            ("plot-" + std::to_string(std::hash<std::string>{}(path + script)) + ".gp");

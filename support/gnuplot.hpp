@@ -19,6 +19,10 @@ class PlotError : public std::runtime_error {
   Kind kind_;
 };
 
+// Why `path` cannot be a plot (it ends neither in .png nor in .svg), or empty: for the commands
+// to refuse it before any work, with the message render would give.
+std::string plot_extension_refusal(const std::string& path, const std::string& option = "--plot");
+
 // Runs `script` (which must not set the terminal or output) into `path` (.png or .svg).
 void render(const std::string& script, const std::string& path);
 

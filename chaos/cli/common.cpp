@@ -4,19 +4,16 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-
-#include <unistd.h>
 
 #include "chaos/autocorrelation.hpp"
 #include "chaos/error.hpp"
 #include "chaos/norm.hpp"
+#include "gnuplot.hpp"
+#include "output_path.hpp"
 
 namespace chaos::cli {
 
@@ -64,24 +61,9 @@ Series load_series(const InputOptions& input) {
 
 namespace {
 
-// Why -o PATH must be refused before any work, or empty: PATH is the input file (writing the
-// result there would destroy the data), or it cannot be written. Checked without creating PATH.
-std::string output_refusal(const std::string& path, const CLI::Option* input) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (input && input->count() > 0) {
-    const std::string in = input->results().front();
-    if (in != "-" && (in == path || fs::equivalent(in, path, ec)))
-      return "-o " + path + " is the input file; writing the result there would overwrite the data";
-  }
-  if (fs::is_directory(path, ec)) return "-o " + path + " is a directory";
-  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  const bool exists = fs::exists(path, ec);
-  if (!exists && !fs::is_directory(parent, ec)) return "-o " + path + ": the directory " + parent.string() + " does not exist";
-  if (::access(exists ? path.c_str() : parent.c_str(), exists ? W_OK : W_OK | X_OK) != 0)
-    return "-o " + path + ": cannot write " + (exists ? "the file" : "into " + parent.string()) + " (" +
-           std::strerror(errno) + ")";
-  return {};
+// The command's input file, when it has one and it was given: -o and --plot must not name it.
+std::string input_path(const CLI::Option* input) {
+  return input && input->count() > 0 ? input->results().front() : std::string();
 }
 
 }  // namespace
@@ -95,11 +77,27 @@ void add_output_options(CLI::App& command, OutputOptions& output) {
   command.add_option("-o,--output", output.path, "write to this file instead of standard output")
       ->check(CLI::Validator(
           [input](std::string& path) {
-            if (const std::string why = output_refusal(path, input); !why.empty())
+            if (const std::string why = cli_support::output_refusal("-o", path, input_path(input)); !why.empty())
               throw InvalidInput(ErrorCode::io, why);
             return std::string();
           },
           "", "writable file"));
+}
+
+void add_plot_option(CLI::App& command, std::string& path, const std::string& description) {
+  // Checked while the command line is read, like -o (issue 16: an unwritable --plot failed only
+  // after the whole computation), and the extension with it.
+  const CLI::Option* input = command.get_option_no_throw("file");
+  command.add_option("--plot", path, description)
+      ->check(CLI::Validator(
+          [input](std::string& plot) {
+            if (const std::string why = cli_support::plot_extension_refusal(plot); !why.empty())
+              throw InvalidInput(ErrorCode::invalid_parameter, why);
+            if (const std::string why = cli_support::output_refusal("--plot", plot, input_path(input)); !why.empty())
+              throw InvalidInput(ErrorCode::io, why);
+            return std::string();
+          },
+          "", "FILE.png|FILE.svg"));
 }
 
 std::string number(double value) {

@@ -46,6 +46,9 @@ struct OutputOptions {
   std::string path;  // -o; empty: standard output
 };
 void add_output_options(CLI::App& command, OutputOptions& output);
+// Registers --plot FILE.png|FILE.svg, refused while the command line is read when the extension is
+// neither, or the file could not be written (output_path.hpp); register the input file first.
+void add_plot_option(CLI::App& command, std::string& path, const std::string& description);
 
 // Formats a double with enough digits to round-trip the estimate's meaningful precision.
 std::string number(double value);

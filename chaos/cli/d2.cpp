@@ -248,7 +248,7 @@ void register_d2(CLI::App& app) {
   command->add_flag("-q,--quiet", args->quiet, "no progress line and no long-run hint on standard error");
   command->add_flag("--halves", args->halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
-  command->add_option("--plot", args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");
+  add_plot_option(*command, args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

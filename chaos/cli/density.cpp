@@ -153,7 +153,7 @@ void register_density(CLI::App& app) {
   command->add_option("--low", a->low, "lower end of the common range (with --high)");
   command->add_option("--high", a->high, "upper end of the common range (with --low)");
   command->add_option("--padding", a->padding, "without a range: fraction of the pooled span added on each side")->capture_default_str();
-  command->add_option("--plot", a->plot, "draw the map as a colour map to FILE.png or FILE.svg");
+  add_plot_option(*command, a->plot, "draw the map as a colour map to FILE.png or FILE.svg");
   add_output_options(*command, a->output);
   command->callback([a] { run(*a); });
 }

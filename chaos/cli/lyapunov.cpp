@@ -246,7 +246,7 @@ void register_lyapunov(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-rise", args->fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
-  command->add_option("--plot", args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
+  add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

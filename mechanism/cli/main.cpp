@@ -1,8 +1,9 @@
 // The `mechanism` command: the slider-crank simulator from a scene file.
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
-// Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene,
-// 5 the integration could not continue (the summary says when and why).
+// Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file,
+// 5 the integration could not continue, or reached the end with its energy balance too far off to
+// trust (status energy_defect; the summary says when and why).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -16,11 +17,13 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include <unistd.h>
 
 #include "gnuplot.hpp"
 #include "option_checks.hpp"
+#include "output_path.hpp"
 #include "progress_bar.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
@@ -30,6 +33,18 @@
 namespace {
 
 enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_scene = 3, integration_failed = 5 };
+
+// An output file refused while the command line is read (exit 3, as a scene refused).
+struct OutputRefused : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Refuses -o and --plot before the run (issue 16: -o naming the input overwrote it, and an
+// unwritable -o or --plot failed only after the whole simulation): output_path.hpp's rules, the
+// scene file as the input.
+void check_output(CLI::Option* option, const char* name, const CLI::Option* scene, bool plot) {
+  cli_support::check_output_option(option, name, scene, plot, [](const std::string& why, bool) { throw OutputRefused(why); });
+}
 
 struct SceneOptions {
   std::string file;
@@ -142,11 +157,13 @@ int main(int argc, char** argv) {
   add_scene_options(*sim, sim_opts);
   sim->add_flag("--stroboscopic", strobe, "write one row per crank revolution (with a revolution column) instead of the time series");
   sim->add_option("--signals", signals, "comma-separated columns to write (default: all; see docs/mechanism/simulate.md)");
-  sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)");
+  check_output(sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)"), "-o",
+               sim->get_option("scene"), false);
   sim->add_flag("--json", json, "write a JSON summary to standard output (the table then goes only to -o FILE)");
   sim->add_flag("-q,--quiet", sim_opts.quiet, "no progress bar and no warnings about the scene");
-  sim->add_option("--plot", plot_path,
-                  "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg");
+  check_output(sim->add_option("--plot", plot_path,
+                               "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg"),
+               "--plot", sim->get_option("scene"), true);
   cli_support::check_numeric_options(app);
   cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
@@ -261,6 +278,10 @@ int main(int argc, char** argv) {
         plot_trajectories(plot, scene, system.journal_names(), plot_path);
       }
     }
+    if (s.status == mechanism::SimulationStatus::energy_defect) {
+      std::cerr << "mechanism: the run reached its end but is not to be trusted: " << s.message << "\n";
+      return integration_failed;
+    }
     if (s.status != mechanism::SimulationStatus::completed) {
       std::cerr << "mechanism: the integration stopped: " << s.message << "\n";
       return integration_failed;
@@ -277,6 +298,9 @@ int main(int argc, char** argv) {
     return usage_error;
   } catch (const mechanism::InvalidParameter& e) {
     std::cerr << "mechanism: invalid scene: " << e.what() << "\n";
+    return invalid_scene;
+  } catch (const OutputRefused& e) {
+    std::cerr << "mechanism: " << e.what() << "\n";
     return invalid_scene;
   } catch (const std::exception& e) {
     std::cerr << "mechanism: internal error: " << e.what() << "\n";

@@ -19,6 +19,7 @@ const char* to_string(SimulationStatus status) noexcept {
     case SimulationStatus::step_underflow: return "step_underflow";
     case SimulationStatus::non_finite: return "non_finite";
     case SimulationStatus::step_limit: return "step_limit";
+    case SimulationStatus::energy_defect: return "energy_defect";
   }
   return "unknown";
 }
@@ -172,6 +173,22 @@ std::string at_time(const char* what, double t) {
   return os.str();
 }
 
+// A run that reached its end with an energy balance too far off to trust (simulate.hpp).
+void check_energy_balance(SimulationSummary& sum, double period) {
+  if (sum.status != SimulationStatus::completed) return;
+  const double revolutions = sum.end_time / period;
+  const double rate = sum.energy_balance_relative / std::max(1.0, revolutions);
+  if (!(rate > max_energy_defect_per_revolution)) return;
+  std::ostringstream os;
+  os.precision(3);
+  os << "the energy balance is off by " << sum.energy_balance_relative << " of the largest kinetic energy over "
+     << revolutions << " crank revolutions (" << rate << " per revolution, above the limit "
+     << max_energy_defect_per_revolution
+     << "): the integration does not resolve this run (docs/mechanism/model.md, \"The energy balance\")";
+  sum.status = SimulationStatus::energy_defect;
+  sum.message = os.str();
+}
+
 }  // namespace
 
 SimulationSummary simulate(SliderCrank& system, const SimulationObserver& observer) {
@@ -209,7 +226,9 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     sum.step = h;
     loop.start(x);
     const double t_end = loop.end_time();
-    // Step k ends at k h exactly (no accumulated round-off); the last step may be shorter.
+    // Step k ends at k h exactly (no accumulated round-off); the last step may be shorter, and
+    // ends on t_end itself: total h can round below it (2 T + T at 5000 rpm is 0.036000000000000004
+    // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution (issue 16).
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {
@@ -218,7 +237,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
         break;
       }
       const double t0 = t;
-      const double t1 = std::min(static_cast<double>(k) * h, t_end);
+      const double t1 = k == total ? t_end : std::min(static_cast<double>(k) * h, t_end);
       stepper.step(system, t, x, t1 - t0);
       t = t1;
       if (!x.allFinite()) {
@@ -284,6 +303,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
   }
   sum.end_time = t;
   sum.final_state = x;
+  check_energy_balance(sum, scene.driver.period());
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return sum;
 }

@@ -4,8 +4,9 @@
 //   study pipeline [scene.toml] [--set k=v]... [--plot FILE]   (seed Fig. 7 for one scene)
 //   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
 // Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output,
-// 5 the sweep finished but some points' simulations did not complete (their status says why), or
-// the pipeline's simulation did not complete.
+// 5 the sweep finished but some points' simulations did not complete or ended energy_defect (their
+// status says why), or the analysis failed at every analysed point, or the pipeline's simulation
+// did not complete.
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -16,7 +17,9 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -97,6 +100,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (root) app.exit(e);
     return e.get_exit_code() == 0 ? ok : usage_error;
+  } catch (const study::StudyIoError& e) {  // an output file refused while parsing (outputs.hpp)
+    if (root) std::cerr << "study: " << e.what() << "\n";
+    return io_error;
+  } catch (const study::StudyError& e) {
+    if (root) std::cerr << "study: " << e.what() << "\n";
+    return invalid_request;
   }
   try {
     if (pipeline_cmd->parsed()) {
@@ -171,29 +180,54 @@ int main(int argc, char** argv) {
     if (!root) return ok;
     store->assemble();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    // Failed points counted from the assembled table, so every rank's failures are included.
-    std::size_t failed = 0;
-    {
-      std::ifstream in(store->dir() / "points.tsv");
+    // Failed points counted from the assembled tables, so every rank's failures are included.
+    const auto statuses = [&](const char* table) {
+      std::vector<std::string> out;
+      std::ifstream in(store->dir() / table);
       const std::size_t status_column = 1 + spec.grid.axes().size();
       for (std::string line; std::getline(in, line);) {
         if (line.empty() || line[0] == '#') continue;
         std::istringstream f(line);
         std::string field;
         for (std::size_t k = 0; k <= status_column; ++k) std::getline(f, field, '\t');
-        if (field != "completed") ++failed;
+        out.push_back(field);
       }
-    }
+      return out;
+    };
+    std::size_t failed = 0;
+    for (const std::string& s : statuses("points.tsv")) failed += s != "completed";
+    // An analysis failed where the estimators refused the series or the options ("stopped at",
+    // "series too short"); a constant series or one without a mutual-information minimum is an
+    // answer about the data, and a point not analysed is counted among the failed simulations.
+    std::size_t analysed = 0, analysis_failed = 0;
+    std::string first_failure;
+    if (spec.analyse)
+      for (const std::string& s : statuses("analysis.tsv")) {
+        if (s.rfind("not analysed", 0) == 0) continue;
+        ++analysed;
+        if (s.rfind("stopped at", 0) == 0 || s.rfind("series too short", 0) == 0) {
+          ++analysis_failed;
+          if (first_failure.empty()) first_failure = s;
+        }
+      }
     nlohmann::json summary = {{"directory", store->dir().string()},
                               {"points", spec.grid.size()},
                               {"computed", computed},
                               {"resumed_from_disk", resumed},
                               {"failed", failed},
+                              {"analysis_failed", analysis_failed},
                               {"threads", exec.threads},
                               {"ranks", mpi.size()},
                               {"wall_seconds", wall}};
     std::cout << summary.dump(2) << "\n";
-    return failed ? points_failed : ok;
+    // Every analysis failing says the options do not fit the series (issue 16: exit 0 with no
+    // analysis at all); some failing is a per-point answer that analysis.tsv gives.
+    const bool no_analysis = analysed > 0 && analysis_failed == analysed;
+    if (no_analysis)
+      std::cerr << "study: the analysis failed at all " << analysed << " analysed points (the first: " << first_failure
+                << "); --max-delay, --max-dimension and the analysed series (--analysis-periods, "
+                   "--analysis-interval) decide what it needs\n";
+    return failed || no_analysis ? points_failed : ok;
   } catch (const study::StudyIoError& e) {
     std::cerr << "study: " << e.what() << "\n";
     return io_error;

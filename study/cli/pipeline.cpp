@@ -9,9 +9,11 @@
 #include <sstream>
 
 #include "gnuplot.hpp"
+#include "outputs.hpp"
 #include "mechanism/simulate.hpp"
 #include "study/error.hpp"
 #include "study/grid.hpp"
+#include "study/sweep.hpp"
 
 namespace study::cli {
 
@@ -26,15 +28,19 @@ void add_pipeline_options(CLI::App& cmd, PipelineRequest& r) {
   cmd.add_option("--max-delay", r.analysis.max_delay, "largest mutual-information delay searched, samples");
   cmd.add_option("--max-dimension", r.analysis.max_dimension, "Cao and D2 up to this embedding dimension (the seed: 12)");
   cmd.add_option("--delay", r.analysis.given_delay, "use this delay (samples) instead of the mutual-information minimum");
-  cmd.add_option("--plot", r.plot, "draw the six panels of the seed's Fig. 7 to FILE.png or FILE.svg");
-  cmd.add_option("--series", r.series_output, "also write t, slider_y, slider_vy of the analysed revolutions to FILE");
+  // Both refused before the run when they cannot be written (issue 16), as study plot's -o.
+  const CLI::Option* scene = cmd.get_option("scene");
+  check_output(cmd.add_option("--plot", r.plot, "draw the six panels of the seed's Fig. 7 to FILE.png or FILE.svg"), "--plot",
+               scene, true);
+  check_output(cmd.add_option("--series", r.series_output, "also write t, slider_y, slider_vy of the analysed revolutions to FILE"),
+               "--series", scene, false);
 }
 
 bool run_pipeline(const PipelineRequest& r) {
   if (r.analysis.periods == 0 || r.analysis.periods > r.periods)
     throw StudyError("--analysis-periods", std::to_string(r.analysis.periods),
                      "must be 1 .. --periods (" + std::to_string(r.periods) + ")");
-  if (!(r.analysis.interval > 0.0)) throw StudyError("--analysis-interval", exact(r.analysis.interval), "must be > 0 s");
+  validate_analysis(r.analysis);
   std::string text;
   if (!r.scene_file.empty()) {
     if (std::filesystem::is_directory(r.scene_file)) throw StudyError("scene", r.scene_file, "is a directory, not a scene file");

@@ -9,6 +9,7 @@
 
 #include "chaos/poincare.hpp"
 #include "gnuplot.hpp"
+#include "outputs.hpp"
 #include "study/error.hpp"
 
 namespace study::cli {
@@ -98,7 +99,7 @@ void add_plot_options(CLI::App& cmd, PlotRequest& r) {
   cmd.add_option("--figure", r.figure, "bifurcation, density, portrait, d2, e2 or d2map")
       ->required()
       ->check(CLI::IsMember({"bifurcation", "density", "portrait", "d2", "e2", "d2map"}));
-  cmd.add_option("-o,--output", r.output, "FILE.png or FILE.svg")->required();
+  check_output(cmd.add_option("-o,--output", r.output, "FILE.png or FILE.svg")->required(), "-o", nullptr, true);
   cmd.add_option("--signal", r.signal, "the sampled signal plotted (bifurcation, density; portrait's horizontal axis)");
   cmd.add_option("--signal2", r.signal2, "portrait's vertical axis");
   cmd.add_option("--last", r.last, "bifurcation: the last N kept revolutions of each point (the seed: 50)");

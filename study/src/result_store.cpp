@@ -256,6 +256,8 @@ std::optional<std::vector<double>> ResultStore::final_state(std::size_t point) c
   std::istringstream in(read_file(point_path(point)));
   for (std::string line; std::getline(in, line);) {
     const auto f = split_tabs(line);
+    if (f[0] == "status" && (f.size() < 2 || f[1] != mechanism::to_string(mechanism::SimulationStatus::completed)))
+      return std::nullopt;
     if (f[0] != "final_state") continue;
     std::vector<double> x;
     for (std::size_t i = 1; i < f.size(); ++i) x.push_back(std::stod(f[i]));

@@ -1,6 +1,7 @@
 #include "study/sweep.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "mechanism/error.hpp"
@@ -44,6 +45,26 @@ mechanism::Scene point_run_scene(const SweepSpec& spec, std::size_t point) {
   return scene;
 }
 
+std::size_t largest_analysis_dimension() {
+  const double d = std::floor(2.0 * std::log10(mechanism::max_output_rows));
+  return static_cast<std::size_t>(2.0 * d + 1.0);
+}
+
+void validate_analysis(const AnalysisOptions& analysis) {
+  if (!(analysis.interval > 0.0))
+    throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
+  if (analysis.samples_per_period == 1)
+    throw StudyError("--analysis-samples-per-period", "1", "must be 0 (use --analysis-interval) or at least 2");
+  if (analysis.max_delay < 1 && analysis.given_delay == 0)
+    throw StudyError("--max-delay", "0", "must be at least 1 sample (the mutual-information minimum is searched from 1)");
+  if (analysis.max_dimension < 2 || analysis.max_dimension > largest_analysis_dimension())
+    throw StudyError("--max-dimension", std::to_string(analysis.max_dimension),
+                     "must be 2 .. " + std::to_string(largest_analysis_dimension()) +
+                         ": no series a sweep analyses (at most " + exact(mechanism::max_output_rows) +
+                         " samples) resolves a dimension D above Eckmann-Ruelle's 2 log10 N, and Takens' 2 D + 1 "
+                         "embeds any it does");
+}
+
 void SweepSpec::validate() const {
   if (periods == 0) throw StudyError("--periods", "0", "a point runs at least one revolution");
   if (keep == 0 || keep > periods)
@@ -52,14 +73,7 @@ void SweepSpec::validate() const {
     if (analysis.periods == 0 || analysis.periods > periods)
       throw StudyError("--analysis-periods", std::to_string(analysis.periods),
                        "must be 1 .. --periods (" + std::to_string(periods) + ")");
-    if (!(analysis.interval > 0.0))
-      throw StudyError("--analysis-interval", exact(analysis.interval), "must be > 0 s");
-    if (analysis.samples_per_period == 1)
-      throw StudyError("--analysis-samples-per-period", "1", "must be 0 (use --analysis-interval) or at least 2");
-    if (analysis.max_delay < 1 && analysis.given_delay == 0)
-      throw StudyError("--max-delay", "0", "must be at least 1 sample (the mutual-information minimum is searched from 1)");
-    if (analysis.max_dimension < 2)
-      throw StudyError("--max-dimension", std::to_string(analysis.max_dimension), "must be at least 2");
+    validate_analysis(analysis);
   }
   if (signals.empty()) throw StudyError("--signals", "(none)", "name at least one signal");
   // Every point's scene must be valid (an axis may run into a refused value, e.g. clearance 0) and

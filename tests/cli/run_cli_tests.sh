@@ -258,6 +258,15 @@ expect_error 3 "no case is named 'no_such_case'" -- zoo --series no_such_case
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
 
+# Issue 16, item 8: on the logistic map analyze took delay 17, a noise-floor minimum of the mutual
+# information, and called the series stochastic. A map decorrelates within one sample (its
+# autocorrelation is below 1/e at lag 1), so the delay is 1 (chaos/automatic_analysis.hpp), and
+# then the r = 4 map's known values come out: D2 = 1 (an absolutely continuous invariant density)
+# and lambda = ln 2 = 0.693 per sample (Ott, Chaos in Dynamical Systems, 2002), within 15% and 10%.
+"$CHAOS" generate logistic -l 10000 > "$work/logistic.dat"
+l=$("$CHAOS" analyze "$work/logistic.dat" --json | jq -c '[.delay, (.delay_source | test("lag 1")), .stochastic, .d2_status, (.d2 > 0.85 and .d2 < 1.15), (.lambda > 0.62 and .lambda < 0.76)]')
+[[ $l == '[1,true,false,"saturated",true,true]' ]] && pass || fail "analyze on the logistic map gave $l"
+
 # Issue 16, negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
 # autocorrelation, "internal error: vector::..." in d2, surrogates and analyze, 6.7 GB in density).
 # A value the option's type cannot hold is a usage error, exit 2 (docs/input.md), naming the option.
@@ -364,6 +373,19 @@ expect_error 3 "-o .*data.dat is the input file" -- mutual "$work/data.dat" -o "
 expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "$work/data.dat"
 cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
 expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
+# Issue 16, item 7: an unwritable --plot failed only after the work. Every command with --plot
+# (d2, lyapunov, density) refuses it with -o's rules while reading the command line: exit 3 and
+# the message naming --plot and the path, before the series is read (a missing series file is not
+# what the message names).
+for cmd in d2 lyapunov; do
+  expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
+    "$cmd" "$work/henon.dat" --plot "$work/no_such_dir/p.png"
+  expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png" -- "$cmd" "$work/no_such_file.dat" --plot "$work/no_such_dir/p.png"
+done
+expect_error 3 "--plot .*/d2_dir.png is a directory" -- d2 "$work/henon.dat" --plot "$(mkdir -p "$work/d2_dir.png" && echo "$work/d2_dir.png")"
+cp "$work/pv.dat" "$work/pv.svg"
+expect_error 3 "--plot .*pv.svg is the input file" -- density "$work/pv.svg" --plot "$work/pv.svg"
+cmp -s "$work/pv.dat" "$work/pv.svg" && pass || fail "density --plot naming the input file changed the data"
 
 # Every command has --help.
 for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum surrogates nonlinearity section density validate zoo; do

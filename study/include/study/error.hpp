@@ -12,6 +12,8 @@ class StudyError : public std::invalid_argument {
  public:
   StudyError(const std::string& what, const std::string& value, const std::string& rule)
       : std::invalid_argument(what + " = " + value + ": " + rule) {}
+  // A message that names the option and the value itself (cli_support's output checks).
+  explicit StudyError(const std::string& message) : std::invalid_argument(message) {}
 };
 
 class StudyIoError : public StudyError {

@@ -39,7 +39,9 @@ class ResultStore {
 
   const std::filesystem::path& dir() const { return dir_; }
   bool finished(std::size_t point) const;
-  // The final state stored with a finished point (for continuation chains that resume mid-way).
+  // The final state stored with a finished point (for continuation chains that resume mid-way);
+  // none when its simulation did not complete (or ended energy_defect), since a live chain does not
+  // continue from such a point either, and the resumed sweep must equal the uninterrupted one.
   std::optional<std::vector<double>> final_state(std::size_t point) const;
   // Writes the point's file atomically. Thread-safe for different points.
   void write(const PointResult& result) const;

@@ -17,7 +17,7 @@ struct SweepProgress {
   std::size_t done = 0;       // points finished by this process (this run)
   std::size_t to_do = 0;      // points this process had to run
   std::size_t skipped = 0;    // points already finished before this run (resume)
-  std::size_t failed = 0;     // points whose simulation did not complete (still written)
+  std::size_t failed = 0;     // points whose simulation did not complete or ended energy_defect (still written)
 };
 
 struct SweepExecution {

@@ -67,6 +67,13 @@ expect 5 "no plot: the run wrote no samples" -- simulate -q -o /dev/null --set i
   --set run.transient=0.001 --set run.duration=0.001 --plot "$work/none.png"
 [[ ! -e $work/none.png ]] || fail "a run with no samples still drew $work/none.png"
 
+# Issue 16, item 6: 1e-6 m clearance at 50 rpm on the scene as printed reported "completed" with
+# energy_balance_relative 0.53 (3 revolutions). Half a revolution measures 0.075, above the limit of
+# 0.03 per revolution (mechanism/simulate.hpp): status energy_defect, exit 5, the numbers named.
+expect 5 "above the limit 0.03" -- simulate -q --json --set joint.slider.clearance=1e-6 --set driver.speed_rpm=50 \
+  --set run.duration=0.6 --set run.output_interval=0
+[[ $(jq -r .status "$work/out") == energy_defect ]] || fail "the issue's case has status $(jq -r .status "$work/out"), expected energy_defect"
+
 # Issue 16, item 5: runs that did nothing or never ended. A duration of 1.9e13 s wrapped the RK4
 # step count to 0 and "completed"; an output interval of 1e-300 s wrote rows until the disk was
 # full. Both are refused before the run (exit 3, README.md) with the numbers and the limit
@@ -82,6 +89,20 @@ expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --
 # KEY=VALUE"). Each --set takes one value; the file is the scene, the override applies.
 "$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
 grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
+
+# Issue 16, item 7: -o naming the input overwrote it, and an unwritable -o or --plot failed only
+# after the whole run. Both are refused while the command line is read (exit 3, README.md), with
+# the option and the path named; a run of 1e13 s would be refused too, so the message shows the
+# output was checked first.
+cp "$work/default.toml" "$work/scene.toml"
+expect 3 "-o .*scene.toml is the input file" -- simulate -q "$work/scene.toml" -o "$work/scene.toml"
+cmp -s "$work/default.toml" "$work/scene.toml" || fail "-o naming the scene file changed it"
+expect 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- simulate -q -o "$work/no_such_dir/out.tsv" \
+  --set run.duration=1e13
+expect 3 "-o $work is a directory" -- simulate -q -o "$work" --set run.duration=1e13
+expect 3 "--plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- simulate -q --json \
+  --plot "$work/no_such_dir/p.png" --set run.duration=1e13
+expect 3 "--plot: the file must end in .png or .svg" -- simulate -q --json --plot "$work/p.pdf" --set run.duration=1e13
 
 # Issue 16, item 7: a directory given as the scene ran the built-in scene; it is refused (exit 3).
 expect 3 "is a directory, not a scene file" -- simulate -q "$work"

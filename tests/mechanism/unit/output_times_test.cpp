@@ -34,3 +34,27 @@ TEST(OutputTimes, RevolutionJustAfterAStepEndIsWritten) {
 }
 
 }  // namespace
+
+// Found by issue 16's sweep at --periods 3 --keep 1: at 5000 rpm (T = 0.012 s) a transient of
+// 2 T plus a duration of T sum to 0.036000000000000004 s, while RK4's last step ended at
+// 36000 h = 0.036 s, just short of it: the run stopped there and the last revolution (t = 3 T,
+// the only one kept) was never written. Expected: the run ends at its end time and writes
+// revolutions 2 and 3 (the transient's end and the run's), as the definition says.
+TEST(OutputTimes, Rk4LastStepLandsOnTheEnd) {
+  mechanism::Scene scene = mechanism::read_scene("", {});
+  const double period = scene.driver.period();
+  scene.run.transient = 2 * period;
+  scene.run.duration = 1 * period;
+  scene.run.output_interval = 0;
+  scene.run.stroboscopic = true;
+  ASSERT_GT(scene.run.transient + scene.run.duration, 36000.0 * (period / 12000.0));  // the rounding above
+  mechanism::SliderCrank system(scene);
+  std::vector<std::size_t> revolutions;
+  mechanism::SimulationObserver observer;
+  observer.stroboscopic = [&](std::size_t rev, double, const mechanism::State&, const mechanism::Evaluation&) {
+    revolutions.push_back(rev);
+  };
+  const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
+  EXPECT_EQ(s.end_time, scene.run.transient + scene.run.duration);
+  EXPECT_EQ(revolutions, (std::vector<std::size_t>{2, 3}));
+}

@@ -41,6 +41,21 @@ expect_code 3 "directory as scene" "$STUDY" sweep "$work" -o "$work/x"
 expect_message "is a directory, not a scene file" "directory as scene"
 expect_code 3 "max-delay 0" "$STUDY" sweep --analysis --max-delay 0 -o "$work/x"
 expect_message "max-delay = 0: must be at least 1 sample" "max-delay 0"
+# Issue 16, item 6: --max-dimension 1000 failed every point's analysis with exit 0; the range is
+# 2 .. 33 (study/sweep.hpp: Eckmann-Ruelle and Takens on the mechanism's 1e8-row limit), checked
+# before the run by sweep and pipeline alike.
+expect_code 3 "max-dimension 1000" "$STUDY" sweep --analysis --max-dimension 1000 -o "$work/x"
+expect_message "max-dimension = 1000: must be 2 .. 33" "max-dimension 1000"
+expect_code 3 "pipeline max-dimension 34" "$STUDY" pipeline --max-dimension 34
+expect_message "max-dimension = 34: must be 2 .. 33" "pipeline max-dimension 34"
+expect_code 3 "pipeline max-delay 0" "$STUDY" pipeline --max-delay 0
+expect_message "max-delay = 0: must be at least 1 sample" "pipeline max-delay 0"
+# ... and when the analysis fails at every point (here 2 samples per revolution over 1 revolution:
+# 3 samples, too short for any estimator) the sweep exits 5 (docs/study.md) and says so.
+expect_code 5 "every analysis failed" "$STUDY" sweep -q "${fast[@]}" --axis joint.slider.clearance=1e-4,2e-4 --periods 4 --keep 1 \
+  --analysis --analysis-periods 1 --analysis-samples-per-period 2 -o "$work/no_analysis"
+expect_message "the analysis failed at all 2 analysed points (the first: series too short: 3 samples)" "every analysis failed"
+[[ $(jq -r .analysis_failed "$work/out") == 2 ]] || fail "every analysis failed: the summary's analysis_failed is $(jq -r .analysis_failed "$work/out"), expected 2"
 # Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
@@ -48,6 +63,16 @@ expect_message "'-1' is negative" "negative periods"
 expect_code 3 "periods beyond any run" "$STUDY" sweep --periods 9223372036854775808 --keep 3 -o "$work/x"
 expect_message "point 0's run is too large" "periods beyond any run"
 [[ ! -e "$work/x/points" ]] || fail "a refused sweep left a result directory"
+
+# Issue 16, item 6: at 1e-6 m clearance and 50 rpm (the scene as printed) energy_balance_relative
+# was 0.53 with status "completed" and 0 failed points. One revolution measures 0.18, above the
+# limit of 0.03 per revolution (mechanism/simulate.hpp): the point is energy_defect, counted as
+# failed, exit 5 (docs/study.md); the 5000 rpm point of the same sweep (0.004) stays completed.
+expect_code 5 "energy defect" "$STUDY" sweep -q --threads 1 --set joint.slider.clearance=1e-6 --axis driver.speed_rpm=50,5000 \
+  --periods 1 --keep 1 -o "$work/energy"
+[[ $(jq -r .failed "$work/out") == 1 ]] || fail "energy defect: the summary counts $(jq -r .failed "$work/out") failed points, expected 1"
+statuses=$(grep -v '^#' "$work/energy/points.tsv" | cut -f3 | tr '\n' ' ')
+[[ $statuses == "energy_defect completed " ]] || fail "energy defect: points.tsv statuses are '$statuses'"
 
 # A small sweep: four points, the files of docs/study.md, the kept revolutions.
 expect_code 0 "small sweep" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/a" -q --threads 2
@@ -132,9 +157,19 @@ expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-p
 [[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
 [[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
 [[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+# Issue 16, item 7: an unwritable --plot, --series or plot -o failed only after the work; all are
+# refused while the command line is read, exit 4 (input/output, docs/study.md), the file named;
+# a plot that is not .png or .svg exits 3. The run of 10^12 periods would be refused too (exit 3),
+# so exit 4 shows the file was checked first.
+expect_code 4 "pipeline --plot into a missing directory" "$STUDY" pipeline --periods 1000000000000 --plot "$work/no_dir/fig7.png"
+expect_message "--plot .*/no_dir/fig7.png: the directory .*no_dir does not exist" "pipeline --plot into a missing directory"
+expect_code 3 "pipeline --plot not png or svg" "$STUDY" pipeline --periods 1000000000000 --plot "$work/fig7.pdf"
+expect_message "--plot: the file must end in .png or .svg" "pipeline --plot not png or svg"
+expect_code 4 "plot -o into a missing directory" "$STUDY" plot "$work/no_such_sweep" --figure bifurcation -o "$work/no_dir/b.png"
+expect_message "-o .*/no_dir/b.png: the directory .*no_dir does not exist" "plot -o into a missing directory"
 # Issue 16, item 7: an output that cannot be written exited 3; docs/study.md says 4 (input/output).
 expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
-expect_message "cannot be written" "unwritable --series"
+expect_message "--series .*/no_dir/series.tsv: the directory .*no_dir does not exist" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18
 [[ $(jq -r .analysis.delay_samples "$work/out") == 18 ]] || fail "--delay 18 not used"
 

@@ -2,6 +2,8 @@
 // literature's 2.05 (references/references.tsv) with a plausible delay and embedding dimension;
 // on a constant series and on one too short it says why there is no answer instead of returning
 // numbers.
+// Issue 16, item 6: a periodic steady state (5 revolutions of a period-1 motion, sampled a whole
+// number of times per revolution, as a sweep samples it) was reported D2 = -3.9e-30 "saturated".
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,6 +82,34 @@ TEST(SeriesAnalysis, TooShortSaysWhere) {
   const study::SeriesAnalysis a = study::analyse_series(x, 1.0, {});
   EXPECT_NE(a.status, "ok");
   EXPECT_FALSE(a.d2.has_value());
+}
+
+TEST(SeriesAnalysis, PeriodicSeriesHasNoConfidentZeroDimension) {
+  // A sine of exactly P samples per period over 6000 samples (a sweep's default series length):
+  // the embedded points are P distinct points met again every period, so below the spacing of
+  // neighbouring points the pair counts hold the repeats only and stop changing with eps. A slope
+  // read there is 0 to rounding: with chaos/scaling_region.cpp's rule that a region must gain
+  // pairs (support) switched off, P = 12, 100 and 300 give D2 = -1.4e-31, 4.4e-31 and 4.3e-30
+  // "saturated" (measured), the issue's -3.9e-30. The curve's own dimension is 1: D2 is either
+  // near it (P = 300 resolves the curve: 1.02) or not given (no_scaling_region), never <= 0.
+  for (const std::size_t period : {12, 100, 300}) {
+    std::vector<double> x(6000);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      x[i] = std::sin(2.0 * M_PI * static_cast<double>(i % period) / static_cast<double>(period));
+    const study::SeriesAnalysis a = study::analyse_series(x, 1e-5, {});
+    SCOPED_TRACE("period " + std::to_string(period) + ": " + a.status + ", d2_status " + a.d2_status);
+    EXPECT_EQ(a.status, "ok");
+    if (a.d2_status == "saturated") {
+      ASSERT_TRUE(a.d2.has_value());
+      EXPECT_GT(*a.d2, 0.5);
+    } else {
+      EXPECT_FALSE(a.d2.has_value());
+    }
+    for (const auto& d : a.d2_by_dimension) {
+      if (!d) continue;
+      EXPECT_GT(*d, 0.5) << "a D2(m) at 0 is read below the finite set's spacing";
+    }
+  }
 }
 
 }  // namespace

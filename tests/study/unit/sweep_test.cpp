@@ -257,6 +257,39 @@ TEST(Sweep, ContinuationStartsFromThePreviousFinalState) {
   fs::remove_all(b);
 }
 
+TEST(Sweep, ResumedChainDoesNotContinueFromAFailedPoint) {
+  // Point 0 stops at its step limit (integrator.max_steps = 10 on the chain's axis), so a live
+  // chain starts point 1 fresh (run_sweep.cpp). A resume used to start it from point 0's stored
+  // final state, a mid-run state, and wrote other samples than the uninterrupted sweep.
+  study::SweepSpec spec = short_spec();
+  spec.grid = study::Grid({study::parse_axis("integrator.max_steps=10,1e9")});
+  spec.initial = study::InitialConditions::continuation;
+  const fs::path a = scratch("failed_chain_a"), b = scratch("failed_chain_b");
+  {
+    study::ResultStore store(a, spec, false);
+    EXPECT_EQ(study::run_sweep(spec, store, {}).failed, 1u);
+    store.assemble();
+  }
+  {
+    {
+      study::ResultStore store(b, spec, false);
+      study::run_sweep(spec, store, {});
+    }
+    fs::remove(b / "points" / "000001.tsv");
+    study::ResultStore again(b, spec, true);
+    EXPECT_FALSE(again.final_state(0).has_value());  // point 0 is kept, its state is not used
+    EXPECT_EQ(study::run_sweep(spec, again, {}).done, 1u);
+    again.assemble();
+  }
+  // The test can fail: point 1 from point 0's final state differs from point 1 fresh.
+  const study::PointResult first = study::run_point(spec, 0);
+  ASSERT_EQ(first.summary.status, mechanism::SimulationStatus::step_limit);
+  EXPECT_NE(study::run_point(spec, 1, &first.summary.final_state).samples, study::run_point(spec, 1).samples);
+  EXPECT_EQ(slurp(a / "samples.tsv"), slurp(b / "samples.tsv"));
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST(Sweep, RefusesImpossibleSpecs) {
   study::SweepSpec spec = short_spec();
   spec.keep = 7;
@@ -274,6 +307,31 @@ TEST(Sweep, RefusesImpossibleSpecs) {
   spec.analyse = true;
   spec.analysis.periods = 10;
   EXPECT_THROW(spec.validate(), study::StudyError);
+}
+
+TEST(Sweep, AnalysisDimensionRange) {
+  // 2 .. 33: 2 log10(1e8 samples, the mechanism's row limit) = 16 is the largest dimension any
+  // analysed series resolves (Eckmann-Ruelle), 2 * 16 + 1 = 33 embeds it (Takens); issue 16's
+  // --max-dimension 1000 ran and failed every point's analysis.
+  EXPECT_EQ(study::largest_analysis_dimension(), 33u);
+  study::SweepSpec spec = short_spec();
+  spec.analyse = true;
+  spec.analysis.periods = 2;
+  for (const std::size_t m : {2, 12, 33}) {
+    spec.analysis.max_dimension = m;
+    EXPECT_NO_THROW(spec.validate()) << m;
+  }
+  for (const std::size_t m : {1, 34, 1000}) {
+    spec.analysis.max_dimension = m;
+    try {
+      spec.validate();
+      ADD_FAILURE() << "--max-dimension " << m << " accepted";
+    } catch (const study::StudyError& e) {
+      EXPECT_NE(std::string(e.what()).find("--max-dimension = " + std::to_string(m) + ": must be 2 .. 33"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(Sweep, RefusesAStartStateOfTheWrongSize) {
