@@ -274,6 +274,15 @@ expect_error 3 "no case is named 'no_such_case'" -- zoo --series no_such_case
 "$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
+# Issue 16, item 8: analyze --plot draws the evidence in one figure (mutual information, Cao, false
+# neighbours, D2 local slopes); a step that did not run is an empty panel that says so, not a failure.
+"$CHAOS" analyze --builtin-length 20000 --surrogates 4 --plot "$work/analyze.png" > /dev/null
+head -c 8 "$work/analyze.png" | od -An -c | grep -q "P   N   G" && pass || fail "analyze --plot made no PNG"
+"$CHAOS" analyze "$work/walk.dat" --plot "$work/analyze_walk.svg" > /dev/null
+grep -q "not run: " "$work/analyze_walk.svg" && pass || fail "analyze --plot on a random walk: no 'not run' panel"
+expect_error 3 "^chaos: error \[invalid_parameter\]: .*png or .svg" -- analyze --plot "$work/analyze.jpg"
+expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
+  analyze --plot "$work/no_such_dir/p.png"
 
 # Issue 16, item 8: on the logistic map analyze took delay 17, a noise-floor minimum of the mutual
 # information, and called the series stochastic. A map decorrelates within one sample (its
