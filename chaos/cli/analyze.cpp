@@ -8,7 +8,10 @@
 // nonlinearity. With no file it analyses a built-in Lorenz x series, the project's default
 // demonstration.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/autocorrelation.hpp"
@@ -24,6 +27,7 @@
 #include "chaos/surrogates.hpp"
 #include "chaos/time_scales.hpp"
 #include "common.hpp"
+#include "plot.hpp"
 
 namespace chaos::cli {
 
@@ -41,6 +45,7 @@ struct AnalyzeArgs {
   std::size_t test_length = 4096;  // samples given to the nonlinearity test
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
+  std::string plot;
 };
 
 // The built-in demonstration: Lorenz (10, 28, 8/3), x, RK4 h = 0.001 sampled every 0.01.
@@ -54,6 +59,120 @@ Series builtin_series(std::size_t length) {
 
 nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
   return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
+}
+
+// `text` inside a gnuplot single-quoted string (a quote is doubled).
+std::string gnuplot_text(const std::string& text) {
+  std::string out;
+  for (const char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out;
+}
+
+// An empty panel that says why it has nothing to show.
+void empty_panel(std::ostringstream& s, const std::string& title, const std::string& why) {
+  s << "set title '" << title << "'\nunset border\nunset tics\nunset xlabel\nunset ylabel\nunset grid\n"
+    << "set label 1 'not run: " << gnuplot_text(why.size() > 60 ? why.substr(0, 57) + "..." : why)
+    << "' at graph 0.5, graph 0.5 center\n"
+    << "plot [0:1] [0:1] 2 notitle\n"
+    << "set border\nset tics\nset grid\n";
+}
+
+// One figure of the evidence, a panel each: I(tau) with the delay chosen, Cao's E1 and E2 with the
+// dimension, the false-neighbour fraction, and the local slopes of the correlation sums with the
+// scaling region and D2.
+std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualInformationResult>& mi,
+                        const std::optional<FnnResult>& fnn, double fnn_threshold) {
+  std::ostringstream s;
+  const std::string stopped = a.scales.stationary ? a.stopped : "non-stationary series (see stationarity)";
+  const auto reset = [&s] {
+    s << "unset arrow\nunset label\nunset object\nunset logscale\nset autoscale\nset xtics autofreq\nset offsets 0, 0, 0, 0\n";
+  };
+  s << "set multiplot layout 2,2 title 'chaos analyze: the evidence'\nset grid\n";
+  // Mutual information.
+  if (mi) {
+    s << "set key top right\nset xlabel 'delay tau (samples)'\nset ylabel 'I(tau) (nats)'\n"
+      << "set title 'mutual information: delay " << (a.delay ? std::to_string(*a.delay) : std::string("none")) << "'\n";
+    if (a.delay)
+      s << "set arrow 1 from first " << *a.delay << ", graph 0 to first " << *a.delay << ", graph 1 nohead dt 2\n";
+    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.4 title 'I(tau)'\n";
+    for (std::size_t k = 0; k < mi->delay.size(); ++k) s << mi->delay[k] << " " << mi->information[k] << "\n";
+    s << "e\n";
+  } else {
+    empty_panel(s, "mutual information", stopped);
+  }
+  reset();
+  // Cao.
+  if (a.cao) {
+    const CaoResult& c = *a.cao;
+    s << "set key bottom right\nset xlabel 'embedding dimension m'\nset ylabel 'E1(m), E2(m)'\nset xtics 1\n"
+      << "set offsets 0.5, 0.5, 0.1, 0.1\nset title \"Cao: m = "
+      << (c.embedding_dimension ? std::to_string(*c.embedding_dimension) : std::string(c.stochastic ? "none (stochastic)" : "none (not saturated)"))
+      << "\"\nset arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n";
+    if (c.embedding_dimension)
+      s << "set arrow 2 from first " << *c.embedding_dimension << ", graph 0 to first " << *c.embedding_dimension
+        << ", graph 1 nohead dt 2 lc rgb 'black'\n";
+    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.6 title 'E1', '-' using 1:2 with linespoints pt 5 ps 0.6 title 'E2'\n";
+    for (std::size_t k = 0; k < c.dimension.size(); ++k) s << c.dimension[k] << " " << c.E1[k] << "\n";
+    s << "e\n";
+    for (std::size_t k = 0; k < c.dimension.size(); ++k) s << c.dimension[k] << " " << c.E2[k] << "\n";
+    s << "e\n";
+  } else {
+    empty_panel(s, "Cao", stopped);
+  }
+  reset();
+  // False nearest neighbours.
+  if (fnn) {
+    s << "set key top right\nset xlabel 'embedding dimension m'\nset ylabel 'false neighbours (fraction)'\nset xtics 1\n"
+      << "set offsets 0.5, 0.5, 0, 0\nset yrange [0:*]\nset title 'false nearest neighbours: m = "
+      << (fnn->embedding_dimension ? std::to_string(*fnn->embedding_dimension) : std::string("none")) << "'\n"
+      << "set arrow 1 from graph 0, first " << fnn_threshold << " to graph 1, first " << fnn_threshold << " nohead dt 2\n";
+    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.6 title 'false fraction'\n";
+    for (std::size_t k = 0; k < fnn->dimension.size(); ++k) s << fnn->dimension[k] << " " << fnn->false_fraction[k] << "\n";
+    s << "e\n";
+  } else {
+    empty_panel(s, "false nearest neighbours", stopped);
+  }
+  reset();
+  // D2: local slopes.
+  bool slopes = false;
+  if (a.d2)
+    for (const auto& row : a.d2->local_slope)
+      slopes = slopes || std::any_of(row.begin(), row.end(), [](const auto& v) { return v.has_value(); });
+  if (slopes) {
+    const CorrelationDimensionResult& d = *a.d2;
+    s << "set key outside right samplen 1\nset logscale x\nset xlabel 'eps'\nset ylabel 'd ln C / d ln eps'\n"
+      << "set title '" << to_string(d.status);
+    if (d.d2) {
+      char d2_text[32];
+      std::snprintf(d2_text, sizeof d2_text, "%.4g", *d.d2);
+      s << ": D2 = " << d2_text;
+    }
+    s << "'\n";
+    if (d.scaling_region)
+      s << "set object 1 rect from " << d.scaling_region->low << ", graph 0 to " << d.scaling_region->high
+        << ", graph 1 fc rgb '#dddddd' fs solid 0.5 behind\n";
+    if (d.d2) s << "set arrow 1 from graph 0, first " << *d.d2 << " to graph 1, first " << *d.d2 << " nohead dt 2\n";
+    s << "plot ";
+    bool first = true;
+    for (std::size_t m = 0; m < d.dimension.size(); ++m) {
+      if (std::none_of(d.local_slope[m].begin(), d.local_slope[m].end(), [](const auto& v) { return v.has_value(); }))
+        continue;
+      s << (first ? "" : ", ") << "'-' using 1:2 with linespoints pt 7 ps 0.3 title 'm=" << d.dimension[m] << "'";
+      first = false;
+    }
+    s << "\n";
+    for (std::size_t m = 0; m < d.dimension.size(); ++m) {
+      if (std::none_of(d.local_slope[m].begin(), d.local_slope[m].end(), [](const auto& v) { return v.has_value(); }))
+        continue;
+      for (std::size_t k = 0; k < d.radius.size(); ++k)
+        if (d.local_slope[m][k]) s << d.radius[k] << " " << *d.local_slope[m][k] << "\n";
+      s << "e\n";
+    }
+  } else {
+    empty_panel(s, "correlation dimension", a.d2 ? std::string("no local slopes") : stopped);
+  }
+  s << "unset multiplot\n";
+  return s.str();
 }
 
 void run(AnalyzeArgs& args) {
@@ -103,6 +222,17 @@ void run(AnalyzeArgs& args) {
     t.prediction.delay = *a.delay;
     t.prediction.theiler = a.theiler;
     nonlinear = nonlinearity_test(head.subspan(segment->offset, segment->length), t);
+  }
+  if (!args.plot.empty()) {
+    // The information curve the delay was read from (the pipeline keeps only its minimum).
+    std::optional<MutualInformationResult> mi;
+    if (scales.stationary) {
+      MutualInformationOptions mi_options;
+      mi_options.max_delay = std::max<std::size_t>(1, std::min(args.max_delay, x.size() / 10));
+      mi_options.boxes = args.boxes;
+      mi = mutual_information(x, mi_options);
+    }
+    render_plot(plot_script(a, mi, fnn, fnn_options.threshold), args.plot);
   }
 
   Report report("analyze", args.output);
@@ -248,6 +378,8 @@ void register_analyze(CLI::App& app) {
   command->add_option("--surrogates", args->surrogates, "surrogates of the one-sided nonlinearity test (19: 5%)")
       ->capture_default_str();
   command->add_option("--seed", args->seed, "seed of the surrogates")->capture_default_str();
+  add_plot_option(*command, args->plot,
+                  "draw the evidence (mutual information, Cao, false neighbours, D2 local slopes) to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -1,8 +1,11 @@
 // chaos mutual: average mutual information I(tau) and its first minimum (the delay).
 
+#include <sstream>
+
 #include "chaos/mutual_information.hpp"
 #include "chaos/error.hpp"
 #include "common.hpp"
+#include "plot.hpp"
 
 namespace chaos::cli {
 
@@ -13,6 +16,7 @@ struct MutualArgs {
   OutputOptions output;
   MutualInformationOptions options;
   std::string estimator = "equal_width";
+  std::string plot;
 };
 
 MutualInformationEstimator parse_estimator(const std::string& name) {
@@ -21,11 +25,39 @@ MutualInformationEstimator parse_estimator(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "estimator must be equal_width or equiprobable (got '" + name + "')");
 }
 
+// I(tau) against tau (samples, or time units with --dt) with the first minimum marked.
+std::string plot_script(const MutualInformationResult& result, const std::optional<std::size_t>& minimum,
+                        const std::optional<double>& dt) {
+  const double scale = dt.value_or(1.0);
+  std::ostringstream s;
+  s << "set grid\nset key top right\nset xlabel '" << (dt ? "delay tau (time units)" : "delay tau (samples)")
+    << "'\nset ylabel 'I(tau) (nats)'\nset title 'average mutual information: first minimum ";
+  if (minimum)
+    s << "at tau = " << *minimum << (dt ? " samples = " + number(static_cast<double>(*minimum) * scale) : std::string());
+  else
+    s << "none within the range";
+  s << "' noenhanced\n";
+  if (minimum)
+    s << "set arrow 1 from first " << static_cast<double>(*minimum) * scale << ", graph 0 to first "
+      << static_cast<double>(*minimum) * scale << ", graph 1 nohead dt 2\n";
+  s << "plot '-' using 1:2 with linespoints pt 7 ps 0.4 title 'I(tau)'";
+  if (minimum) s << ", '-' using 1:2 with points pt 6 ps 2 lw 2 title 'first minimum'";
+  s << "\n";
+  for (std::size_t k = 0; k < result.delay.size(); ++k)
+    s << static_cast<double>(result.delay[k]) * scale << " " << result.information[k] << "\n";
+  s << "e\n";
+  if (minimum)
+    for (std::size_t k = 0; k < result.delay.size(); ++k)
+      if (result.delay[k] == *minimum) s << static_cast<double>(*minimum) * scale << " " << result.information[k] << "\ne\n";
+  return s.str();
+}
+
 void run(MutualArgs& args) {
   const Series series = load_series(args.input);
   args.options.estimator = parse_estimator(args.estimator);
   const MutualInformationResult result = mutual_information(series.values, args.options);
   const auto minimum = first_minimum(result);
+  if (!args.plot.empty()) render_plot(plot_script(result, minimum, series.dt), args.plot);
 
   Report report("mutual", args.output);
   report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
@@ -67,6 +99,7 @@ void register_mutual(CLI::App& app) {
   command->add_option("-D,--max-delay", args->options.max_delay, "largest delay")->capture_default_str();
   command->add_option("-b,--boxes", args->options.boxes, "boxes per axis")->capture_default_str();
   command->add_option("--estimator", args->estimator, "equal_width (TISEAN) or equiprobable")->capture_default_str();
+  add_plot_option(*command, args->plot, "draw I(tau) with the first minimum marked to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -125,6 +125,23 @@ expect_error 3 "constant" -- lyapunov "$work/constant.dat"
 head -c 8 "$work/lyap.png" | od -An -c | grep -q "P   N   G" && pass || fail "lyapunov --plot made no PNG"
 expect_error 3 "png or .svg" -- lyapunov "$work/henon.dat" --plot "$work/lyap.pdf"
 
+# Issue 16, item 8: mutual, autocorrelation, cao and fnn draw their curves with --plot (PNG and
+# SVG, non-empty, the PNG a PNG); a wrong suffix is refused (exit 3) before any work, like d2's.
+for cmd in mutual autocorrelation cao fnn; do
+  for ext in png svg; do
+    rm -f "$work/$cmd.$ext"
+    "$CHAOS" "$cmd" "$work/lorenz.dat" --plot "$work/$cmd.$ext" > /dev/null
+    [[ -s $work/$cmd.$ext ]] && pass || fail "$cmd --plot $ext produced no file"
+  done
+  head -c 8 "$work/$cmd.png" | od -An -c | grep -q "P   N   G" && pass || fail "$cmd --plot made no PNG"
+  grep -q "<svg" "$work/$cmd.svg" && pass || fail "$cmd --plot made no SVG"
+  expect_error 3 "^chaos: error \[invalid_parameter\]: .*png or .svg" -- "$cmd" "$work/no_such_file.dat" --plot "$work/$cmd.gif"
+  [[ ! -e $work/$cmd.gif ]] && pass || fail "$cmd --plot with a wrong suffix wrote a file"
+done
+# With --dt the time axis is in time units, and the plot still comes out.
+"$CHAOS" mutual "$work/lorenz.dat" --dt 0.01 -D 30 --plot "$work/mutual_dt.svg" > /dev/null
+grep -q "delay tau (time units)" "$work/mutual_dt.svg" && pass || fail "mutual --dt --plot has no time axis"
+
 # chaos spectrum SYSTEM: exponents and the Kaplan-Yorke dimension; refusals name the rule.
 expect_json_keys spectrum henon --iterations 10000 -- exponents kaplan_yorke_dimension sum
 l=$("$CHAOS" spectrum lorenz --time 100 --json | jq -c '[(.exponents | length), (.exponents[0] > 0.7 and .exponents[0] < 1.1), (.kaplan_yorke_dimension > 2 and .kaplan_yorke_dimension < 2.2)]')
@@ -257,6 +274,15 @@ expect_error 3 "no case is named 'no_such_case'" -- zoo --series no_such_case
 "$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
+# Issue 16, item 8: analyze --plot draws the evidence in one figure (mutual information, Cao, false
+# neighbours, D2 local slopes); a step that did not run is an empty panel that says so, not a failure.
+"$CHAOS" analyze --builtin-length 20000 --surrogates 4 --plot "$work/analyze.png" > /dev/null
+head -c 8 "$work/analyze.png" | od -An -c | grep -q "P   N   G" && pass || fail "analyze --plot made no PNG"
+"$CHAOS" analyze "$work/walk.dat" --plot "$work/analyze_walk.svg" > /dev/null
+grep -q "not run: " "$work/analyze_walk.svg" && pass || fail "analyze --plot on a random walk: no 'not run' panel"
+expect_error 3 "^chaos: error \[invalid_parameter\]: .*png or .svg" -- analyze --plot "$work/analyze.jpg"
+expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
+  analyze --plot "$work/no_such_dir/p.png"
 
 # Issue 16, item 8: on the logistic map analyze took delay 17, a noise-floor minimum of the mutual
 # information, and called the series stochastic. A map decorrelates within one sample (its
@@ -374,10 +400,10 @@ expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "
 cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
 expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
 # Issue 16, item 7: an unwritable --plot failed only after the work. Every command with --plot
-# (d2, lyapunov, density) refuses it with -o's rules while reading the command line: exit 3 and
-# the message naming --plot and the path, before the series is read (a missing series file is not
-# what the message names).
-for cmd in d2 lyapunov; do
+# (d2, lyapunov, density; since item 8 also mutual, autocorrelation, cao, fnn) refuses it with
+# -o's rules while reading the command line: exit 3 and the message naming --plot and the path,
+# before the series is read (a missing series file is not what the message names).
+for cmd in d2 lyapunov mutual autocorrelation cao fnn; do
   expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
     "$cmd" "$work/henon.dat" --plot "$work/no_such_dir/p.png"
   expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png" -- "$cmd" "$work/no_such_file.dat" --plot "$work/no_such_dir/p.png"
