@@ -26,6 +26,7 @@
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/surrogates.hpp"
 #include "chaos/time_scales.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -36,30 +37,10 @@ namespace {
 struct AnalyzeArgs {
   InputOptions input;
   OutputOptions output;
-  std::optional<std::size_t> delay;
-  std::optional<std::size_t> theiler;
-  std::size_t max_delay = 100;
-  std::size_t boxes = 16;
-  std::size_t max_dimension = 10;
+  AnalyzeParams params;
   std::size_t length = 100000;  // of the built-in series (enough for a confident lambda_1)
-  std::size_t test_length = 4096;  // samples given to the nonlinearity test
-  std::size_t surrogates = 19;
-  std::uint64_t seed = 1;
   std::string plot;
 };
-
-// The built-in demonstration: Lorenz (10, 28, 8/3), x, RK4 h = 0.001 sampled every 0.01.
-Series builtin_series(std::size_t length) {
-  GenerateRequest request;
-  request.system = SystemKind::lorenz;
-  request.length = length;
-  Trajectory t = generate(request);
-  return Series{std::move(t.components[0]), t.dt};
-}
-
-nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
-  return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
-}
 
 // `text` inside a gnuplot single-quoted string (a quote is doubled).
 std::string gnuplot_text(const std::string& text) {
@@ -179,119 +160,23 @@ void run(AnalyzeArgs& args) {
   const bool builtin = args.input.file.empty();
   const Series series = builtin ? builtin_series(args.length) : load_series(args.input);
   const std::vector<double>& x = series.values;
-  require_not_constant(x, builtin ? "built-in Lorenz x" : args.input.file);
-
-  // The choices, D2 and both exponents come from the library's automatic pipeline, the one
-  // `chaos zoo` validates (automatic_analysis.hpp); false neighbours and the surrogate test are
-  // added here as corroboration.
-  AutomaticAnalysisOptions options;
-  options.delay = args.delay;
-  options.theiler = args.theiler;
-  options.max_delay = args.max_delay;
-  options.boxes = args.boxes;
-  options.max_dimension = args.max_dimension;
-  const AutomaticAnalysis a = analyse_series(x, series.dt, options);
+  AnalyzeParams params = args.params;
+  params.mutual_curve = !args.plot.empty();
+  AnalyzeRun run = run_analyze({x, builtin ? std::string(builtin_series_name) : args.input.file, series.column, series.dt},
+                               params, args.output);
+  const AutomaticAnalysis& a = run.analysis;
   const TimeScales& scales = a.scales;
-  const std::string theiler_source = args.theiler ? "given (-t)" : scales.theiler_source;
+  const std::string& theiler_source = run.theiler_source;
   // Why a step did not run: said once in full (stationarity), then referred to.
   const std::string not_run = scales.stationary ? a.stopped : "non-stationary series: see stationarity";
-
-  std::optional<FnnResult> fnn;
-  FnnOptions fnn_options;
-  if (a.delay) {
-    fnn_options.delay = *a.delay;
-    fnn_options.theiler = a.theiler;
-    fnn_options.max_dimension = args.max_dimension;
-    fnn = false_nearest_neighbors(x, fnn_options);
-  }
-  // The surrogate test on the first test_length samples, trimmed to their best end match (an end
-  // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
-  // (deterministic data are more predictable than their surrogates), the prediction error in the
-  // chosen embedding. Kept short so the demonstration stays quick.
-  std::optional<NonlinearityTestResult> nonlinear;
-  std::optional<EndMatch> segment;
-  if (a.dimension && a.delay) {
-    const std::span<const double> head(x.data(), std::min(x.size(), args.test_length));
-    segment = end_match(head);
-    NonlinearityTestOptions t;
-    t.statistic = NonlinearityStatistic::prediction_error;
-    t.alternative = Alternative::smaller;
-    t.surrogates = args.surrogates;
-    t.seed = args.seed;
-    t.prediction.dimension = *a.dimension;
-    t.prediction.delay = *a.delay;
-    t.prediction.theiler = a.theiler;
-    nonlinear = nonlinearity_test(head.subspan(segment->offset, segment->length), t);
-  }
-  if (!args.plot.empty()) {
-    // The information curve the delay was read from (the pipeline keeps only its minimum).
-    std::optional<MutualInformationResult> mi;
-    if (scales.stationary) {
-      MutualInformationOptions mi_options;
-      mi_options.max_delay = std::max<std::size_t>(1, std::min(args.max_delay, x.size() / 10));
-      mi_options.boxes = args.boxes;
-      mi = mutual_information(x, mi_options);
-    }
-    render_plot(plot_script(a, mi, fnn, fnn_options.threshold), args.plot);
-  }
-
-  Report report("analyze", args.output);
-  report.parameter("file", builtin ? std::string("(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)") : args.input.file)
-      .parameter("N", x.size()).parameter("dt", series.dt).parameter("max_delay", args.max_delay)
-      .parameter("boxes", args.boxes).parameter("max_dimension", args.max_dimension)
-      .parameter("test_length", args.test_length).parameter("surrogates", args.surrogates).parameter("seed", args.seed);
+  const std::optional<FnnResult>& fnn = run.fnn;
+  const FnnOptions& fnn_options = run.fnn_options;
+  const std::optional<NonlinearityTestResult>& nonlinear = run.nonlinear;
+  const std::optional<EndMatch>& segment = run.segment;
+  if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold), args.plot);
+  Report& report = run.report;
   std::ostream& out = report.stream();
   const bool per_time = series.dt.has_value();
-  const auto time = [&](std::size_t samples) {
-    return series.dt ? nlohmann::ordered_json(static_cast<double>(samples) * *series.dt) : nullptr;
-  };
-  auto& j = report.json();
-  j["stationary"] = scales.stationary;
-  j["stationarity_explanation"] = scales.stationarity_explanation;
-  j["stopped"] = a.stopped.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.stopped);
-  j["delay"] = optional_json(a.delay);
-  j["delay_time"] = a.delay ? time(*a.delay) : nullptr;
-  j["delay_source"] = a.delay_source;
-  j["theiler"] = a.theiler;
-  j["theiler_source"] = theiler_source;
-  j["embedding_dimension"] = optional_json(a.dimension);
-  j["fnn_embedding_dimension"] = fnn ? optional_json(fnn->embedding_dimension) : nullptr;
-  j["max_E2_deviation"] = a.cao ? nlohmann::ordered_json(a.cao->max_E2_deviation) : nullptr;
-  j["stochastic"] = a.cao ? nlohmann::ordered_json(a.cao->stochastic) : nullptr;
-  j["d2"] = a.d2 ? optional_json(a.d2->d2) : nullptr;
-  j["d2_interval"] = a.d2 ? interval_json(a.d2->d2_interval) : nullptr;
-  j["d2_status"] = a.d2 ? to_string(a.d2->status) : "not_run";
-  j["d2_explanation"] = a.d2 ? a.d2->explanation : a.stopped;
-  const auto lambda_json = [&](const std::optional<LyapunovResult>& l, const std::string& prefix) {
-    if (l) {
-      j[prefix] = optional_json(per_time ? l->lambda_per_time : l->fit.lambda);
-      j[prefix + "_interval"] = interval_json(per_time ? l->lambda_per_time_interval : l->fit.lambda_interval);
-      j[prefix + "_status"] = to_string(l->fit.status);
-      j[prefix + "_explanation"] = l->fit.explanation;
-      j[prefix + "_fit_range_time"] = interval_json(l->fit_range_time);
-    } else {
-      j[prefix] = nullptr;
-      j[prefix + "_interval"] = nullptr;
-      j[prefix + "_status"] = "not_run";
-      j[prefix + "_explanation"] = a.stopped;
-      j[prefix + "_fit_range_time"] = nullptr;
-    }
-  };
-  lambda_json(a.rosenstein, "lambda");  // Rosenstein, the key earlier versions reported
-  j["lambda_per"] = per_time ? "time" : "sample";
-  lambda_json(a.kantz, "lambda_kantz");
-  if (nonlinear)
-    j["nonlinearity"] = {{"statistic", nonlinear->data_statistic}, {"rank", nonlinear->test.rank},
-                         {"count", nonlinear->surrogate_statistics.size()}, {"rejected", nonlinear->test.rejected},
-                         {"significance", nonlinear->test.significance}, {"offset", segment->offset},
-                         {"length", segment->length}};
-  else
-    j["nonlinearity"] = nullptr;
-  j["autocorrelation"] = {{"first_zero_crossing", optional_json(scales.first_zero_crossing)},
-                          {"decorrelation_time", optional_json(scales.decorrelation_time)},
-                          {"half_period", optional_json(scales.half_period)}};
-  if (a.cao) j["cao"] = {{"dimension", a.cao->dimension}, {"E1", a.cao->E1}, {"E2", a.cao->E2}};
-  if (fnn) j["fnn"] = {{"dimension", fnn->dimension}, {"false_fraction", fnn->false_fraction}};
   if (report.json_mode()) {
     report.write_json(out);
     return;
@@ -367,17 +252,17 @@ void register_analyze(CLI::App& app) {
   command->add_option("-x,--skip", args->input.skip, "data rows to skip")->capture_default_str();
   command->add_option("-l,--length", args->input.length, "data rows to use");
   command->add_option("--dt", args->input.dt, "sampling interval");
-  command->add_option("-d,--delay", args->delay, "use this delay instead of the mutual-information minimum");
-  command->add_option("-t,--theiler", args->theiler, "use this Theiler window instead of the 1/e time");
-  command->add_option("-D,--max-delay", args->max_delay, "largest delay searched for the MI minimum")->capture_default_str();
-  command->add_option("-b,--boxes", args->boxes, "boxes for mutual information")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_option("-d,--delay", args->params.delay, "use this delay instead of the mutual-information minimum");
+  command->add_option("-t,--theiler", args->params.theiler, "use this Theiler window instead of the 1/e time");
+  command->add_option("-D,--max-delay", args->params.max_delay, "largest delay searched for the MI minimum")->capture_default_str();
+  command->add_option("-b,--boxes", args->params.boxes, "boxes for mutual information")->capture_default_str();
+  command->add_option("-M,--max-dimension", args->params.max_dimension, "largest embedding dimension")->capture_default_str();
   command->add_option("--builtin-length", args->length, "length of the built-in Lorenz series")->capture_default_str();
-  command->add_option("--test-length", args->test_length, "samples given to the nonlinearity test (the first ones)")
+  command->add_option("--test-length", args->params.test_length, "samples given to the nonlinearity test (the first ones)")
       ->capture_default_str();
-  command->add_option("--surrogates", args->surrogates, "surrogates of the one-sided nonlinearity test (19: 5%)")
+  command->add_option("--surrogates", args->params.surrogates, "surrogates of the one-sided nonlinearity test (19: 5%)")
       ->capture_default_str();
-  command->add_option("--seed", args->seed, "seed of the surrogates")->capture_default_str();
+  command->add_option("--seed", args->params.seed, "seed of the surrogates")->capture_default_str();
   add_plot_option(*command, args->plot,
                   "draw the evidence (mutual information, Cao, false neighbours, D2 local slopes) to FILE.png or FILE.svg");
   add_output_options(*command, args->output);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "chaos/cao.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -13,8 +14,7 @@ namespace {
 struct CaoArgs {
   InputOptions input;
   OutputOptions output;
-  CaoOptions options;
-  std::string norm = "max";
+  CaoParams params;
   std::string plot;
 };
 
@@ -46,32 +46,10 @@ std::string plot_script(const CaoResult& result) {
 
 void run(CaoArgs& args) {
   const Series series = load_series(args.input);
-  args.options.norm = parse_norm(args.norm);
-  const CaoResult result = cao(series.values, args.options);
+  auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
-
-  Report report("cao", args.output);
-  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
-      .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
-      .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
-      .parameter("norm", args.norm).parameter("saturation_level", args.options.saturation_level)
-      .parameter("saturation_change", args.options.saturation_change)
-      .parameter("stochastic_sigmas", args.options.stochastic_sigmas);
-  if (series.dt) report.parameter("delay_time", static_cast<double>(args.options.delay) * *series.dt);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
-    auto& j = report.json();
-    j["dimension"] = result.dimension;
-    j["E1"] = result.E1;
-    j["E2"] = result.E2;
-    j["E"] = std::vector<double>(result.E.begin(), result.E.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
-    j["E_star"] = std::vector<double>(result.E_star.begin(), result.E_star.begin() + static_cast<std::ptrdiff_t>(result.dimension.size()));
-    j["E2_standard_error"] = result.E2_standard_error;
-    j["embedding_dimension"] = optional_json(result.embedding_dimension);
-    j["e1_saturation"] = optional_json(result.e1_saturation);
-    j["stochastic"] = result.stochastic;
-    j["max_E2_deviation"] = result.max_E2_deviation;
-    j["points_without_neighbor"] = result.points_without_neighbor;
     report.write_json(out);
     return;
   }
@@ -90,16 +68,16 @@ void register_cao(CLI::App& app) {
   auto args = std::make_shared<CaoArgs>();
   CLI::App* command = app.add_subcommand("cao", "Cao's method: E1(m), E2(m) and the minimum embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-m,--min-dimension", args->options.min_dimension, "smallest embedding dimension")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->options.theiler, "Theiler window in samples (|i-j| <= t excluded)")->capture_default_str();
-  command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
-  command->add_option("--level", args->options.saturation_level, "E1 must reach this level to count as saturated")
+  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
+  command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_option("-t,--theiler", args->params.options.theiler, "Theiler window in samples (|i-j| <= t excluded)")->capture_default_str();
+  command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
+  command->add_option("--level", args->params.options.saturation_level, "E1 must reach this level to count as saturated")
       ->capture_default_str();
-  command->add_option("--change", args->options.saturation_change, "and change by at most this per dimension from there on")
+  command->add_option("--change", args->params.options.saturation_change, "and change by at most this per dimension from there on")
       ->capture_default_str();
-  command->add_option("--sigmas", args->options.stochastic_sigmas,
+  command->add_option("--sigmas", args->params.options.stochastic_sigmas,
                       "stochastic when every |E2 - 1| is within this many standard errors")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw E1(m) and E2(m) with the saturation dimension to FILE.png or FILE.svg");

@@ -54,8 +54,7 @@ Series load_series(const InputOptions& input) {
   if (input.length) options.length = *input.length;
   options.dt = input.dt;
   Series series = read_series(input.file, options);
-  require_finite(series.values, input.file);
-  require_scale(series.values, input.file);
+  check_series(series.values, input.file);
   return series;
 }
 
@@ -100,49 +99,6 @@ void add_plot_option(CLI::App& command, std::string& path, const std::string& de
           "", "FILE.png|FILE.svg"));
 }
 
-std::string number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  return buffer;
-}
-
-Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)), output_(output) {
-  json_["command"] = command_;
-  json_["parameters"] = nlohmann::ordered_json::object();
-  if (!output_.path.empty()) {
-    auto file = std::make_unique<std::ofstream>(output_.path);
-    if (!*file) throw InvalidInput(ErrorCode::io, output_.path + ": cannot open for writing");
-    file_ = std::move(file);
-  }
-}
-
-Report& Report::parameter(const std::string& name, const std::optional<double>& value) {
-  json_["parameters"][name] = optional_json(value);
-  header_.emplace_back(name, value ? number(*value) : "none");
-  return *this;
-}
-
-Report& Report::parameter(const std::string& name, const std::optional<std::size_t>& value) {
-  json_["parameters"][name] = optional_json(value);
-  header_.emplace_back(name, value ? std::to_string(*value) : "none");
-  return *this;
-}
-
-std::ostream& Report::stream() { return file_ ? *file_ : std::cout; }
-
-void Report::write_header(std::ostream& out) const {
-  out << "# chaos " << command_ << "\n";
-  for (const auto& [name, value] : header_) out << "# " << name << " = " << value << "\n";
-}
-
-void Report::write_json(std::ostream& out) const { out << json_.dump(2) << "\n"; }
-
-Norm parse_norm(const std::string& name) {
-  if (name == "max") return Norm::max;
-  if (name == "euclidean") return Norm::euclidean;
-  throw InvalidInput(ErrorCode::invalid_parameter, "norm must be 'max' or 'euclidean' (got '" + name + "')");
-}
-
 std::string describe_dimension(const CaoResult& result) {
   if (result.embedding_dimension) return std::to_string(*result.embedding_dimension);
   if (result.stochastic)
@@ -168,16 +124,6 @@ std::map<std::string, double> parse_settings(const std::vector<std::string>& set
     out[setting.substr(0, eq)] = value;
   }
   return out;
-}
-
-CorrelationTime correlation_time(std::span<const double> x) {
-  const TimeScales scales = time_scales(x);
-  CorrelationTime t;
-  t.decay = scales.decorrelation_time;
-  t.samples = scales.theiler;
-  t.source = scales.theiler_source;
-  t.period = scales.period();
-  return t;
 }
 
 }  // namespace chaos::cli

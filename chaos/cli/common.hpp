@@ -20,6 +20,7 @@
 #include "chaos/cao.hpp"
 #include "chaos/norm.hpp"
 #include "chaos/series.hpp"
+#include "report.hpp"
 
 namespace chaos::cli {
 
@@ -41,82 +42,19 @@ void add_input_options(CLI::App& command, InputOptions& input);
 void add_column_option(CLI::App& command, InputOptions& input);
 Series load_series(const InputOptions& input);
 
-struct OutputOptions {
-  bool json = false;
-  std::string path;  // -o; empty: standard output
-};
 void add_output_options(CLI::App& command, OutputOptions& output);
 // Registers --plot FILE.png|FILE.svg, refused while the command line is read when the extension is
 // neither, or the file could not be written (output_path.hpp); register the input file first.
 void add_plot_option(CLI::App& command, std::string& path, const std::string& description);
 
-// Formats a double with enough digits to round-trip the estimate's meaningful precision.
-std::string number(double value);
-
-// Collects the parameters of a run in the order they are added, then writes them as '#' lines or
-// as the "parameters" object of the JSON output.
-class Report {
- public:
-  Report(std::string command, const OutputOptions& output);
-  template <class T>
-  Report& parameter(const std::string& name, const T& value) {
-    json_["parameters"][name] = value;
-    header_.emplace_back(name, to_text(value));
-    return *this;
-  }
-  Report& parameter(const std::string& name, const std::optional<double>& value);
-  Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
-  nlohmann::ordered_json& json() { return json_; }
-  bool json_mode() const { return output_.json; }
-  // Writes the header lines (text mode) or nothing (JSON mode) to `out`.
-  void write_header(std::ostream& out) const;
-  // Writes the JSON object (JSON mode) to `out`.
-  void write_json(std::ostream& out) const;
-  std::ostream& stream();
-
- private:
-  template <class T>
-  static std::string to_text(const T& value) {
-    if constexpr (std::is_same_v<T, bool>) return value ? "true" : "false";
-    else if constexpr (std::is_floating_point_v<T>) return number(value);
-    else if constexpr (std::is_arithmetic_v<T>) return std::to_string(value);
-    else return std::string(value);
-  }
-  std::string command_;
-  OutputOptions output_;
-  nlohmann::ordered_json json_;
-  std::vector<std::pair<std::string, std::string>> header_;
-  std::unique_ptr<std::ostream> file_;
-};
-
-// JSON null for an empty optional.
-template <class T>
-nlohmann::ordered_json optional_json(const std::optional<T>& v) {
-  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
-}
-
 // Thrown by `validate` after its report is written, to leave with exit code 4.
 struct ValidationFailed {};
-
-Norm parse_norm(const std::string& name);
 
 // "3", or why there is no embedding dimension (stochastic, not saturated).
 std::string describe_dimension(const CaoResult& result);
 
 // "name=value" settings (-p): refused with the offending text when malformed or not a number.
 std::map<std::string, double> parse_settings(const std::vector<std::string>& settings);
-
-// The autocorrelation time of a series as the commands use it for a default Theiler window: the
-// lag where r falls to 1/e (rounded up), or, when r stays above 1/e, the largest lag examined
-// (N/4, at most 5000). `source` says which.
-// The Theiler window and the oscillation period of time_scales.hpp, for the commands' defaults.
-struct CorrelationTime {
-  std::size_t samples = 0;      // the Theiler window: max(1/e time, half the oscillation period)
-  std::optional<double> decay;  // the 1/e time itself, when there is one
-  std::string source;
-  std::size_t period = 0;       // of a dominant oscillation, samples; 0 when none
-};
-CorrelationTime correlation_time(std::span<const double> x);
 
 // Each command registers itself on the application.
 void register_generate(CLI::App& app);

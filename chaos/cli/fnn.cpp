@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "chaos/fnn.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -13,8 +14,7 @@ namespace {
 struct FnnArgs {
   InputOptions input;
   OutputOptions output;
-  FnnOptions options;
-  std::string norm = "euclidean";
+  FnnParams params;
   std::string plot;
 };
 
@@ -41,22 +41,10 @@ std::string plot_script(const FnnResult& result, double threshold) {
 
 void run(FnnArgs& args) {
   const Series series = load_series(args.input);
-  args.options.norm = parse_norm(args.norm);
-  const FnnResult result = false_nearest_neighbors(series.values, args.options);
-  if (!args.plot.empty()) render_plot(plot_script(result, args.options.threshold), args.plot);
-
-  Report report("fnn", args.output);
-  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
-      .parameter("dt", series.dt).parameter("delay", args.options.delay).parameter("min_dimension", args.options.min_dimension)
-      .parameter("max_dimension", args.options.max_dimension).parameter("theiler", args.options.theiler)
-      .parameter("rtol", args.options.rtol).parameter("atol", args.options.atol).parameter("norm", args.norm)
-      .parameter("threshold", args.options.threshold);
+  auto [result, report] = run_fnn({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+  if (!args.plot.empty()) render_plot(plot_script(result, args.params.options.threshold), args.plot);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
-    auto& j = report.json();
-    j["dimension"] = result.dimension;
-    j["false_fraction"] = result.false_fraction;
-    j["embedding_dimension"] = optional_json(result.embedding_dimension);
     report.write_json(out);
     return;
   }
@@ -74,15 +62,15 @@ void register_fnn(CLI::App& app) {
   auto args = std::make_shared<FnnArgs>();
   CLI::App* command = app.add_subcommand("fnn", "false nearest neighbours against the embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-m,--min-dimension", args->options.min_dimension, "smallest embedding dimension")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->options.theiler, "Theiler window in samples")->capture_default_str();
-  command->add_option("--rtol", args->options.rtol, "distance-ratio threshold (criterion 1)")->capture_default_str();
-  command->add_option("--atol", args->options.atol, "size threshold in units of the standard deviation (criterion 2)")
+  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
+  command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_option("-t,--theiler", args->params.options.theiler, "Theiler window in samples")->capture_default_str();
+  command->add_option("--rtol", args->params.options.rtol, "distance-ratio threshold (criterion 1)")->capture_default_str();
+  command->add_option("--atol", args->params.options.atol, "size threshold in units of the standard deviation (criterion 2)")
       ->capture_default_str();
-  command->add_option("--norm", args->norm, "euclidean (Kennel et al.) or max")->capture_default_str();
-  command->add_option("--threshold", args->options.threshold, "dimension chosen where the false fraction <= this")
+  command->add_option("--norm", args->params.norm, "euclidean (Kennel et al.) or max")->capture_default_str();
+  command->add_option("--threshold", args->params.options.threshold, "dimension chosen where the false fraction <= this")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the false fraction against m to FILE.png or FILE.svg");
   add_output_options(*command, args->output);

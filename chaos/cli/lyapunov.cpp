@@ -8,6 +8,7 @@
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/error.hpp"
 #include "chaos/lyapunov.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -18,23 +19,9 @@ namespace {
 struct LyapunovArgs {
   InputOptions input;
   OutputOptions output;
-  LyapunovOptions options;
-  LyapunovFitOptions fit;
-  std::optional<std::size_t> theiler, steps, period;
-  std::string method = "rosenstein";
-  std::string norm = "max";
+  LyapunovParams params;
   std::string plot;
 };
-
-LyapunovMethod parse_method(const std::string& name) {
-  if (name == "rosenstein") return LyapunovMethod::rosenstein;
-  if (name == "kantz") return LyapunovMethod::kantz;
-  throw InvalidInput(ErrorCode::invalid_parameter, "method must be rosenstein or kantz (got '" + name + "')");
-}
-
-nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
-  return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
-}
 
 std::string interval_text(const std::optional<Interval>& i) {
   return i ? "[" + number(i->low) + ", " + number(i->high) + "]" : std::string("none");
@@ -94,92 +81,12 @@ std::string plot_script(const LyapunovResult& r) {
 
 void run(LyapunovArgs& args) {
   const Series series = load_series(args.input);
-  const std::vector<double>& x = series.values;
-  require_not_constant(x, args.input.file);
-  args.options.method = parse_method(args.method);
-  args.options.norm = parse_norm(args.norm);
-
-  // Defaults from the data's own time scales (time_scales.hpp): the Theiler window covers the
-  // autocorrelation time and half a period of a dominant oscillation (as in d2); the curve is
-  // followed for 20 of the longer of the two (at least 20 steps, at most N/10), long enough for a
-  // flow's separation to grow to the attractor's size; the local slopes span a whole period.
-  // (20 of them: the linear region must rise by LyapunovFitOptions::min_rise after the transient.)
-  const CorrelationTime correlation = correlation_time(x);
-  std::string theiler_source = "given (-t)", steps_source = "given (-s)", period_source = "given (--period)";
-  if (args.theiler) {
-    args.options.theiler = *args.theiler;
-  } else {
-    args.options.theiler = correlation.samples;
-    theiler_source = correlation.source;
-  }
-  if (!args.period) {
-    args.fit.period = correlation.period;
-    period_source = correlation.period ? "twice the first autocorrelation minimum" : "no dominant oscillation";
-  } else {
-    args.fit.period = *args.period;
-  }
-  if (args.steps) {
-    args.options.steps = *args.steps;
-  } else {
-    args.options.steps = automatic_lyapunov_steps(correlation.samples, args.fit.period, x.size());
-    steps_source = "20 correlation times or periods, at least 20, at most N/10";
-  }
-  const LyapunovResult r = largest_lyapunov(x, args.options, args.fit, series.dt);
+  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
-
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
-  Report report("lyapunov", args.output);
-  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", x.size())
-      .parameter("dt", series.dt).parameter("method", args.method).parameter("dimension", args.options.dimension)
-      .parameter("delay", args.options.delay).parameter("theiler", args.options.theiler)
-      .parameter("theiler_source", theiler_source).parameter("steps", args.options.steps)
-      .parameter("steps_source", steps_source).parameter("norm", args.norm);
-  if (args.options.method == LyapunovMethod::kantz)
-    report.parameter("radius", r.curve.radius)
-        .parameter("radius_source", std::string(args.options.radius ? "given (-r)"
-                                                                     : "data range / 1000 times a power of two: half "
-                                                                       "the reference points have a neighbour, at most "
-                                                                       "20 on average"))
-        .parameter("min_neighbours", args.options.min_neighbours);
-  report.parameter("reference_points", args.options.reference_points).parameter("threads", args.options.threads)
-      .parameter("tolerance", args.fit.tolerance).parameter("half_width", r.fit.half_width)
-      .parameter("min_steps", r.fit.min_steps).parameter("period", args.fit.period)
-      .parameter("period_source", period_source).parameter("dimensions", args.fit.dimensions);
   std::ostream& out = report.stream();
-  auto& j = report.json();
-  j["lambda"] = optional_json(lambda);
-  j["lambda_interval"] = interval_json(lambda_interval);
-  j["per"] = per_time ? "time" : "sample";
-  j["lambda_per_sample"] = optional_json(r.fit.lambda);
-  j["lambda_per_sample_interval"] = interval_json(r.fit.lambda_interval);
-  j["status"] = to_string(r.fit.status);
-  j["explanation"] = r.fit.explanation;
-  j["region"] = r.fit.first_step ? nlohmann::ordered_json::array({*r.fit.first_step, *r.fit.last_step})
-                                 : nlohmann::ordered_json(nullptr);
-  j["region_time"] = interval_json(r.fit_range_time);
-  j["dimensions"] = r.dimensions;
-  j["lambda_by_dimension"] = r.fit.lambda_by_curve;
-  j["step"] = r.curve.step;
-  if (per_time) {
-    std::vector<double> time(r.curve.step.size());
-    for (std::size_t k = 0; k < time.size(); ++k) time[k] = static_cast<double>(r.curve.step[k]) * *r.dt;
-    j["time"] = time;
-  }
-  auto divergence = nlohmann::ordered_json::array(), slope = nlohmann::ordered_json::array();
-  for (std::size_t k = 0; k < r.curve.step.size(); ++k) {
-    divergence.push_back(optional_json(r.curve.divergence[k]));
-    slope.push_back(optional_json(r.fit.local_slope[k]));
-  }
-  j["divergence"] = divergence;
-  j["local_slope"] = slope;
-  j["terms"] = r.curve.terms;
-  j["zero_distances"] = r.curve.zero_distances;
-  j["points"] = r.curve.points;
-  j["reference_points_examined"] = r.curve.reference_points;
-  j["references_used"] = r.curve.references_used;
-  j["mean_neighbours"] = r.curve.mean_neighbours;
   if (report.json_mode()) {
     report.write_json(out);
     return;
@@ -209,42 +116,41 @@ void run(LyapunovArgs& args) {
 
 void register_lyapunov(CLI::App& app) {
   auto args = std::make_shared<LyapunovArgs>();
-  args->fit.dimensions = 3;  // m, m+1, m+2 must agree: a transient that looks straight in one m is refused
   CLI::App* command =
       app.add_subcommand("lyapunov", "largest Lyapunov exponent from a series (Rosenstein 1993 or Kantz 1994)");
   add_input_options(*command, args->input);
-  command->add_option("--method", args->method, "rosenstein (mean log distance of nearest neighbours) or kantz "
+  command->add_option("--method", args->params.method, "rosenstein (mean log distance of nearest neighbours) or kantz "
                                                 "(log of the mean distance in an eps-neighbourhood)")
       ->capture_default_str();
-  command->add_option("-m,--dimension", args->options.dimension, "embedding dimension")->capture_default_str();
-  command->add_option("-d,--delay", args->options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-t,--theiler", args->theiler, "Theiler window in samples (default: the autocorrelation 1/e "
+  command->add_option("-m,--dimension", args->params.options.dimension, "embedding dimension")->capture_default_str();
+  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: the autocorrelation 1/e "
                                                      "time or half the dominant oscillation period, the longer)");
-  command->add_option("-s,--steps", args->steps,
+  command->add_option("-s,--steps", args->params.steps,
                       "steps the divergence is followed (default: 20 correlation times or periods, 20..N/10)");
-  command->add_option("--period", args->period, "oscillation period in samples: local slopes span a whole period "
+  command->add_option("--period", args->params.period, "oscillation period in samples: local slopes span a whole period "
                                                 "(default: twice the first autocorrelation minimum; 0: none)");
-  command->add_option("--dimensions", args->fit.dimensions, "embedding dimensions m, m+1, ... whose curves must "
+  command->add_option("--dimensions", args->params.fit.dimensions, "embedding dimensions m, m+1, ... whose curves must "
                                                             "share the linear region and agree on its slope")
       ->capture_default_str();
-  command->add_option("-r,--radius", args->options.radius, "Kantz: neighbourhood radius eps (default: data range / 1000, scaled by powers of 2 so that half the "
+  command->add_option("-r,--radius", args->params.options.radius, "Kantz: neighbourhood radius eps (default: data range / 1000, scaled by powers of 2 so that half the "
                       "reference points have a neighbour and at most 20 on average)");
-  command->add_option("-k,--min-neighbours", args->options.min_neighbours,
+  command->add_option("-k,--min-neighbours", args->params.options.min_neighbours,
                       "Kantz: reference points with fewer neighbours are skipped")
       ->capture_default_str();
-  command->add_option("--reference-points", args->options.reference_points,
+  command->add_option("--reference-points", args->params.options.reference_points,
                       "use this many evenly spaced reference points (0: all)")
       ->capture_default_str();
-  command->add_option("--norm", args->norm, "max or euclidean")->capture_default_str();
-  command->add_option("--threads", args->options.threads, "threads (results identical for any number)")
+  command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
+  command->add_option("--threads", args->params.options.threads, "threads (results identical for any number)")
       ->capture_default_str();
-  command->add_option("--tolerance", args->fit.tolerance, "relative flatness of the local slopes in the linear region")
+  command->add_option("--tolerance", args->params.fit.tolerance, "relative flatness of the local slopes in the linear region")
       ->capture_default_str();
-  command->add_option("--half-width", args->fit.half_width, "local-slope half width in steps (0: max(2, steps/25, period/2))")
+  command->add_option("--half-width", args->params.fit.half_width, "local-slope half width in steps (0: max(2, steps/25, period/2))")
       ->capture_default_str();
-  command->add_option("--min-steps", args->fit.min_steps, "steps in a linear region, at least (0: 3 half widths + 1, and a period + 1)")
+  command->add_option("--min-steps", args->params.fit.min_steps, "steps in a linear region, at least (0: 3 half widths + 1, and a period + 1)")
       ->capture_default_str();
-  command->add_option("--min-rise", args->fit.min_rise, "e-folds the curve must rise across the linear region")
+  command->add_option("--min-rise", args->params.fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);

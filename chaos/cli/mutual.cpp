@@ -4,6 +4,7 @@
 
 #include "chaos/mutual_information.hpp"
 #include "chaos/error.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -14,16 +15,9 @@ namespace {
 struct MutualArgs {
   InputOptions input;
   OutputOptions output;
-  MutualInformationOptions options;
-  std::string estimator = "equal_width";
+  MutualParams params;
   std::string plot;
 };
-
-MutualInformationEstimator parse_estimator(const std::string& name) {
-  if (name == "equal_width") return MutualInformationEstimator::equal_width;
-  if (name == "equiprobable") return MutualInformationEstimator::equiprobable;
-  throw InvalidInput(ErrorCode::invalid_parameter, "estimator must be equal_width or equiprobable (got '" + name + "')");
-}
 
 // I(tau) against tau (samples, or time units with --dt) with the first minimum marked.
 std::string plot_script(const MutualInformationResult& result, const std::optional<std::size_t>& minimum,
@@ -54,28 +48,12 @@ std::string plot_script(const MutualInformationResult& result, const std::option
 
 void run(MutualArgs& args) {
   const Series series = load_series(args.input);
-  args.options.estimator = parse_estimator(args.estimator);
-  const MutualInformationResult result = mutual_information(series.values, args.options);
-  const auto minimum = first_minimum(result);
+  auto [result, minimum, report] =
+      run_mutual({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(result, minimum, series.dt), args.plot);
-
-  Report report("mutual", args.output);
-  report.parameter("file", args.input.file).parameter("column", series.column).parameter("N", series.values.size())
-      .parameter("dt", series.dt).parameter("max_delay", args.options.max_delay).parameter("boxes", args.options.boxes)
-      .parameter("estimator", args.estimator).parameter("units", std::string("nats"));
   std::ostream& out = report.stream();
   const double dt = series.dt.value_or(1.0);
   if (report.json_mode()) {
-    auto& j = report.json();
-    j["delay"] = result.delay;
-    if (series.dt) {
-      std::vector<double> times;
-      for (const auto d : result.delay) times.push_back(static_cast<double>(d) * dt);
-      j["delay_time"] = times;
-    }
-    j["mutual_information"] = result.information;
-    j["first_minimum"] = optional_json(minimum);
-    j["first_minimum_time"] = minimum && series.dt ? nlohmann::ordered_json(static_cast<double>(*minimum) * dt) : nullptr;
     report.write_json(out);
     return;
   }
@@ -96,9 +74,9 @@ void register_mutual(CLI::App& app) {
   auto args = std::make_shared<MutualArgs>();
   CLI::App* command = app.add_subcommand("mutual", "average mutual information I(tau) in nats and its first minimum");
   add_input_options(*command, args->input);
-  command->add_option("-D,--max-delay", args->options.max_delay, "largest delay")->capture_default_str();
-  command->add_option("-b,--boxes", args->options.boxes, "boxes per axis")->capture_default_str();
-  command->add_option("--estimator", args->estimator, "equal_width (TISEAN) or equiprobable")->capture_default_str();
+  command->add_option("-D,--max-delay", args->params.options.max_delay, "largest delay")->capture_default_str();
+  command->add_option("-b,--boxes", args->params.options.boxes, "boxes per axis")->capture_default_str();
+  command->add_option("--estimator", args->params.estimator, "equal_width (TISEAN) or equiprobable")->capture_default_str();
   add_plot_option(*command, args->plot, "draw I(tau) with the first minimum marked to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -1,0 +1,142 @@
+#pragma once
+// The computation and the JSON of the `chaos` commands, shared by the command line (chaos/cli/) and
+// the Python package (python/). Each run_X takes the series and the command's parameters (with the
+// command's defaults), applies the command's own defaults that depend on the data, computes, and
+// fills a Report: its parameters (the '#' header / "parameters") and its JSON body, exactly what
+// `chaos X --json` writes. The command line adds the text table and the plot; the Python package
+// hands the JSON over as the result.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "chaos/automatic_analysis.hpp"
+#include "chaos/autocorrelation.hpp"
+#include "chaos/cao.hpp"
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
+#include "chaos/fnn.hpp"
+#include "chaos/lyapunov.hpp"
+#include "chaos/mutual_information.hpp"
+#include "chaos/nonlinearity_test.hpp"
+#include "chaos/series.hpp"
+#include "chaos/surrogates.hpp"
+#include "report.hpp"
+
+namespace chaos::cli {
+
+// chaos mutual
+struct MutualParams {
+  MutualInformationOptions options;
+  std::string estimator = "equal_width";
+};
+struct MutualRun {
+  MutualInformationResult result;
+  std::optional<std::size_t> minimum;
+  Report report;
+};
+MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOptions& output = {});
+
+// chaos autocorrelation
+struct AutocorrelationParams {
+  std::optional<std::size_t> max_lag;  // default: N/10, at most 1000, at least 1
+};
+struct AutocorrelationRun {
+  AutocorrelationResult result;
+  std::optional<std::size_t> zero;
+  std::optional<double> decay;
+  Report report;
+};
+AutocorrelationRun run_autocorrelation(const SeriesInput& in, const AutocorrelationParams& params,
+                                       const OutputOptions& output = {});
+
+// chaos cao
+struct CaoParams {
+  CaoOptions options;
+  std::string norm = "max";
+};
+struct CaoRun {
+  CaoResult result;
+  Report report;
+};
+CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& output = {});
+
+// chaos fnn
+struct FnnParams {
+  FnnOptions options;
+  std::string norm = "euclidean";
+};
+struct FnnRun {
+  FnnResult result;
+  Report report;
+};
+FnnRun run_fnn(const SeriesInput& in, FnnParams params, const OutputOptions& output = {});
+
+// chaos d2
+struct D2Params {
+  D2Params() { sums.max_dimension = 10; }
+  CorrelationSumOptions sums;  // sums.progress: called with the fraction done (may throw to stop)
+  CorrelationDimensionOptions dimension;
+  std::optional<std::size_t> theiler;
+  std::optional<double> r_min, r_max;
+  std::size_t radii = 40;
+  std::vector<double> radius_list;
+  std::string norm = "max";
+  std::string search = "box";
+  bool halves = false;
+};
+struct D2Run {
+  CorrelationSumResult sums;
+  CorrelationDimensionResult d2;
+  Report report;
+};
+D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output = {});
+CorrelationSearch parse_search(const std::string& name);
+
+// chaos lyapunov
+struct LyapunovParams {
+  LyapunovParams() { fit.dimensions = 3; }  // m, m+1, m+2 must agree
+  LyapunovOptions options;
+  LyapunovFitOptions fit;
+  std::optional<std::size_t> theiler, steps, period;
+  std::string method = "rosenstein";
+  std::string norm = "max";
+};
+struct LyapunovRun {
+  LyapunovResult result;
+  Report report;
+};
+LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});
+
+// chaos analyze
+struct AnalyzeParams {
+  std::optional<std::size_t> delay;
+  std::optional<std::size_t> theiler;
+  std::size_t max_delay = 100;
+  std::size_t boxes = 16;
+  std::size_t max_dimension = 10;
+  std::size_t test_length = 4096;  // samples given to the nonlinearity test
+  std::size_t surrogates = 19;
+  std::uint64_t seed = 1;
+  bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
+};
+struct AnalyzeRun {
+  AutomaticAnalysis analysis;
+  std::optional<FnnResult> fnn;
+  FnnOptions fnn_options;
+  std::optional<NonlinearityTestResult> nonlinear;
+  std::optional<EndMatch> segment;
+  std::optional<MutualInformationResult> mutual;  // with params.mutual_curve, for a stationary series
+  std::string theiler_source;
+  Report report;
+};
+// The file name of the built-in series, as `chaos analyze` reports it.
+extern const char* const builtin_series_name;
+// The built-in demonstration: Lorenz (10, 28, 8/3), x, RK4 h = 0.001 sampled every 0.01.
+Series builtin_series(std::size_t length);
+AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const OutputOptions& output = {});
+
+}  // namespace chaos::cli

@@ -1,0 +1,328 @@
+// d2, lyapunov, analyze: the computation and the JSON (commands.hpp).
+
+#include <algorithm>
+#include <cmath>
+
+#include "chaos/error.hpp"
+#include "chaos/generate.hpp"
+#include "chaos/time_scales.hpp"
+#include "commands.hpp"
+
+namespace chaos::cli {
+
+CorrelationSearch parse_search(const std::string& name) {
+  if (name == "box") return CorrelationSearch::box_assisted;
+  if (name == "kd") return CorrelationSearch::kd_tree;
+  if (name == "brute") return CorrelationSearch::brute_force;
+  throw InvalidInput(ErrorCode::invalid_parameter, "search must be box, kd or brute (got '" + name + "')");
+}
+
+D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output) {
+  const std::span<const double> x = in.values;
+  require_not_constant(x, in.file);
+  params.sums.norm = parse_norm(params.norm);
+  params.sums.search = parse_search(params.search);
+
+  // Theiler window: given, or the autocorrelation's 1/e time (pairs closer in time than the
+  // correlation time would otherwise pose as neighbours and bias D2 low).
+  std::string theiler_source = "given (-t)";
+  if (params.theiler) {
+    params.sums.theiler = *params.theiler;
+  } else {
+    const CorrelationTime t = correlation_time(x);
+    params.sums.theiler = t.samples;
+    theiler_source = t.source;
+  }
+  // Radii: given, or from the data's range (TISEAN's -r range/1000; -R a quarter of the range,
+  // beyond which C is near 1 and carries no scaling).
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  const double range = *hi - *lo;
+  const double r_max = params.r_max.value_or(range / 4.0);
+  const double r_min = params.r_min.value_or(range / 1000.0);
+  params.sums.radii = params.radius_list.empty() ? log_radii(r_min, r_max, params.radii) : params.radius_list;
+
+  CorrelationSumResult sums = correlation_sum(x, params.sums);
+  CorrelationDimensionResult d2 = correlation_dimension(sums, params.dimension);
+  if (params.halves) {
+    // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
+    CorrelationSumOptions halves = params.sums;
+    halves.progress = nullptr;  // the progress shown is the full record's sums
+    check_record_halves(d2, x, halves, params.dimension);
+  }
+
+  Report report("d2", output);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
+      .parameter("dt", in.dt).parameter("delay", params.sums.delay).parameter("min_dimension", params.sums.min_dimension)
+      .parameter("max_dimension", params.sums.max_dimension).parameter("theiler", params.sums.theiler)
+      .parameter("theiler_source", theiler_source).parameter("norm", params.norm).parameter("search", params.search)
+      .parameter("r_min", params.sums.radii.front()).parameter("r_max", params.sums.radii.back())
+      .parameter("radii", params.sums.radii.size())
+      .parameter("pairs_per_radius", params.sums.pairs_per_radius).parameter("reference_points", params.sums.reference_points)
+      .parameter("seed", params.sums.seed).parameter("threads", params.sums.threads)
+      .parameter("tolerance", params.dimension.region.tolerance).parameter("min_points", params.dimension.region.min_points)
+      .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
+      .parameter("min_pairs", params.dimension.min_pairs)
+      .parameter("max_region_radius", d2.max_region_radius)
+      .parameter("points", sums.points);
+  auto& j = report.json();
+  j["dimension"] = sums.dimension;
+  j["radius"] = sums.radius;
+  j["correlation_sum"] = sums.correlation_sum;
+  j["pairs"] = sums.pairs;
+  auto slopes = nlohmann::ordered_json::array();
+  for (const auto& row : d2.local_slope) {
+    auto line = nlohmann::ordered_json::array();
+    for (const auto& v : row) line.push_back(optional_json(v));
+    slopes.push_back(line);
+  }
+  j["local_slope"] = slopes;
+  auto by_m = nlohmann::ordered_json::array(), by_m_interval = nlohmann::ordered_json::array();
+  for (std::size_t d = 0; d < sums.dimension.size(); ++d) {
+    by_m.push_back(optional_json(d2.d2_by_dimension[d]));
+    by_m_interval.push_back(interval_json(d2.d2_by_dimension_interval[d]));
+  }
+  j["d2_by_dimension"] = by_m;
+  j["d2_by_dimension_interval"] = by_m_interval;
+  j["d2"] = optional_json(d2.d2);
+  j["d2_interval"] = interval_json(d2.d2_interval);
+  j["scaling_region"] = interval_json(d2.scaling_region);
+  auto plateaus = nlohmann::ordered_json::array();
+  for (const auto& p : d2.plateaus)
+    plateaus.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
+  j["plateaus"] = plateaus;
+  if (d2.first_half_status) {
+    j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
+    j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};
+  }
+  j["saturated"] = d2.status == D2Status::saturated;
+  j["status"] = to_string(d2.status);
+  j["explanation"] = d2.explanation;
+  j["takens_theiler"] = optional_json(d2.takens_theiler);
+  j["takens_theiler_error"] = optional_json(d2.takens_theiler_error);
+  j["eckmann_ruelle_limit"] = d2.eckmann_ruelle_limit;
+  j["exceeds_eckmann_ruelle"] = d2.exceeds_eckmann_ruelle;
+  return {std::move(sums), std::move(d2), std::move(report)};
+}
+
+namespace {
+
+LyapunovMethod parse_method(const std::string& name) {
+  if (name == "rosenstein") return LyapunovMethod::rosenstein;
+  if (name == "kantz") return LyapunovMethod::kantz;
+  throw InvalidInput(ErrorCode::invalid_parameter, "method must be rosenstein or kantz (got '" + name + "')");
+}
+
+}  // namespace
+
+LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output) {
+  const std::span<const double> x = in.values;
+  require_not_constant(x, in.file);
+  params.options.method = parse_method(params.method);
+  params.options.norm = parse_norm(params.norm);
+
+  // Defaults from the data's own time scales (time_scales.hpp): the Theiler window covers the
+  // autocorrelation time and half a period of a dominant oscillation (as in d2); the curve is
+  // followed for 20 of the longer of the two (at least 20 steps, at most N/10), long enough for a
+  // flow's separation to grow to the attractor's size; the local slopes span a whole period.
+  // (20 of them: the linear region must rise by LyapunovFitOptions::min_rise after the transient.)
+  const CorrelationTime correlation = correlation_time(x);
+  std::string theiler_source = "given (-t)", steps_source = "given (-s)", period_source = "given (--period)";
+  if (params.theiler) {
+    params.options.theiler = *params.theiler;
+  } else {
+    params.options.theiler = correlation.samples;
+    theiler_source = correlation.source;
+  }
+  if (!params.period) {
+    params.fit.period = correlation.period;
+    period_source = correlation.period ? "twice the first autocorrelation minimum" : "no dominant oscillation";
+  } else {
+    params.fit.period = *params.period;
+  }
+  if (params.steps) {
+    params.options.steps = *params.steps;
+  } else {
+    params.options.steps = automatic_lyapunov_steps(correlation.samples, params.fit.period, x.size());
+    steps_source = "20 correlation times or periods, at least 20, at most N/10";
+  }
+  LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
+
+  const bool per_time = r.dt.has_value();
+  const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
+  const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
+  Report report("lyapunov", output);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
+      .parameter("dt", in.dt).parameter("method", params.method).parameter("dimension", params.options.dimension)
+      .parameter("delay", params.options.delay).parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", theiler_source).parameter("steps", params.options.steps)
+      .parameter("steps_source", steps_source).parameter("norm", params.norm);
+  if (params.options.method == LyapunovMethod::kantz)
+    report.parameter("radius", r.curve.radius)
+        .parameter("radius_source", std::string(params.options.radius ? "given (-r)"
+                                                                       : "data range / 1000 times a power of two: half "
+                                                                         "the reference points have a neighbour, at most "
+                                                                         "20 on average"))
+        .parameter("min_neighbours", params.options.min_neighbours);
+  report.parameter("reference_points", params.options.reference_points).parameter("threads", params.options.threads)
+      .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
+      .parameter("min_steps", r.fit.min_steps).parameter("period", params.fit.period)
+      .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions);
+  auto& j = report.json();
+  j["lambda"] = optional_json(lambda);
+  j["lambda_interval"] = interval_json(lambda_interval);
+  j["per"] = per_time ? "time" : "sample";
+  j["lambda_per_sample"] = optional_json(r.fit.lambda);
+  j["lambda_per_sample_interval"] = interval_json(r.fit.lambda_interval);
+  j["status"] = to_string(r.fit.status);
+  j["explanation"] = r.fit.explanation;
+  j["region"] = r.fit.first_step ? nlohmann::ordered_json::array({*r.fit.first_step, *r.fit.last_step})
+                                 : nlohmann::ordered_json(nullptr);
+  j["region_time"] = interval_json(r.fit_range_time);
+  j["dimensions"] = r.dimensions;
+  j["lambda_by_dimension"] = r.fit.lambda_by_curve;
+  j["step"] = r.curve.step;
+  if (per_time) {
+    std::vector<double> time(r.curve.step.size());
+    for (std::size_t k = 0; k < time.size(); ++k) time[k] = static_cast<double>(r.curve.step[k]) * *r.dt;
+    j["time"] = time;
+  }
+  auto divergence = nlohmann::ordered_json::array(), slope = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < r.curve.step.size(); ++k) {
+    divergence.push_back(optional_json(r.curve.divergence[k]));
+    slope.push_back(optional_json(r.fit.local_slope[k]));
+  }
+  j["divergence"] = divergence;
+  j["local_slope"] = slope;
+  j["terms"] = r.curve.terms;
+  j["zero_distances"] = r.curve.zero_distances;
+  j["points"] = r.curve.points;
+  j["reference_points_examined"] = r.curve.reference_points;
+  j["references_used"] = r.curve.references_used;
+  j["mean_neighbours"] = r.curve.mean_neighbours;
+  return {std::move(r), std::move(report)};
+}
+
+const char* const builtin_series_name = "(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)";
+
+Series builtin_series(std::size_t length) {
+  GenerateRequest request;
+  request.system = SystemKind::lorenz;
+  request.length = length;
+  Trajectory t = generate(request);
+  return Series{std::move(t.components[0]), t.dt};
+}
+
+AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const OutputOptions& output) {
+  const std::span<const double> x = in.values;
+  const bool builtin = in.file == builtin_series_name;
+  require_not_constant(x, builtin ? "built-in Lorenz x" : in.file);
+
+  // The choices, D2 and both exponents come from the library's automatic pipeline, the one
+  // `chaos zoo` validates (automatic_analysis.hpp); false neighbours and the surrogate test are
+  // added here as corroboration.
+  AutomaticAnalysisOptions options;
+  options.delay = params.delay;
+  options.theiler = params.theiler;
+  options.max_delay = params.max_delay;
+  options.boxes = params.boxes;
+  options.max_dimension = params.max_dimension;
+  AnalyzeRun run{analyse_series(x, in.dt, options), std::nullopt, {}, std::nullopt, std::nullopt, std::nullopt, {},
+                 Report("analyze", output)};
+  const AutomaticAnalysis& a = run.analysis;
+  const TimeScales& scales = a.scales;
+  run.theiler_source = params.theiler ? "given (-t)" : scales.theiler_source;
+
+  if (a.delay) {
+    run.fnn_options.delay = *a.delay;
+    run.fnn_options.theiler = a.theiler;
+    run.fnn_options.max_dimension = params.max_dimension;
+    run.fnn = false_nearest_neighbors(x, run.fnn_options);
+  }
+  // The surrogate test on the first test_length samples, trimmed to their best end match (an end
+  // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
+  // (deterministic data are more predictable than their surrogates), the prediction error in the
+  // chosen embedding. Kept short so the demonstration stays quick.
+  if (a.dimension && a.delay) {
+    const std::span<const double> head(x.data(), std::min(x.size(), params.test_length));
+    run.segment = end_match(head);
+    NonlinearityTestOptions t;
+    t.statistic = NonlinearityStatistic::prediction_error;
+    t.alternative = Alternative::smaller;
+    t.surrogates = params.surrogates;
+    t.seed = params.seed;
+    t.prediction.dimension = *a.dimension;
+    t.prediction.delay = *a.delay;
+    t.prediction.theiler = a.theiler;
+    run.nonlinear = nonlinearity_test(head.subspan(run.segment->offset, run.segment->length), t);
+  }
+  if (params.mutual_curve && scales.stationary) {
+    // The information curve the delay was read from (the pipeline keeps only its minimum).
+    MutualInformationOptions mi_options;
+    mi_options.max_delay = std::max<std::size_t>(1, std::min(params.max_delay, x.size() / 10));
+    mi_options.boxes = params.boxes;
+    run.mutual = mutual_information(x, mi_options);
+  }
+
+  const auto& fnn = run.fnn;
+  const auto& nonlinear = run.nonlinear;
+  const auto& segment = run.segment;
+  Report& report = run.report;
+  report.parameter("file", in.file)
+      .parameter("N", x.size()).parameter("dt", in.dt).parameter("max_delay", params.max_delay)
+      .parameter("boxes", params.boxes).parameter("max_dimension", params.max_dimension)
+      .parameter("test_length", params.test_length).parameter("surrogates", params.surrogates).parameter("seed", params.seed);
+  const bool per_time = in.dt.has_value();
+  const auto time = [&](std::size_t samples) {
+    return in.dt ? nlohmann::ordered_json(static_cast<double>(samples) * *in.dt) : nullptr;
+  };
+  auto& j = report.json();
+  j["stationary"] = scales.stationary;
+  j["stationarity_explanation"] = scales.stationarity_explanation;
+  j["stopped"] = a.stopped.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.stopped);
+  j["delay"] = optional_json(a.delay);
+  j["delay_time"] = a.delay ? time(*a.delay) : nullptr;
+  j["delay_source"] = a.delay_source;
+  j["theiler"] = a.theiler;
+  j["theiler_source"] = run.theiler_source;
+  j["embedding_dimension"] = optional_json(a.dimension);
+  j["fnn_embedding_dimension"] = fnn ? optional_json(fnn->embedding_dimension) : nullptr;
+  j["max_E2_deviation"] = a.cao ? nlohmann::ordered_json(a.cao->max_E2_deviation) : nullptr;
+  j["stochastic"] = a.cao ? nlohmann::ordered_json(a.cao->stochastic) : nullptr;
+  j["d2"] = a.d2 ? optional_json(a.d2->d2) : nullptr;
+  j["d2_interval"] = a.d2 ? interval_json(a.d2->d2_interval) : nullptr;
+  j["d2_status"] = a.d2 ? to_string(a.d2->status) : "not_run";
+  j["d2_explanation"] = a.d2 ? a.d2->explanation : a.stopped;
+  const auto lambda_json = [&](const std::optional<LyapunovResult>& l, const std::string& prefix) {
+    if (l) {
+      j[prefix] = optional_json(per_time ? l->lambda_per_time : l->fit.lambda);
+      j[prefix + "_interval"] = interval_json(per_time ? l->lambda_per_time_interval : l->fit.lambda_interval);
+      j[prefix + "_status"] = to_string(l->fit.status);
+      j[prefix + "_explanation"] = l->fit.explanation;
+      j[prefix + "_fit_range_time"] = interval_json(l->fit_range_time);
+    } else {
+      j[prefix] = nullptr;
+      j[prefix + "_interval"] = nullptr;
+      j[prefix + "_status"] = "not_run";
+      j[prefix + "_explanation"] = a.stopped;
+      j[prefix + "_fit_range_time"] = nullptr;
+    }
+  };
+  lambda_json(a.rosenstein, "lambda");  // Rosenstein, the key earlier versions reported
+  j["lambda_per"] = per_time ? "time" : "sample";
+  lambda_json(a.kantz, "lambda_kantz");
+  if (nonlinear)
+    j["nonlinearity"] = {{"statistic", nonlinear->data_statistic}, {"rank", nonlinear->test.rank},
+                         {"count", nonlinear->surrogate_statistics.size()}, {"rejected", nonlinear->test.rejected},
+                         {"significance", nonlinear->test.significance}, {"offset", segment->offset},
+                         {"length", segment->length}};
+  else
+    j["nonlinearity"] = nullptr;
+  j["autocorrelation"] = {{"first_zero_crossing", optional_json(scales.first_zero_crossing)},
+                          {"decorrelation_time", optional_json(scales.decorrelation_time)},
+                          {"half_period", optional_json(scales.half_period)}};
+  if (a.cao) j["cao"] = {{"dimension", a.cao->dimension}, {"E1", a.cao->E1}, {"E2", a.cao->E2}};
+  if (fnn) j["fnn"] = {{"dimension", fnn->dimension}, {"false_fraction", fnn->false_fraction}};
+  return run;
+}
+
+}  // namespace chaos::cli

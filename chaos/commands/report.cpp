@@ -1,0 +1,75 @@
+#include "report.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "chaos/error.hpp"
+#include "chaos/series.hpp"
+#include "chaos/time_scales.hpp"
+
+namespace chaos::cli {
+
+std::string number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
+Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)), output_(output) {
+  json_["command"] = command_;
+  json_["parameters"] = nlohmann::ordered_json::object();
+  if (!output_.path.empty()) {
+    auto file = std::make_unique<std::ofstream>(output_.path);
+    if (!*file) throw InvalidInput(ErrorCode::io, output_.path + ": cannot open for writing");
+    file_ = std::move(file);
+  }
+}
+
+Report& Report::parameter(const std::string& name, const std::optional<double>& value) {
+  json_["parameters"][name] = optional_json(value);
+  header_.emplace_back(name, value ? number(*value) : "none");
+  return *this;
+}
+
+Report& Report::parameter(const std::string& name, const std::optional<std::size_t>& value) {
+  json_["parameters"][name] = optional_json(value);
+  header_.emplace_back(name, value ? std::to_string(*value) : "none");
+  return *this;
+}
+
+std::ostream& Report::stream() { return file_ ? *file_ : std::cout; }
+
+void Report::write_header(std::ostream& out) const {
+  out << "# chaos " << command_ << "\n";
+  for (const auto& [name, value] : header_) out << "# " << name << " = " << value << "\n";
+}
+
+void Report::write_json(std::ostream& out) const { out << json_.dump(2) << "\n"; }
+
+nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
+  return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
+}
+
+Norm parse_norm(const std::string& name) {
+  if (name == "max") return Norm::max;
+  if (name == "euclidean") return Norm::euclidean;
+  throw InvalidInput(ErrorCode::invalid_parameter, "norm must be 'max' or 'euclidean' (got '" + name + "')");
+}
+
+void check_series(std::span<const double> x, const std::string& what) {
+  require_finite(x, what);
+  require_scale(x, what);
+}
+
+CorrelationTime correlation_time(std::span<const double> x) {
+  const TimeScales scales = time_scales(x);
+  CorrelationTime t;
+  t.decay = scales.decorrelation_time;
+  t.samples = scales.theiler;
+  t.source = scales.theiler_source;
+  t.period = scales.period();
+  return t;
+}
+
+}  // namespace chaos::cli

@@ -1,0 +1,103 @@
+#pragma once
+// The output of a `chaos` command, shared by the command line (chaos/cli/) and the Python package
+// (python/): the parameters of a run, collected in order, written as '#' header lines or as the
+// "parameters" object of the JSON output, and the JSON object of the result. A command's whole
+// JSON is built here once (commands.hpp), so `chaos X --json` and the Python result's to_dict()
+// cannot drift apart.
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "chaos/norm.hpp"
+#include "chaos/scaling_region.hpp"
+
+namespace chaos::cli {
+
+struct OutputOptions {
+  bool json = false;
+  std::string path;  // -o; empty: standard output
+};
+
+// Formats a double with enough digits to round-trip the estimate's meaningful precision.
+std::string number(double value);
+
+// Collects the parameters of a run in the order they are added, then writes them as '#' lines or
+// as the "parameters" object of the JSON output.
+class Report {
+ public:
+  explicit Report(std::string command, const OutputOptions& output = {});
+  template <class T>
+  Report& parameter(const std::string& name, const T& value) {
+    json_["parameters"][name] = value;
+    header_.emplace_back(name, to_text(value));
+    return *this;
+  }
+  Report& parameter(const std::string& name, const std::optional<double>& value);
+  Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
+  nlohmann::ordered_json& json() { return json_; }
+  const nlohmann::ordered_json& json() const { return json_; }
+  bool json_mode() const { return output_.json; }
+  // Writes the header lines (text mode) or nothing (JSON mode) to `out`.
+  void write_header(std::ostream& out) const;
+  // Writes the JSON object (JSON mode) to `out`.
+  void write_json(std::ostream& out) const;
+  std::ostream& stream();
+
+ private:
+  template <class T>
+  static std::string to_text(const T& value) {
+    if constexpr (std::is_same_v<T, bool>) return value ? "true" : "false";
+    else if constexpr (std::is_floating_point_v<T>) return number(value);
+    else if constexpr (std::is_arithmetic_v<T>) return std::to_string(value);
+    else return std::string(value);
+  }
+  std::string command_;
+  OutputOptions output_;
+  nlohmann::ordered_json json_;
+  std::vector<std::pair<std::string, std::string>> header_;
+  std::unique_ptr<std::ostream> file_;
+};
+
+// JSON null for an empty optional.
+template <class T>
+nlohmann::ordered_json optional_json(const std::optional<T>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+// [low, high], or null.
+nlohmann::ordered_json interval_json(const std::optional<Interval>& i);
+
+Norm parse_norm(const std::string& name);
+
+// The series a command analyses, wherever it came from: a file read by the command line, or an
+// array handed over by the Python package (`file` then names it as such). The values are viewed,
+// not copied.
+struct SeriesInput {
+  std::span<const double> values;
+  std::string file = "-";
+  std::size_t column = 1;
+  std::optional<double> dt;
+};
+
+// The checks every command applies to a series it reads (finite values, a usable scale).
+void check_series(std::span<const double> x, const std::string& what);
+
+// The Theiler window and the oscillation period of time_scales.hpp, for the commands' defaults.
+struct CorrelationTime {
+  std::size_t samples = 0;      // the Theiler window: max(1/e time, half the oscillation period)
+  std::optional<double> decay;  // the 1/e time itself, when there is one
+  std::string source;
+  std::size_t period = 0;       // of a dominant oscillation, samples; 0 when none
+};
+CorrelationTime correlation_time(std::span<const double> x);
+
+}  // namespace chaos::cli
