@@ -8,6 +8,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   jq gnuplot-nox
   libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  python3-setuptools python3-wheel python3-venv python3-pip
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -8,9 +8,20 @@ jobs=$(nproc 2>/dev/null || echo 2)
 
 bash scripts/install-deps.sh
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCHAOS_BUILD_BENCHMARKS=ON
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCHAOS_BUILD_BENCHMARKS=ON -DCHAOS_BUILD_PYTHON=ON
 cmake --build build -j"$jobs"
 ctest --test-dir build -j"$jobs" --output-on-failure
+
+# The Python package (python/): installed into a fresh venv as the README says, its extension taken
+# from the Release build above (CHAOS_BUILD_DIR: nothing is compiled twice), and its pytest suite run
+# from outside the checkout (the repository's chaos/ folder would shadow the package there), with the
+# command just built as the source of the expected values.
+root=$PWD
+rm -rf build/venv
+/usr/bin/python3 -m venv --system-site-packages build/venv
+CHAOS_BUILD_DIR="$root/build" CHAOS_BUILD_JOBS="$jobs" build/venv/bin/pip install -q --no-build-isolation ./python
+(cd "$(mktemp -d)" && CHAOS_CLI="$root/build/chaos/chaos" "$root/build/venv/bin/python" -m pytest -p no:cacheprovider -q \
+  "$root/python/tests")
 
 # Open MPI's own allocations read as leaks under LeakSanitizer: the sanitizer build leaves MPI out
 # (the Release build above runs the two-rank test).

@@ -1,0 +1,320 @@
+// chaos._core: the pybind11 extension behind the Python package. Every command function takes the
+// series as a float64 C-contiguous NumPy array (the pure-Python layer converts anything else once,
+// views a matching array as it is), the series' name, column and sampling interval, and a dict of
+// the command's parameters; it runs the command's shared computation (chaos/commands/commands.hpp,
+// the code behind `chaos X --json`) with the GIL released and returns the command's JSON object as
+// Python objects. Invalid input raises ValueError (chaos::InvalidInput is a std::invalid_argument)
+// or TypeError (a parameter of the wrong type).
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "chaos/embedding.hpp"
+#include "chaos/error.hpp"
+#include "chaos/series.hpp"
+#include "commands.hpp"
+
+namespace py = pybind11;
+using namespace chaos::cli;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style>;
+
+// The data address of the last series handed to a command (the zero-copy test reads it).
+std::atomic<std::uintptr_t> last_input_address{0};
+
+// Raised from the progress hook when Python has a pending signal (Ctrl-C): the computation stops
+// and the signal's exception is raised in Python.
+struct Interrupted {};
+
+[[noreturn]] void type_error(const std::string& message) { throw py::type_error(message); }
+[[noreturn]] void value_error(const std::string& message) { throw py::value_error(message); }
+
+// Parameters: read from the dict by name, None or absent leaves the command's default.
+bool has(const py::dict& p, const char* name) { return p.contains(name) && !p[name].is_none(); }
+
+std::size_t to_count(const py::handle& v, const char* name) {
+  if (PyBool_Check(v.ptr()) || !PyLong_Check(v.ptr()))
+    type_error(std::string(name) + " must be an integer (got " + std::string(py::str(py::type::of(v).attr("__name__"))) + ")");
+  int overflow = 0;
+  const long long value = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+  if (overflow > 0) value_error(std::string(name) + " is too large");
+  if (overflow < 0 || value < 0) value_error(std::string(name) + " must be >= 0 (got " + std::string(py::str(v)) + ")");
+  return static_cast<std::size_t>(value);
+}
+
+void get(const py::dict& p, const char* name, std::size_t& target) {
+  if (has(p, name)) target = to_count(p[name], name);
+}
+void get(const py::dict& p, const char* name, std::optional<std::size_t>& target) {
+  if (has(p, name)) target = to_count(p[name], name);
+}
+double to_real(const py::handle& v, const char* name) {
+  if (PyBool_Check(v.ptr()) || !(PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr()) || py::isinstance<py::float_>(v)))
+    type_error(std::string(name) + " must be a number (got " + std::string(py::str(py::type::of(v).attr("__name__"))) + ")");
+  const double value = py::cast<double>(v);
+  if (std::isnan(value)) value_error(std::string(name) + " must not be NaN");
+  return value;
+}
+void get(const py::dict& p, const char* name, double& target) {
+  if (has(p, name)) target = to_real(p[name], name);
+}
+void get(const py::dict& p, const char* name, std::optional<double>& target) {
+  if (has(p, name)) target = to_real(p[name], name);
+}
+void get(const py::dict& p, const char* name, std::string& target) {
+  if (!has(p, name)) return;
+  if (!py::isinstance<py::str>(p[name])) type_error(std::string(name) + " must be a string");
+  target = py::cast<std::string>(p[name]);
+}
+void get(const py::dict& p, const char* name, bool& target) {
+  if (!has(p, name)) return;
+  if (!PyBool_Check(p[name].ptr())) type_error(std::string(name) + " must be True or False");
+  target = p[name].cast<bool>();
+}
+void get(const py::dict& p, const char* name, std::vector<double>& target) {
+  if (!has(p, name)) return;
+  target.clear();
+  for (const auto& v : p[name]) target.push_back(to_real(v, name));
+}
+
+// The series: the checks every command applies to what it reads (finite, usable scale).
+SeriesInput series(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt) {
+  last_input_address = reinterpret_cast<std::uintptr_t>(x.data());
+  const std::span<const double> values(x.data(), static_cast<std::size_t>(x.size()));
+  if (values.empty()) throw chaos::InvalidInput(chaos::ErrorCode::empty, file + ": the series is empty (no samples)");
+  check_series(values, file);
+  if (dt && !(std::isfinite(*dt) && *dt > 0.0))
+    throw chaos::InvalidInput(chaos::ErrorCode::invalid_parameter, "dt must be finite and > 0");
+  return {values, file, column, dt};
+}
+
+// nlohmann's JSON to Python objects, as `json.loads` of the command's output would give them
+// (NaN and infinities are written as null by the command, so they become None here too).
+py::object to_python(const nlohmann::ordered_json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::null: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(j.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float: {
+      const double v = j.get<double>();
+      return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
+    }
+    case nlohmann::json::value_t::string: return py::str(j.get_ref<const std::string&>());
+    case nlohmann::json::value_t::array: {
+      py::list out(j.size());
+      std::size_t k = 0;
+      for (const auto& v : j) out[k++] = to_python(v);
+      return out;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict out;
+      for (const auto& [key, v] : j.items()) out[py::str(key)] = to_python(v);
+      return out;
+    }
+    default: return py::none();
+  }
+}
+
+// Runs `compute` without the GIL; the result's JSON comes back as Python objects.
+template <class F>
+py::object call(F&& compute) {
+  nlohmann::ordered_json json;
+  {
+    py::gil_scoped_release release;
+    json = compute();
+  }
+  return to_python(json);
+}
+
+// The progress hook of the correlation sums, the library's one cancellation point: each call (every
+// thousandth of the work) checks for a pending signal and stops the sums when there is one; with
+// `callback`, it is also handed the fraction done.
+std::function<void(double)> progress_hook(py::object callback) {
+  auto shared = std::make_shared<py::object>(std::move(callback));
+  return [shared](double fraction) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw Interrupted{};
+    if (!shared->is_none()) (*shared)(fraction);
+  };
+}
+
+py::object mutual(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  MutualParams params;
+  get(p, "max_delay", params.options.max_delay);
+  get(p, "boxes", params.options.boxes);
+  get(p, "estimator", params.estimator);
+  return call([&] { return run_mutual(in, params).report.json(); });
+}
+
+py::object autocorrelation(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                           const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  AutocorrelationParams params;
+  get(p, "max_lag", params.max_lag);
+  return call([&] { return run_autocorrelation(in, params).report.json(); });
+}
+
+py::object cao(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  CaoParams params;
+  get(p, "delay", params.options.delay);
+  get(p, "min_dimension", params.options.min_dimension);
+  get(p, "max_dimension", params.options.max_dimension);
+  get(p, "theiler", params.options.theiler);
+  get(p, "norm", params.norm);
+  get(p, "level", params.options.saturation_level);
+  get(p, "change", params.options.saturation_change);
+  get(p, "sigmas", params.options.stochastic_sigmas);
+  return call([&] { return run_cao(in, params).report.json(); });
+}
+
+py::object fnn(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  FnnParams params;
+  get(p, "delay", params.options.delay);
+  get(p, "min_dimension", params.options.min_dimension);
+  get(p, "max_dimension", params.options.max_dimension);
+  get(p, "theiler", params.options.theiler);
+  get(p, "rtol", params.options.rtol);
+  get(p, "atol", params.options.atol);
+  get(p, "norm", params.norm);
+  get(p, "threshold", params.options.threshold);
+  return call([&] { return run_fnn(in, params).report.json(); });
+}
+
+py::object d2(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p,
+              py::object progress) {
+  const SeriesInput in = series(x, file, column, dt);
+  D2Params params;
+  get(p, "delay", params.sums.delay);
+  get(p, "min_dimension", params.sums.min_dimension);
+  get(p, "max_dimension", params.sums.max_dimension);
+  get(p, "theiler", params.theiler);
+  get(p, "min_radius", params.r_min);
+  get(p, "max_radius", params.r_max);
+  get(p, "radii", params.radii);
+  get(p, "radius_list", params.radius_list);
+  get(p, "norm", params.norm);
+  get(p, "search", params.search);
+  get(p, "pairs_per_radius", params.sums.pairs_per_radius);
+  get(p, "reference_points", params.sums.reference_points);
+  get(p, "seed", params.sums.seed);
+  get(p, "threads", params.sums.threads);
+  get(p, "tolerance", params.dimension.region.tolerance);
+  get(p, "min_points", params.dimension.region.min_points);
+  get(p, "saturation_dimensions", params.dimension.saturation_dimensions);
+  get(p, "min_pairs", params.dimension.min_pairs);
+  get(p, "max_region_fraction", params.dimension.max_region_fraction);
+  get(p, "halves", params.halves);
+  params.sums.progress = progress_hook(std::move(progress));
+  try {
+    return call([&] { return run_d2(in, params).report.json(); });
+  } catch (const Interrupted&) {
+    throw py::error_already_set();  // the signal handler's exception (KeyboardInterrupt)
+  }
+}
+
+py::object lyapunov(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                    const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  LyapunovParams params;
+  get(p, "method", params.method);
+  get(p, "dimension", params.options.dimension);
+  get(p, "delay", params.options.delay);
+  get(p, "theiler", params.theiler);
+  get(p, "steps", params.steps);
+  get(p, "period", params.period);
+  get(p, "dimensions", params.fit.dimensions);
+  get(p, "radius", params.options.radius);
+  get(p, "min_neighbours", params.options.min_neighbours);
+  get(p, "reference_points", params.options.reference_points);
+  get(p, "norm", params.norm);
+  get(p, "threads", params.options.threads);
+  get(p, "tolerance", params.fit.tolerance);
+  get(p, "half_width", params.fit.half_width);
+  get(p, "min_steps", params.fit.min_steps);
+  get(p, "min_rise", params.fit.min_rise);
+  return call([&] { return run_lyapunov(in, params).report.json(); });
+}
+
+py::object analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                   const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  AnalyzeParams params;
+  get(p, "delay", params.delay);
+  get(p, "theiler", params.theiler);
+  get(p, "max_delay", params.max_delay);
+  get(p, "boxes", params.boxes);
+  get(p, "max_dimension", params.max_dimension);
+  get(p, "test_length", params.test_length);
+  get(p, "surrogates", params.surrogates);
+  get(p, "seed", params.seed);
+  return call([&] { return run_analyze(in, params).report.json(); });
+}
+
+// The series of a file, read as the command reads it (-c -x -l --dt), with the same checks.
+py::tuple read_file(const std::string& path, const py::object& column, std::size_t skip, std::optional<std::size_t> length,
+               std::optional<double> dt) {
+  chaos::ReadOptions options;
+  if (py::isinstance<py::str>(column))
+    options.column_name = column.cast<std::string>();
+  else
+    options.column = to_count(column, "column");
+  options.skip = skip;
+  if (length) options.length = *length;
+  options.dt = dt;
+  chaos::Series s;
+  {
+    py::gil_scoped_release release;
+    s = chaos::read_series(path, options);
+    check_series(s.values, path);
+  }
+  Array values(static_cast<py::ssize_t>(s.values.size()));
+  std::copy(s.values.begin(), s.values.end(), values.mutable_data());
+  return py::make_tuple(values, s.column, s.dt ? py::object(py::float_(*s.dt)) : py::object(py::none()));
+}
+
+// The number of points of the delay embedding of x, validated as the library validates it.
+std::size_t embedding_points(const Array& x, const py::handle& dimension, const py::handle& delay) {
+  const std::span<const double> values(x.data(), static_cast<std::size_t>(x.size()));
+  check_series(values, "(array)");
+  return chaos::DelayEmbedding(values, to_count(dimension, "dimension"), to_count(delay, "delay")).size();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "The chaos library's commands on NumPy arrays (see the chaos package).";
+  m.def("mutual", &mutual);
+  m.def("autocorrelation", &autocorrelation);
+  m.def("cao", &cao);
+  m.def("fnn", &fnn);
+  m.def("d2", &d2);
+  m.def("lyapunov", &lyapunov);
+  m.def("analyze", &analyze);
+  m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
+        py::arg("dt") = py::none());
+  m.def("builtin_series", [](std::size_t length) {
+    chaos::Series s = builtin_series(length);
+    Array values(static_cast<py::ssize_t>(s.values.size()));
+    std::copy(s.values.begin(), s.values.end(), values.mutable_data());
+    return py::make_tuple(values, *s.dt);
+  });
+  m.attr("builtin_series_name") = builtin_series_name;
+  m.def("embedding_points", &embedding_points);
+  m.def("_last_input_address", [] { return static_cast<std::uintptr_t>(last_input_address); });
+}

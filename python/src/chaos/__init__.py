@@ -1,0 +1,250 @@
+"""chaos: the chaos library's analyses on NumPy arrays.
+
+Each function runs the same code as the matching ``chaos`` command (the library's shared command
+layer, chaos/commands/) and returns a frozen result whose attributes are the keys of the command's
+``--json`` output; ``result.to_dict()`` equals that JSON object exactly, and ``result.plot()``
+draws the command's figure with matplotlib.
+
+The series is a 1-D array (a float64 C-contiguous array is used in place, anything else, lists
+included, is converted once to float64) or the path of a text file, read as the command reads it
+(``column``, ``skip``, ``length``). Parameters are keyword arguments named after the command's long
+options (``--max-dimension`` -> ``max_dimension``), with the command's defaults. The GIL is released
+while the library computes. Invalid input raises ValueError with the library's message (NaN or
+infinity, an empty, constant or too short series, an impossible parameter) or TypeError (a
+parameter or series of the wrong type).
+
+Conventions (docs/conventions.md): delays, Theiler windows and steps in samples; the max norm unless
+said otherwise; correlation sums count pairs with distance < eps and |i - j| > theiler; mutual
+information in nats.
+
+A result's JSON names the series in ``parameters["file"]``: the path for a file, ``"(array)"`` for
+an array.
+"""
+import os
+import sys
+
+import numpy as np
+
+from . import _core
+from ._results import Result, make as _make
+
+__all__ = ["mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "embed",
+           "read", "builtin_lorenz", "Result"]
+__version__ = "0.1.0"
+
+ARRAY_NAME = "(array)"
+
+
+def _series(x, dt, column=1, skip=0, length=None):
+    """(values, file, column, dt): a float64 C-contiguous array, viewed without a copy when it is one."""
+    if isinstance(x, (str, os.PathLike)):
+        path = os.fspath(x)
+        values, column, dt = _core.read(path, column, skip, length, dt)
+        return values, path, column, dt
+    if column != 1 or skip != 0 or length is not None:
+        raise TypeError("column, skip and length select rows of a file; slice an array instead")
+    a = np.asarray(x)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"the series must hold real numbers (got an array of dtype {a.dtype})")
+    if a.ndim != 1:
+        raise ValueError(f"the series must be one-dimensional (got shape {a.shape})")
+    if a.dtype != np.float64 or not a.flags.c_contiguous:
+        a = np.ascontiguousarray(a, dtype=np.float64)
+    return a, ARRAY_NAME, 1, dt
+
+
+def read(path, *, column=1, skip=0, length=None, dt=None):
+    """The series of a text file as the ``chaos`` commands read it (TISEAN's -c -x -l, and --dt).
+
+    Returns ``(values, dt)``: a float64 array and the sampling interval (None when not given).
+    ``column`` is 1-based, or the name of a column in the file's header row.
+    """
+    values, _, _, dt = _series(os.fspath(path), dt, column, skip, length)
+    return values, dt
+
+
+def builtin_lorenz(length=100000):
+    """The built-in demonstration series of ``chaos analyze``: Lorenz x (sigma=10, rho=28, beta=8/3), RK4
+    h = 0.001 sampled every dt = 0.01. Returns ``(values, dt)``."""
+    return _core.builtin_series(length)
+
+
+def _progress_bar(progress, label):
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    state = {"shown": -1}
+
+    def bar(fraction):
+        percent = int(fraction * 100)
+        if percent != state["shown"]:
+            state["shown"] = percent
+            filled = percent // 2
+            sys.stderr.write(f"\r{label} [{'#' * filled}{'.' * (50 - filled)}] {percent:3d}%")
+            sys.stderr.flush()
+    return bar
+
+
+def mutual(x, *, max_delay=20, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
+    """Average mutual information I(tau) in nats and its first minimum (``chaos mutual``).
+
+    I(tau) = sum_ij p_ij(tau) ln(p_ij(tau) / (p_i p_j)) over a partition of the range into ``boxes``
+    bins per axis (``estimator="equal_width"``, TISEAN's mutual) or of equal occupation
+    (``"equiprobable"``), for tau = 0..max_delay. The first minimum is Fraser and Swinney's delay
+    (Phys. Rev. A 33, 1134, 1986). docs/mutual_information.md.
+
+    Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.mutual(values, file, column, dt,
+                              dict(max_delay=max_delay, boxes=boxes, estimator=estimator)))
+
+
+def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
+    """Autocorrelation r(k) by FFT, its first zero crossing and 1/e time (``chaos autocorrelation``).
+
+    r(k) = sum_i (x_i - m)(x_{i+k} - m) / sum_i (x_i - m)^2 for k = 0..max_lag (default N/10, at most
+    1000); the 1/e time is interpolated linearly where r first falls below exp(-1).
+    docs/autocorrelation.md.
+
+    Result keys: lag, autocorrelation, first_zero_crossing, decorrelation_time, [decorrelation_time_units].
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.autocorrelation(values, file, column, dt, dict(max_lag=max_lag)))
+
+
+def cao(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, norm="max", level=0.8, change=0.1, sigmas=4.0,
+        dt=None, column=1, skip=0, length=None):
+    """Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates (``chaos cao``).
+
+    E(m) = mean_i |y_i(m+1) - y_n(i,m)(m+1)| / |y_i(m) - y_n(i,m)(m)| with n(i, m) the nearest
+    neighbour of point i in dimension m (|i - n| > theiler), E1(m) = E(m+1)/E(m); E*(m) = mean_i
+    |x_{i+m tau} - x_{n+m tau}|, E2(m) = E*(m+1)/E*(m). The dimension is the first m with E1 >= level
+    that changes by <= change from there on; the series is stochastic when every |E2 - 1| is within
+    ``sigmas`` standard errors. L. Cao, Physica D 110, 43 (1997). docs/cao.md.
+
+    Result keys: dimension, E1, E2, E, E_star, E2_standard_error, embedding_dimension, e1_saturation,
+    stochastic, max_E2_deviation, points_without_neighbor.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.cao(values, file, column, dt,
+                           dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
+                                norm=norm, level=level, change=change, sigmas=sigmas)))
+
+
+def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, atol=2.0, norm="euclidean",
+        threshold=0.01, dt=None, column=1, skip=0, length=None):
+    """The fraction of false nearest neighbours against m (``chaos fnn``).
+
+    A neighbour is false when |x_{i+m tau} - x_{n+m tau}| / R_m(i) > rtol (criterion 1) or R_{m+1}(i) /
+    sigma > atol (criterion 2); the dimension is the first m whose fraction is <= threshold.
+    M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45, 3403 (1992). docs/fnn.md.
+
+    Result keys: dimension, false_fraction, embedding_dimension.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.fnn(values, file, column, dt,
+                           dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
+                                rtol=rtol, atol=atol, norm=norm, threshold=threshold)))
+
+
+def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
+       radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
+       tolerance=0.05, min_points=5, saturation_dimensions=3, min_pairs=100, max_region_fraction=None,
+       halves=False, progress=None, dt=None, column=1, skip=0, length=None):
+    """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
+    (``chaos d2``).
+
+    C(eps, m) = #{(i, j): |i - j| > theiler, ||y_i - y_j|| < eps} / #{(i, j): |i - j| > theiler}, over
+    the delay vectors y_i = (x_i, x_{i+tau}, ..., x_{i+(m-1)tau}), for m = min_dimension..max_dimension
+    in one pass, exactly (box-assisted, kd-tree or brute-force search give identical counts) unless
+    ``pairs_per_radius`` or ``reference_points`` ask for an estimate. Local slopes d ln C / d ln eps;
+    the scaling region is the widest range of radii where the slopes of the highest
+    ``saturation_dimensions`` dimensions agree within ``tolerance``; D2 is their mean there, with an
+    interval. Defaults: theiler the autocorrelation's 1/e time (or half the dominant period), radii
+    from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
+    J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
+
+    ``threads`` gives identical results for any number. ``progress=True`` draws a bar on stderr (or
+    pass a callable taking the fraction done); Ctrl-C stops the sums within a thousandth of the work.
+
+    Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
+    d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, scaling_region, plateaus, saturated,
+    status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
+    exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``).
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    params = dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
+                  min_radius=min_radius, max_radius=max_radius, radii=radii, radius_list=radius_list, norm=norm,
+                  search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
+                  threads=threads, tolerance=tolerance, min_points=min_points,
+                  saturation_dimensions=saturation_dimensions, min_pairs=min_pairs,
+                  max_region_fraction=max_region_fraction, halves=halves)
+    bar = _progress_bar(progress, "correlation sums")
+    try:
+        return _make(_core.d2(values, file, column, dt, params, bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
+
+
+correlation_sum = d2  # the correlation sums are part of d2's result (correlation_sum, pairs, radius)
+
+
+def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
+             radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
+             min_steps=0, min_rise=2.0, dt=None, column=1, skip=0, length=None):
+    """The largest Lyapunov exponent from the series (``chaos lyapunov``).
+
+    Rosenstein: S(k) = < ln d_i(k) >, d_i(k) the distance after k steps of point i and its nearest
+    neighbour (|i - n| > theiler); Kantz: S(k) = < ln < |x_{i+k} - x_{j+k}| >_{U_eps(i)} >. lambda is
+    the slope of S(k) over the linear region found automatically (local slopes agreeing within
+    ``tolerance`` in ``dimensions`` embedding dimensions m, m+1, ...), per sample, and per time unit
+    when ``dt`` is given (then ``lambda`` is per time unit). M. T. Rosenstein, J. J. Collins,
+    C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/lyapunov.md.
+
+    The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.lyapunov(values, file, column, dt,
+                                dict(method=method, dimension=dimension, delay=delay, theiler=theiler, steps=steps,
+                                     period=period, dimensions=dimensions, radius=radius,
+                                     min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
+                                     threads=threads, tolerance=tolerance, half_width=half_width,
+                                     min_steps=min_steps, min_rise=min_rise)))
+
+
+def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
+            test_length=4096, surrogates=19, seed=1, dt=None, column=1, skip=0, length=None):
+    """The embedding parameters chosen and justified, then D2, lambda_1 and a nonlinearity test
+    (``chaos analyze``).
+
+    The library's automatic pipeline (chaos/automatic_analysis.hpp, the one ``chaos zoo`` validates):
+    Theiler window = max(autocorrelation 1/e time, half the dominant period); delay 1 for a series
+    decorrelated within a sample, else the first minimum of the mutual information; embedding
+    dimension where Cao's E1 saturates (unless E2 says stochastic), corroborated by false nearest
+    neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2; a
+    one-sided rank-order test against IAAFT surrogates (prediction error). With ``x=None`` it analyses
+    the built-in Lorenz x series (``builtin_length`` samples, dt = 0.01), as ``chaos analyze`` with no
+    file does.
+    """
+    if x is None:
+        values, builtin_dt = _core.builtin_series(builtin_length)
+        file, column, dt = _core.builtin_series_name, 1, builtin_dt
+    else:
+        values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.analyze(values, file, column, dt,
+                               dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
+                                    max_dimension=max_dimension, test_length=test_length, surrogates=surrogates,
+                                    seed=seed)))
+
+
+def embed(x, dimension, delay=1):
+    """The delay embedding y_i = (x_i, x_{i+tau}, ..., x_{i+(m-1)tau}), i = 0..N-(m-1)tau-1, as a read-only
+    (N - (m-1) tau) x m array that views the series without copying it (docs/embedding.md)."""
+    values, _, _, _ = _series(x, None)
+    points = _core.embedding_points(values, dimension, delay)
+    view = np.lib.stride_tricks.as_strided(values, shape=(points, dimension),
+                                           strides=(values.strides[0], values.strides[0] * delay), writeable=False)
+    return view

@@ -1,0 +1,54 @@
+"""Shared fixtures: the `chaos` command built from the same checkout (CHAOS_CLI, or <repo>/build/chaos/chaos)
+gives the expected values; series are written by `chaos generate` into a temporary directory."""
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+CLI = Path(os.environ.get("CHAOS_CLI", REPO / "build" / "chaos" / "chaos"))
+
+
+def run_cli(*args, check=True):
+    """Runs the command; returns the CompletedProcess."""
+    if not CLI.exists():
+        pytest.skip(f"the chaos command is not built at {CLI} (set CHAOS_CLI)")
+    p = subprocess.run([str(CLI), *map(str, args)], capture_output=True, text=True)
+    if check and p.returncode != 0:
+        raise AssertionError(f"chaos {' '.join(map(str, args))} failed ({p.returncode}): {p.stderr}")
+    return p
+
+
+def cli_json(*args):
+    return json.loads(run_cli(*args, "--json").stdout)
+
+
+def as_array_run(expected):
+    """The CLI's JSON as it reads for an array: parameters.file is "(array)"."""
+    expected = json.loads(json.dumps(expected))
+    expected["parameters"]["file"] = "(array)"
+    return expected
+
+
+@pytest.fixture(scope="session")
+def data_dir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("series")
+    for name, args in {"lorenz": ["lorenz", "-l", "4000", "--components", "x"],
+                       "henon": ["henon", "-l", "3000", "--components", "x"],
+                       "noise": ["white_noise", "-l", "2000"]}.items():
+        (d / f"{name}.txt").write_text(run_cli("generate", *args).stdout)
+    return d
+
+
+@pytest.fixture(scope="session")
+def lorenz_file(data_dir):
+    return data_dir / "lorenz.txt"
+
+
+@pytest.fixture(scope="session")
+def lorenz(lorenz_file):
+    import chaos
+    return chaos.read(lorenz_file)[0]

@@ -1,0 +1,136 @@
+"""Each function's result equals the command's --json on the same data, bit for bit (the same
+JSON-building code runs in both, chaos/commands/)."""
+import json
+
+import numpy as np
+import pytest
+
+import chaos
+from conftest import as_array_run, cli_json
+
+
+def check(function, path, cli_args, **kwargs):
+    """Array and path input against `chaos <cli_args> path --json`."""
+    expected = cli_json(*cli_args, path)
+    values = chaos.read(path)[0]
+    got = function(values, **kwargs)
+    assert got.to_dict() == as_array_run(expected)
+    assert function(path, **kwargs).to_dict() == expected
+    # Attributes are the JSON's keys.
+    for key, value in expected.items():
+        if key == "parameters":
+            continue
+        attribute = got[key]
+        if isinstance(value, list) and value and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                     for v in value):
+            np.testing.assert_array_equal(attribute, np.array(value, dtype=attribute.dtype))
+    return got
+
+
+def test_d2_the_issue_bar(lorenz_file):
+    expected = cli_json("d2", lorenz_file, "-d", 1, "-m", 1, "-M", 4, "-t", 10)
+    x = np.loadtxt(lorenz_file)
+    r = chaos.d2(x, delay=1, min_dimension=1, max_dimension=4, theiler=10)
+    assert r.to_dict() == as_array_run(expected)
+    assert r.d2 == expected["d2"] and r.status == expected["status"]
+    assert r.local_slope.shape == (4, 40)
+    assert r.correlation_sum.shape == (4, 40)
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}),
+    (["-d", 10, "-M", 6, "--search", "kd", "-#", 20], dict(delay=10, max_dimension=6, search="kd", radii=20)),
+    (["-d", 8, "-M", 5, "-t", 30, "--norm", "euclidean", "--halves", "--dt", 0.01],
+     dict(delay=8, max_dimension=5, theiler=30, norm="euclidean", halves=True, dt=0.01)),
+    (["-d", 8, "-M", 4, "--reference-points", 500, "--seed", 3, "-r", 0.5, "-R", 10],
+     dict(delay=8, max_dimension=4, reference_points=500, seed=3, min_radius=0.5, max_radius=10)),
+])
+def test_d2(lorenz_file, cli_args, kwargs):
+    check(chaos.d2, lorenz_file, ["d2", *cli_args], **kwargs)
+
+
+def test_d2_threads_give_the_command_result(lorenz_file):
+    one = chaos.d2(lorenz_file, delay=10, max_dimension=5, threads=1).to_dict()
+    check(chaos.d2, lorenz_file, ["d2", "-d", 10, "-M", 5, "--threads", 2], delay=10, max_dimension=5, threads=2)
+    two = chaos.d2(lorenz_file, delay=10, max_dimension=5, threads=2).to_dict()
+    assert two["parameters"].pop("threads") == 2 and one["parameters"].pop("threads") == 1
+    assert one == two
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}), (["-D", 40, "-b", 32, "--estimator", "equiprobable", "--dt", 0.01],
+               dict(max_delay=40, boxes=32, estimator="equiprobable", dt=0.01))])
+def test_mutual(lorenz_file, cli_args, kwargs):
+    r = check(chaos.mutual, lorenz_file, ["mutual", *cli_args], **kwargs)
+    assert r.first_minimum is None or r.first_minimum in list(r.delay)
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [([], {}), (["-D", 50, "--dt", 0.01], dict(max_lag=50, dt=0.01))])
+def test_autocorrelation(lorenz_file, cli_args, kwargs):
+    r = check(chaos.autocorrelation, lorenz_file, ["autocorrelation", *cli_args], **kwargs)
+    assert r.autocorrelation[0] == 1.0  # r(0) = 1 by the formula
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}), (["-d", 10, "-M", 6, "-t", 20, "--norm", "euclidean", "--level", 0.7, "--change", 0.2, "--sigmas", 3],
+               dict(delay=10, max_dimension=6, theiler=20, norm="euclidean", level=0.7, change=0.2, sigmas=3))])
+def test_cao(lorenz_file, cli_args, kwargs):
+    check(chaos.cao, lorenz_file, ["cao", *cli_args], **kwargs)
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}), (["-d", 10, "-m", 2, "-M", 6, "-t", 20, "--rtol", 15, "--atol", 1.5, "--norm", "max"],
+               dict(delay=10, min_dimension=2, max_dimension=6, theiler=20, rtol=15, atol=1.5, norm="max"))])
+def test_fnn(lorenz_file, cli_args, kwargs):
+    check(chaos.fnn, lorenz_file, ["fnn", *cli_args], **kwargs)
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    (["-d", 10, "-m", 3], dict(delay=10, dimension=3)),
+    (["-d", 10, "-m", 3, "--dt", 0.01, "--method", "kantz", "--threads", 2],
+     dict(delay=10, dimension=3, dt=0.01, method="kantz", threads=2)),
+])
+def test_lyapunov(lorenz_file, cli_args, kwargs):
+    r = check(chaos.lyapunov, lorenz_file, ["lyapunov", *cli_args], **kwargs)
+    assert r.lambda_ is r["lambda"] or r.lambda_ == r["lambda"]
+
+
+def test_lyapunov_henon(data_dir):
+    check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2])
+
+
+def test_analyze(lorenz_file):
+    r = check(chaos.analyze, lorenz_file, ["analyze", "--dt", 0.01, "--test-length", 1024, "--surrogates", 9],
+              dt=0.01, test_length=1024, surrogates=9)
+    assert r.delay_source
+
+
+def test_analyze_noise(data_dir):
+    check(chaos.analyze, data_dir / "noise.txt", ["analyze", "--test-length", 512], test_length=512)
+
+
+def test_analyze_builtin():
+    expected = cli_json("analyze", "--builtin-length", 5000, "--test-length", 512)
+    assert chaos.analyze(builtin_length=5000, test_length=512).to_dict() == expected
+
+
+def test_results_are_frozen(lorenz):
+    r = chaos.autocorrelation(lorenz)
+    with pytest.raises(AttributeError):
+        r.decorrelation_time = 3
+    with pytest.raises(ValueError):
+        r.autocorrelation[0] = 2.0  # read-only array
+    d = r.to_dict()
+    d["lag"].clear()
+    assert len(r.to_dict()["lag"]) == len(r.lag)  # to_dict() is a copy
+
+
+def test_embed_is_a_view_with_the_library_layout(lorenz):
+    y = chaos.embed(lorenz, 3, 5)
+    assert y.shape == (len(lorenz) - 10, 3)
+    assert np.shares_memory(y, lorenz)
+    np.testing.assert_array_equal(y[7], [lorenz[7], lorenz[12], lorenz[17]])  # y_i = (x_i, x_{i+tau}, ...)
+    with pytest.raises(ValueError):
+        chaos.embed(lorenz[:5], 4, 2)
+    with pytest.raises(ValueError):
+        chaos.embed(lorenz, 0, 1)
