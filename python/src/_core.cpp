@@ -34,6 +34,8 @@ using Array = py::array_t<double, py::array::c_style>;
 // The data address of the last series handed to a command (the zero-copy test reads it).
 std::atomic<std::uintptr_t> last_input_address{0};
 
+const char* const ARRAY = "(array)";
+
 // Raised from the progress hook when Python has a pending signal (Ctrl-C): the computation stops
 // and the signal's exception is raised in Python.
 struct Interrupted {};
@@ -295,6 +297,36 @@ std::size_t embedding_points(const Array& x, const py::handle& dimension, const 
   return chaos::DelayEmbedding(values, to_count(dimension, "dimension"), to_count(delay, "delay")).size();
 }
 
+// The time of the library's own work for one command, without the Python layer: the shared
+// computation and its JSON, `repeats` times (scripts/python_timing.py subtracts it from a call's time
+// to get the call overhead).
+double compute_seconds(const std::string& command, const Array& x, const py::dict& p, std::size_t repeats) {
+  const SeriesInput in = series(x, ARRAY, 1, std::nullopt);
+  std::function<void()> work;
+  AutocorrelationParams a;
+  MutualParams m;
+  D2Params d;
+  if (command == "autocorrelation") {
+    get(p, "max_lag", a.max_lag);
+    work = [&] { (void)run_autocorrelation(in, a).report.json().size(); };
+  } else if (command == "mutual") {
+    get(p, "max_delay", m.options.max_delay);
+    get(p, "boxes", m.options.boxes);
+    work = [&] { (void)run_mutual(in, m).report.json().size(); };
+  } else if (command == "d2") {
+    get(p, "delay", d.sums.delay);
+    get(p, "max_dimension", d.sums.max_dimension);
+    get(p, "theiler", d.theiler);
+    work = [&] { (void)run_d2(in, d).report.json().size(); };
+  } else {
+    value_error("compute_seconds: autocorrelation, mutual or d2");
+  }
+  py::gil_scoped_release release;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < repeats; ++k) work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / static_cast<double>(repeats);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -316,5 +348,6 @@ PYBIND11_MODULE(_core, m) {
   });
   m.attr("builtin_series_name") = builtin_series_name;
   m.def("embedding_points", &embedding_points);
+  m.def("_compute_seconds", &compute_seconds);
   m.def("_last_input_address", [] { return static_cast<std::uintptr_t>(last_input_address); });
 }

@@ -151,7 +151,7 @@ def analyze(r, ax=None):
         import matplotlib.pyplot as plt
         ax = plt.subplots(1, 2, figsize=(10, 3.6), constrained_layout=True)[1]
     left, right = ax
-    if r["cao"] is not None if "cao" in r.keys() else False:
+    if "cao" in r.keys():
         c = r["cao"]
         left.plot(c["dimension"], c["E1"], "o-", label="E1")
         left.plot(c["dimension"], c["E2"], "s-", label="E2")

@@ -57,18 +57,21 @@ class Result:
 
     def __init__(self, json):
         object.__setattr__(self, "_json", json)
-        object.__setattr__(self, "_values", {k: _convert(v) for k, v in json.items()})
-
-    def __getattr__(self, name):
-        values = object.__getattribute__(self, "_values")
-        if name in values:
-            return values[name]
-        if name.endswith("_") and keyword.iskeyword(name[:-1]) and name[:-1] in values:
-            return values[name[:-1]]
-        raise AttributeError(f"{type(self).__name__} has no attribute {name!r} (keys: {', '.join(values)})")
+        object.__setattr__(self, "_values", {})  # converted on first access
 
     def __getitem__(self, key):
-        return self._values[key]
+        values = self._values
+        if key not in values:
+            values[key] = _convert(self._json[key])
+        return values[key]
+
+    def __getattr__(self, name):
+        json = object.__getattribute__(self, "_json")
+        if name in json:
+            return self[name]
+        if name.endswith("_") and keyword.iskeyword(name[:-1]) and name[:-1] in json:
+            return self[name[:-1]]
+        raise AttributeError(f"{type(self).__name__} has no attribute {name!r} (keys: {', '.join(json)})")
 
     def __setattr__(self, name, value):
         raise AttributeError(f"{type(self).__name__} is frozen")
@@ -77,10 +80,10 @@ class Result:
         raise AttributeError(f"{type(self).__name__} is frozen")
 
     def __dir__(self):
-        return sorted(set(super().__dir__()) | {k if not keyword.iskeyword(k) else k + "_" for k in self._values})
+        return sorted(set(super().__dir__()) | {k if not keyword.iskeyword(k) else k + "_" for k in self._json})
 
     def keys(self):
-        return self._values.keys()
+        return self._json.keys()
 
     def to_dict(self):
         """The command's JSON object (a fresh copy): equal to ``json.loads`` of ``chaos <command> --json``."""
@@ -94,8 +97,8 @@ class Result:
     def __repr__(self):
         shown = []
         for key in ("status", "d2", "lambda", "first_minimum", "embedding_dimension", "delay", "decorrelation_time"):
-            if key in self._values and not isinstance(self._values[key], np.ndarray):
-                shown.append(f"{key}={self._values[key]!r}")
+            if key in self._json and not isinstance(self._json[key], (list, dict)):
+                shown.append(f"{key}={self._json[key]!r}")
         return f"<{type(self).__name__} {self._json.get('command', '')}: {', '.join(shown)}>"
 
     def plot(self, ax=None):
