@@ -139,4 +139,38 @@ extern const char* const builtin_series_name;
 Series builtin_series(std::size_t length);
 AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const OutputOptions& output = {});
 
+// chaos surrogates
+struct SurrogatesParams {
+  SurrogateOptions options;
+  std::string method = "iaaft";
+  std::size_t count = 1;
+  std::uint64_t seed = 1;
+  bool end_match = false;
+  EndMatchOptions end;
+};
+struct SurrogatesRun {
+  std::vector<Surrogate> surrogates;
+  std::optional<EndMatch> match;
+  std::size_t length = 0;  // of the (trimmed) series the surrogates imitate
+  Report report;
+};
+SurrogatesRun run_surrogates(const SeriesInput& in, SurrogatesParams params, const OutputOptions& output = {});
+SurrogateMethod parse_surrogate_method(const std::string& name);
+
+// chaos nonlinearity
+struct NonlinearityParams {
+  NonlinearityTestOptions options;
+  std::string statistic = "prediction_error";
+  std::string alternative = "two_sided";
+  std::string method = "iaaft";
+  std::string norm = "max";
+  std::size_t delay = 1;
+  bool end_match = false;
+};
+struct NonlinearityRun {
+  NonlinearityTestResult result;
+  Report report;
+};
+NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams params, const OutputOptions& output = {});
+
 }  // namespace chaos::cli

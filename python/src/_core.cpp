@@ -268,6 +268,40 @@ py::object analyze(const Array& x, const std::string& file, std::size_t column, 
   return call([&] { return run_analyze(in, params).report.json(); });
 }
 
+py::object surrogates(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                      const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  SurrogatesParams params;
+  get(p, "method", params.method);
+  get(p, "count", params.count);
+  get(p, "seed", params.seed);
+  get(p, "max_iterations", params.options.max_iterations);
+  get(p, "tolerance", params.options.tolerance);
+  get(p, "end_match", params.end_match);
+  get(p, "max_trim", params.end.max_trim);
+  return call([&] { return run_surrogates(in, params).report.json(); });
+}
+
+py::object nonlinearity(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                        const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  NonlinearityParams params;
+  get(p, "count", params.options.surrogates);
+  get(p, "seed", params.options.seed);
+  get(p, "statistic", params.statistic);
+  get(p, "alternative", params.alternative);
+  get(p, "method", params.method);
+  get(p, "max_iterations", params.options.surrogate.max_iterations);
+  get(p, "delay", params.delay);
+  get(p, "dimension", params.options.prediction.dimension);
+  get(p, "theiler", params.options.prediction.theiler);
+  get(p, "horizon", params.options.prediction.horizon);
+  get(p, "neighbours", params.options.prediction.neighbours);
+  get(p, "norm", params.norm);
+  get(p, "end_match", params.end_match);
+  return call([&] { return run_nonlinearity(in, params).report.json(); });
+}
+
 // The series of a file, read as the command reads it (-c -x -l --dt), with the same checks.
 py::tuple read_file(const std::string& path, const py::object& column, std::size_t skip, std::optional<std::size_t> length,
                std::optional<double> dt) {
@@ -338,6 +372,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("d2", &d2);
   m.def("lyapunov", &lyapunov);
   m.def("analyze", &analyze);
+  m.def("surrogates", &surrogates);
+  m.def("nonlinearity", &nonlinearity);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());
   m.def("builtin_series", [](std::size_t length) {

@@ -134,3 +134,28 @@ def test_embed_is_a_view_with_the_library_layout(lorenz):
         chaos.embed(lorenz[:5], 4, 2)
     with pytest.raises(ValueError):
         chaos.embed(lorenz, 0, 1)
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}),
+    (["--method", "aaft", "-n", 3, "--seed", 5], dict(method="aaft", count=3, seed=5)),
+    (["--method", "iaaft", "-n", 2, "--max-iterations", 50, "--tolerance", 1e-6, "--end-match", "--max-trim", 0.2],
+     dict(method="iaaft", count=2, max_iterations=50, tolerance=1e-6, end_match=True, max_trim=0.2)),
+])
+def test_surrogates(data_dir, cli_args, kwargs):
+    r = check(chaos.surrogates, data_dir / "henon.txt", ["surrogates", *cli_args], **kwargs)
+    assert r.surrogates.shape == (kwargs.get("count", 1), r.length)
+    if kwargs.get("method", "iaaft") != "ft":  # AAFT and IAAFT surrogates are permutations of the data
+        x = chaos.read(data_dir / "henon.txt")[0][r.offset:r.offset + r.length]
+        np.testing.assert_array_equal(np.sort(r.surrogates[0]), np.sort(x))
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    (["-n", 9, "-m", 2], dict(count=9, dimension=2)),
+    (["-n", 19, "--statistic", "time_reversal_asymmetry", "--alternative", "larger", "--method", "ft", "-d", 2,
+      "--end-match"],
+     dict(count=19, statistic="time_reversal_asymmetry", alternative="larger", method="ft", delay=2, end_match=True)),
+])
+def test_nonlinearity(data_dir, cli_args, kwargs):
+    r = check(chaos.nonlinearity, data_dir / "henon.txt", ["nonlinearity", *cli_args], **kwargs)
+    assert r.count == kwargs["count"] and len(r.surrogate_statistics) == kwargs["count"]

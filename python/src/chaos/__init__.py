@@ -28,7 +28,8 @@ import numpy as np
 from . import _core
 from ._results import Result, make as _make
 
-__all__ = ["mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "embed",
+__all__ = ["mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
+           "nonlinearity", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
 
@@ -238,6 +239,47 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
                                dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
                                     max_dimension=max_dimension, test_length=test_length, surrogates=surrogates,
                                     seed=seed)))
+
+
+def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, tolerance=0.0, end_match=False,
+               max_trim=0.1, dt=None, column=1, skip=0, length=None):
+    """FT, AAFT or IAAFT surrogate series (``chaos surrogates``).
+
+    FT: the data's Fourier amplitudes with uniformly random phases (Theiler et al., Physica D 58, 77,
+    1992); AAFT: a Gaussian series rank-ordered like the data, phase-randomised, rescaled to the data's
+    values; IAAFT: alternately imposes the amplitudes and the values until a fixed point or
+    ``max_iterations`` (Schreiber and Schmitz, Phys. Rev. Lett. 77, 635, 1996). Surrogate k uses the
+    k-th draw of the seed's stream. ``end_match`` first trims the series to the segment whose ends
+    match best (TISEAN endtoend). docs/surrogates.md.
+
+    Result keys: offset, length, status, iterations, spectral_deviation, surrogates (count x length).
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.surrogates(values, file, column, dt,
+                                  dict(method=method, count=count, seed=seed, max_iterations=max_iterations,
+                                       tolerance=tolerance, end_match=end_match, max_trim=max_trim)))
+
+
+def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
+                 max_iterations=1000, delay=1, dimension=3, theiler=0, horizon=1, neighbours=5, norm="max",
+                 end_match=False, dt=None, column=1, skip=0, length=None):
+    """Rank-order surrogate test for nonlinearity (``chaos nonlinearity``).
+
+    The statistic (the locally constant predictor's error in a delay embedding, or the time-reversal
+    asymmetry Q = <(x_{i+d} - x_i)^3> / <(x_{i+d} - x_i)^2>^(3/2)) of the data is ranked among
+    ``count`` surrogates; the null hypothesis (a linear Gaussian process, measured through a monotonic
+    function) is rejected at significance 1/(count+1) one-sided, 2/(count+1) two-sided, when the data
+    rank first or last. Schreiber and Schmitz, Physica D 142, 346 (2000). docs/nonlinearity_test.md.
+
+    Result keys: statistic, statistic_name, surrogate_statistics, rank, count, below, above, rejected,
+    significance, surrogates_not_converged.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.nonlinearity(values, file, column, dt,
+                                    dict(count=count, seed=seed, statistic=statistic, alternative=alternative,
+                                         method=method, max_iterations=max_iterations, delay=delay,
+                                         dimension=dimension, theiler=theiler, horizon=horizon,
+                                         neighbours=neighbours, norm=norm, end_match=end_match)))
 
 
 def embed(x, dimension, delay=1):

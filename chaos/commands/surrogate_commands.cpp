@@ -1,0 +1,114 @@
+// surrogates, nonlinearity: the computation and the JSON (commands.hpp).
+
+#include "chaos/error.hpp"
+#include "commands.hpp"
+
+namespace chaos::cli {
+
+SurrogateMethod parse_surrogate_method(const std::string& name) {
+  if (name == "ft") return SurrogateMethod::fourier;
+  if (name == "aaft") return SurrogateMethod::aaft;
+  if (name == "iaaft") return SurrogateMethod::iaaft;
+  throw InvalidInput(ErrorCode::invalid_parameter, "method must be ft, aaft or iaaft (got '" + name + "')");
+}
+
+SurrogatesRun run_surrogates(const SeriesInput& in, SurrogatesParams params, const OutputOptions& output) {
+  params.options.method = parse_surrogate_method(params.method);
+  if (params.count == 0) throw InvalidInput(ErrorCode::invalid_parameter, "--count must be at least 1 (got 0)");
+  std::span<const double> x = in.values;
+  std::optional<EndMatch> match;
+  if (params.end_match) {
+    match = end_match(x, params.end);
+    x = x.subspan(match->offset, match->length);
+  }
+  std::vector<Surrogate> made = surrogates(x, params.count, params.seed, params.options);
+
+  Report report("surrogates", output);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
+      .parameter("dt", in.dt).parameter("method", params.method).parameter("count", params.count)
+      .parameter("seed", params.seed).parameter("max_iterations", params.options.max_iterations)
+      .parameter("tolerance", params.options.tolerance).parameter("end_match", params.end_match);
+  if (match)
+    report.parameter("offset", match->offset).parameter("length", match->length)
+        .parameter("end_mismatch", match->mismatch).parameter("whole_series_end_mismatch", match->whole_series_mismatch);
+  auto& j = report.json();
+  std::vector<std::string> status;
+  std::vector<std::size_t> iterations;
+  std::vector<double> deviation;
+  for (const Surrogate& s : made) {
+    status.emplace_back(to_string(s.status));
+    iterations.push_back(s.iterations);
+    deviation.push_back(s.spectral_deviation);
+  }
+  j["offset"] = match ? match->offset : 0;
+  j["length"] = x.size();
+  j["status"] = status;
+  j["iterations"] = iterations;
+  j["spectral_deviation"] = deviation;
+  auto columns = nlohmann::ordered_json::array();
+  for (const Surrogate& s : made) columns.push_back(s.values);
+  j["surrogates"] = columns;
+  return {std::move(made), match, x.size(), std::move(report)};
+}
+
+namespace {
+
+NonlinearityStatistic parse_statistic(const std::string& name) {
+  if (name == "prediction_error") return NonlinearityStatistic::prediction_error;
+  if (name == "time_reversal_asymmetry") return NonlinearityStatistic::time_reversal_asymmetry;
+  throw InvalidInput(ErrorCode::invalid_parameter,
+                     "statistic must be prediction_error or time_reversal_asymmetry (got '" + name + "')");
+}
+
+Alternative parse_alternative(const std::string& name) {
+  if (name == "two_sided") return Alternative::two_sided;
+  if (name == "smaller") return Alternative::smaller;
+  if (name == "larger") return Alternative::larger;
+  throw InvalidInput(ErrorCode::invalid_parameter, "alternative must be two_sided, smaller or larger (got '" + name + "')");
+}
+
+}  // namespace
+
+NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams params, const OutputOptions& output) {
+  auto& o = params.options;
+  o.statistic = parse_statistic(params.statistic);
+  o.alternative = parse_alternative(params.alternative);
+  o.surrogate.method = parse_surrogate_method(params.method);
+  o.prediction.norm = parse_norm(params.norm);
+  // One delay option serves both statistics: the embedding delay of the predictor, the lag of Q.
+  o.prediction.delay = params.delay;
+  o.time_reversal_delay = params.delay;
+  std::span<const double> x = in.values;
+  std::optional<EndMatch> match;
+  if (params.end_match) {
+    match = end_match(x);
+    x = x.subspan(match->offset, match->length);
+  }
+  NonlinearityTestResult r = nonlinearity_test(x, o);
+
+  Report report("nonlinearity", output);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
+      .parameter("dt", in.dt).parameter("statistic", params.statistic).parameter("alternative", params.alternative)
+      .parameter("count", o.surrogates).parameter("seed", o.seed).parameter("method", params.method)
+      .parameter("max_iterations", o.surrogate.max_iterations).parameter("delay", params.delay);
+  if (o.statistic == NonlinearityStatistic::prediction_error)
+    report.parameter("dimension", o.prediction.dimension).parameter("theiler", o.prediction.theiler)
+        .parameter("horizon", o.prediction.horizon).parameter("neighbours", o.prediction.neighbours)
+        .parameter("norm", params.norm);
+  report.parameter("end_match", params.end_match);
+  if (match) report.parameter("offset", match->offset).parameter("length", match->length);
+  auto& j = report.json();
+  j["statistic"] = r.data_statistic;
+  j["statistic_name"] = params.statistic;
+  j["surrogate_statistics"] = r.surrogate_statistics;
+  j["rank"] = r.test.rank;
+  j["count"] = r.surrogate_statistics.size();
+  j["below"] = r.test.below;
+  j["above"] = r.test.above;
+  j["rejected"] = r.test.rejected;
+  j["significance"] = r.test.significance;
+  j["surrogates_not_converged"] = r.surrogates_not_converged;
+  return {std::move(r), std::move(report)};
+}
+
+}  // namespace chaos::cli
