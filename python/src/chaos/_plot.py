@@ -159,7 +159,7 @@ def analyze(r, ax=None):
         if r.embedding_dimension is not None:
             left.axvline(r.embedding_dimension, ls="--", color="black")
         left.legend(loc="lower right")
-    left.set_title(f"Cao: m = {r.embedding_dimension}; delay {r.delay}, Theiler {r.theiler}")
+    left.set_title(f"Cao: m = {r.embedding_dimension}\ndelay {r.delay}, Theiler window {r.theiler}")
     left.set_xlabel("embedding dimension m")
     left.grid(True)
     if "fnn" in r.keys():
@@ -168,7 +168,7 @@ def analyze(r, ax=None):
     d2 = f"D2 = {r.d2:.4g}" if r.d2 is not None else f"D2 {r.d2_status}"
     lam = r["lambda"]
     lyap = f"lambda = {lam:.4g}" if lam is not None else f"lambda {r.lambda_status}"
-    right.set_title(f"false neighbours: m = {r.fnn_embedding_dimension}; {d2}, {lyap}")
+    right.set_title(f"false neighbours: m = {r.fnn_embedding_dimension}\n{d2}; {lyap}")
     right.set_xlabel("embedding dimension m")
     right.grid(True)
     return ax
