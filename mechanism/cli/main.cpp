@@ -28,6 +28,7 @@
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/signals.hpp"
+#include "summary_json.hpp"
 #include "mechanism/simulate.hpp"
 
 namespace {
@@ -252,22 +253,7 @@ int main(int argc, char** argv) {
     observer.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
     const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
     if (json) {
-      nlohmann::ordered_json j;
-      j["status"] = mechanism::to_string(s.status);
-      j["message"] = s.message;
-      j["end_time"] = s.end_time;
-      j["steps"] = s.steps;
-      j["rejected_steps"] = s.rejected_steps;
-      j["rhs_evaluations"] = s.rhs_evaluations;
-      j["step"] = s.step;
-      j["wall_seconds"] = s.wall_seconds;
-      j["max_penetration"] = s.max_penetration;
-      j["contact_events"] = s.contact_events;
-      j["energy_balance_error"] = s.energy_balance_error;
-      j["energy_balance_relative"] = s.energy_balance_relative;
-      j["samples"] = s.samples;
-      j["stroboscopic_samples"] = s.stroboscopic_samples;
-      j["coordinates"] = system.coordinate_names();
+      const nlohmann::ordered_json j = mechanism::simulation_summary_json(s, system);
       std::cout << j.dump(2) << "\n";
     }
     if (!plot_path.empty()) {

@@ -23,6 +23,11 @@
 #include "chaos/error.hpp"
 #include "chaos/series.hpp"
 #include "commands.hpp"
+#include "mechanism/scene.hpp"
+#include "mechanism/signals.hpp"
+#include "mechanism/simulate.hpp"
+#include "mechanism/slider_crank.hpp"
+#include "summary_json.hpp"
 
 namespace py = pybind11;
 using namespace chaos::cli;
@@ -331,6 +336,85 @@ std::size_t embedding_points(const Array& x, const py::handle& dimension, const 
   return chaos::DelayEmbedding(values, to_count(dimension, "dimension"), to_count(delay, "delay")).size();
 }
 
+// The simulator: a scene is TOML text plus "key=value" overrides, resolved by the library's reader
+// (unknown keys, wrong types and impossible values raise ValueError with its message).
+mechanism::Scene resolve_scene(const std::string& toml, const std::vector<std::string>& overrides,
+                               const std::string& source) {
+  return mechanism::read_scene(toml, overrides, source);
+}
+
+std::string scene_toml(const std::string& toml, const std::vector<std::string>& overrides, const std::string& source) {
+  return mechanism::to_toml(resolve_scene(toml, overrides, source));
+}
+
+std::vector<std::string> scene_warnings(const std::string& toml, const std::vector<std::string>& overrides,
+                                        const std::string& source) {
+  return mechanism::scene_warnings(resolve_scene(toml, overrides, source));
+}
+
+// Runs the scene; returns the summary (as `mechanism simulate --json` writes it), the signal names
+// and units, the time series (one row per signal) and the stroboscopic samples (one row per signal,
+// the revolution numbers apart). Ctrl-C stops the run at its next progress report (about every
+// percent of the simulated time).
+py::dict simulate_scene(const std::string& toml, const std::vector<std::string>& overrides, const std::string& source,
+                        std::optional<bool> stroboscopic, py::object progress) {
+  mechanism::Scene scene = resolve_scene(toml, overrides, source);
+  if (stroboscopic) scene.run.stroboscopic = *stroboscopic;
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  std::vector<std::vector<double>> series, strobe;
+  std::vector<double> revolutions;
+  nlohmann::ordered_json summary;
+  mechanism::SignalTable table;
+  {
+    py::gil_scoped_release release;
+    mechanism::SliderCrank system(scene);
+    table = mechanism::signal_table(system);
+    series.resize(table.names.size());
+    strobe.resize(table.names.size());
+    std::vector<double> values;
+    mechanism::SimulationObserver observer;
+    observer.sample = [&](double t, const mechanism::State& x, const mechanism::Evaluation& ev) {
+      mechanism::signal_values(system, t, x, ev, values);
+      for (std::size_t c = 0; c < values.size(); ++c) series[c].push_back(values[c]);
+    };
+    if (scene.run.stroboscopic)
+      observer.stroboscopic = [&](std::size_t revolution, double t, const mechanism::State& x,
+                                  const mechanism::Evaluation& ev) {
+        mechanism::signal_values(system, t, x, ev, values);
+        revolutions.push_back(static_cast<double>(revolution));
+        for (std::size_t c = 0; c < values.size(); ++c) strobe[c].push_back(values[c]);
+      };
+    observer.progress = [callback](double fraction) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!callback->is_none()) (*callback)(fraction);
+    };
+    try {
+      const mechanism::SimulationSummary s = mechanism::simulate(system, observer);
+      summary = mechanism::simulation_summary_json(s, system);
+    } catch (const Interrupted&) {
+      py::gil_scoped_acquire acquire;
+      throw py::error_already_set();
+    }
+  }
+  const auto matrix = [](const std::vector<std::vector<double>>& rows) {
+    const std::size_t n = rows.empty() ? 0 : rows.front().size();
+    py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(n)});
+    double* data = out.mutable_data();
+    for (const auto& row : rows) data = std::copy(row.begin(), row.end(), data);
+    return out;
+  };
+  py::dict out;
+  out["summary"] = to_python(summary);
+  out["names"] = table.names;
+  out["units"] = table.units;
+  out["series"] = matrix(series);
+  out["stroboscopic"] = matrix(strobe);
+  out["revolution"] = py::array_t<double>(static_cast<py::ssize_t>(revolutions.size()), revolutions.data());
+  out["stroboscopic_run"] = scene.run.stroboscopic;
+  return out;
+}
+
 // The time of the library's own work for one command, without the Python layer: the shared
 // computation and its JSON, `repeats` times (scripts/python_timing.py subtracts it from a call's time
 // to get the call overhead).
@@ -384,6 +468,10 @@ PYBIND11_MODULE(_core, m) {
   });
   m.attr("builtin_series_name") = builtin_series_name;
   m.def("embedding_points", &embedding_points);
+  m.def("default_scene_toml", [] { return std::string(mechanism::default_scene_toml()); });
+  m.def("scene_toml", &scene_toml);
+  m.def("scene_warnings", &scene_warnings);
+  m.def("simulate", &simulate_scene);
   m.def("_compute_seconds", &compute_seconds);
   m.def("_last_input_address", [] { return static_cast<std::uintptr_t>(last_input_address); });
 }

@@ -1,0 +1,25 @@
+#include "summary_json.hpp"
+
+namespace mechanism {
+
+nlohmann::ordered_json simulation_summary_json(const SimulationSummary& s, const SliderCrank& system) {
+  nlohmann::ordered_json j;
+  j["status"] = to_string(s.status);
+  j["message"] = s.message;
+  j["end_time"] = s.end_time;
+  j["steps"] = s.steps;
+  j["rejected_steps"] = s.rejected_steps;
+  j["rhs_evaluations"] = s.rhs_evaluations;
+  j["step"] = s.step;
+  j["wall_seconds"] = s.wall_seconds;
+  j["max_penetration"] = s.max_penetration;
+  j["contact_events"] = s.contact_events;
+  j["energy_balance_error"] = s.energy_balance_error;
+  j["energy_balance_relative"] = s.energy_balance_relative;
+  j["samples"] = s.samples;
+  j["stroboscopic_samples"] = s.stroboscopic_samples;
+  j["coordinates"] = system.coordinate_names();
+  return j;
+}
+
+}  // namespace mechanism
