@@ -59,7 +59,7 @@ def main():
         np.savetxt(path, x, fmt="%.17g")
         assert np.array_equal(chaos.read(path)[0], x)
         command = [args.cli, "d2", path, "-d", "19", "-M", "6", "-t", "31", "-q", "--json"]
-        cli_times, py_times, cli_cpu, py_cpu = [], [], [], []
+        cli_times, py_times, cli_cpu, py_cpu, module_times = [], [], [], [], []
         for _ in range(args.repeats):
             children = resource.getrusage(resource.RUSAGE_CHILDREN)
             start = time.perf_counter()
@@ -71,6 +71,8 @@ def main():
             r = chaos.d2(x, **d2_args)
             py_times.append(time.perf_counter() - start)
             py_cpu.append(time.process_time() - cpu)
+            # The same work inside the module without the Python layer (no conversions, no result object).
+            module_times.append(_core._compute_seconds("d2", x, d2_args, 1))
         import json
         expected = json.loads(out)
         expected["parameters"]["file"] = "(array)"
@@ -80,6 +82,8 @@ def main():
     print(f"exact D2, Lorenz x N = {len(x)}, -d 19 -M 6 -t 31 (box-assisted, 1 thread), best of {args.repeats}:")
     print(f"  chaos d2 (command, file read included): {cli:.3f} s   all: {', '.join(f'{t:.3f}' for t in cli_times)}")
     print(f"  chaos.d2 (Python, array):               {py:.3f} s   all: {', '.join(f'{t:.3f}' for t in py_times)}")
+    print(f"  the module's C++ alone:                 {min(module_times):.3f} s   all: "
+          f"{', '.join(f'{t:.3f}' for t in module_times)}")
     print(f"  CPU time, best: command {min(cli_cpu):.3f} s, Python {min(py_cpu):.3f} s, "
           f"ratio {min(py_cpu) / min(cli_cpu):.3f}")
     print(f"  Python / command: best {py / cli:.3f}, median {py_median / cli_median:.3f}; "
