@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/fnn.hpp"
+#include "chaos/generate.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"
@@ -172,5 +174,21 @@ struct NonlinearityRun {
   Report report;
 };
 NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams params, const OutputOptions& output = {});
+
+// chaos generate SYSTEM (a reference system of generate.hpp or a zoo system)
+struct GenerateParams {
+  std::string system;
+  std::size_t length = 10000;
+  std::map<std::string, double> parameters;  // -p name=value
+  std::uint64_t seed = 1;
+  std::string components = "all";
+};
+struct GenerateRun {
+  Trajectory trajectory;
+  std::vector<std::size_t> chosen;  // the components written, in order
+  Report report;
+};
+// with_components: put the chosen components into the JSON ("components"), as --json writes them.
+GenerateRun run_generate(const GenerateParams& params, const OutputOptions& output = {}, bool with_components = true);
 
 }  // namespace chaos::cli

@@ -307,6 +307,35 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 
+// chaos generate: the JSON without the components, which come back as arrays (name, values) in the
+// order the command writes them.
+py::tuple generate(const std::string& system, const py::dict& p) {
+  GenerateParams params;
+  params.system = system;
+  get(p, "length", params.length);
+  get(p, "seed", params.seed);
+  get(p, "components", params.components);
+  if (has(p, "parameter")) {
+    if (!py::isinstance<py::dict>(p["parameter"])) type_error("parameter must be a dict of name: value");
+    for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(p["parameter"])) {
+      if (!py::isinstance<py::str>(name)) type_error("parameter names must be strings");
+      params.parameters[py::cast<std::string>(name)] = to_real(value, "parameter");
+    }
+  }
+  std::optional<GenerateRun> run;
+  {
+    py::gil_scoped_release release;
+    run.emplace(run_generate(params, {}, false));
+  }
+  py::list components;
+  for (const std::size_t k : run->chosen) {
+    const auto& values = run->trajectory.components[k];
+    components.append(py::make_tuple(run->trajectory.names[k],
+                                     Array(static_cast<py::ssize_t>(values.size()), values.data())));
+  }
+  return py::make_tuple(to_python(run->report.json()), components);
+}
+
 // The series of a file, read as the command reads it (-c -x -l --dt), with the same checks.
 py::tuple read_file(const std::string& path, const py::object& column, std::size_t skip, std::optional<std::size_t> length,
                std::optional<double> dt) {
@@ -457,6 +486,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("lyapunov", &lyapunov);
   m.def("analyze", &analyze);
   m.def("surrogates", &surrogates);
+  m.def("generate", &generate);
   m.def("nonlinearity", &nonlinearity);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());

@@ -159,3 +159,33 @@ def test_surrogates(data_dir, cli_args, kwargs):
 def test_nonlinearity(data_dir, cli_args, kwargs):
     r = check(chaos.nonlinearity, data_dir / "henon.txt", ["nonlinearity", *cli_args], **kwargs)
     assert r.count == kwargs["count"] and len(r.surrogate_statistics) == kwargs["count"]
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    (["lorenz", "-l", 500], dict(length=500)),
+    (["henon", "-l", 300, "--components", "x"], dict(length=300, components="x")),
+    (["lorenz84", "-l", 200, "-p", "a=0.3"], dict(length=200, parameter={"a": 0.3})),
+    (["white_noise", "-l", 50, "--seed", 2], dict(length=50, seed=2)),
+    (["mackey_glass", "-l", 100, "-p", "tau=34"], dict(length=100, parameter={"tau": 34})),
+])
+def test_generate(cli_args, kwargs):
+    expected = cli_json("generate", *cli_args)
+    r = chaos.generate(cli_args[0], **kwargs)
+    assert r.to_dict() == expected
+    for name, values in expected["components"].items():
+        np.testing.assert_array_equal(r.components[name], values)
+
+
+@pytest.mark.parametrize("system, kwargs", [("nosuch", {}), ("lorenz", dict(length=0)),
+                                            ("lorenz", dict(components="w")), ("lorenz", dict(parameter={"sigma": "x"}))])
+def test_generate_refuses(system, kwargs):
+    with pytest.raises((ValueError, TypeError)):
+        chaos.generate(system, **kwargs)
+
+
+def test_generate_refuses_with_the_command_s_message():
+    from conftest import run_cli
+    p = run_cli("generate", "mackey_glass", "-p", "tau=30", check=False)  # dt = 1 is no multiple of the step 30/170
+    with pytest.raises(ValueError) as error:
+        chaos.generate("mackey_glass", parameter={"tau": 30})
+    assert p.returncode == 3 and p.stderr.strip() == f"chaos: error [invalid_parameter]: {error.value}"

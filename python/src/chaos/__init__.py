@@ -28,7 +28,7 @@ import numpy as np
 from . import _core
 from ._results import Result, make as _make
 
-__all__ = ["mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
+__all__ = ["generate", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
            "nonlinearity", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
@@ -280,6 +280,27 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
                                          method=method, max_iterations=max_iterations, delay=delay,
                                          dimension=dimension, theiler=theiler, horizon=horizon,
                                          neighbours=neighbours, norm=norm, end_match=end_match)))
+
+
+def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
+    """A series of a reference system or a zoo system (``chaos generate SYSTEM``).
+
+    ``system``: lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic,
+    white_noise, uniform_noise, ar1, or one of the 47 zoo systems (``chaos generate --list``).
+    ``parameter``: a dict of system parameters and sampling settings by name (``-p name=value``:
+    ``{"rho": 28, "dt": 0.01}``); ``components``: "all" or a comma-separated list ("x,z"). Flows are
+    integrated by RK4 at ``step`` and sampled every ``dt`` after ``transient``. docs/systems.md.
+
+    Result keys: parameters (every parameter and the sampling used, defaults included), components
+    (a read-only mapping name -> array).
+    """
+    import types
+    json, columns = _core.generate(system, dict(length=length, parameter=parameter, seed=seed, components=components))
+    arrays = {}
+    for name, values in columns:
+        values.flags.writeable = False
+        arrays[name] = values
+    return _make(json, {"components": types.MappingProxyType(arrays)})
 
 
 def embed(x, dimension, delay=1):

@@ -53,11 +53,15 @@ class Result:
     (``r.lambda_``) and, like every key, as ``r["lambda"]``.
     """
 
-    __slots__ = ("_json", "_values")
+    __slots__ = ("_json", "_values", "_arrays")
 
-    def __init__(self, json):
+    def __init__(self, json, arrays=None):
         object.__setattr__(self, "_json", json)
         object.__setattr__(self, "_values", {})  # converted on first access
+        # Values handed over as arrays (generate's components): the JSON gets them as lists on to_dict().
+        object.__setattr__(self, "_arrays", arrays or {})
+        for key, value in self._arrays.items():
+            self._values[key] = value
 
     def __getitem__(self, key):
         values = self._values
@@ -67,7 +71,7 @@ class Result:
 
     def __getattr__(self, name):
         json = object.__getattribute__(self, "_json")
-        if name in json:
+        if name in json or name in object.__getattribute__(self, "_arrays"):
             return self[name]
         if name.endswith("_") and keyword.iskeyword(name[:-1]) and name[:-1] in json:
             return self[name[:-1]]
@@ -83,11 +87,15 @@ class Result:
         return sorted(set(super().__dir__()) | {k if not keyword.iskeyword(k) else k + "_" for k in self._json})
 
     def keys(self):
-        return self._json.keys()
+        return list(self._json) + [k for k in self._arrays if k not in self._json]
 
     def to_dict(self):
         """The command's JSON object (a fresh copy): equal to ``json.loads`` of ``chaos <command> --json``."""
-        return copy.deepcopy(self._json)
+        out = copy.deepcopy(self._json)
+        for key, value in self._arrays.items():
+            out[key] = {k: v.tolist() for k, v in value.items()} if isinstance(value, types.MappingProxyType) \
+                else value.tolist()
+        return out
 
     def __eq__(self, other):
         return type(self) is type(other) and self._json == other._json
@@ -107,12 +115,12 @@ class Result:
         return getattr(_plot, self._json["command"])(self, ax)
 
 
-def make(json):
+def make(json, arrays=None):
     name = "".join(part.capitalize() for part in json["command"].split("_")) + "Result"
     cls = _classes.get(name)
     if cls is None:
         cls = _classes[name] = type(name, (Result,), {"__slots__": ()})
-    return cls(json)
+    return cls(json, arrays)
 
 
 _classes = {}
