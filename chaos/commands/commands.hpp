@@ -22,6 +22,7 @@
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
 #include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_spectrum.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/series.hpp"
@@ -190,5 +191,21 @@ struct GenerateRun {
 };
 // with_components: put the chosen components into the JSON ("components"), as --json writes them.
 GenerateRun run_generate(const GenerateParams& params, const OutputOptions& output = {}, bool with_components = true);
+
+// chaos spectrum SYSTEM (a reference system or a zoo system, from its equations)
+struct SpectrumParams {
+  std::string system;
+  std::map<std::string, double> parameters;  // -p name=value
+  std::optional<double> time, step, flow_interval, flow_transient;
+  std::optional<std::size_t> iterations, map_interval, map_transient;
+  std::uint64_t seed = 1;
+  std::optional<std::size_t> delay_exponents;
+  bool identity = false;
+};
+struct SpectrumRun {
+  LyapunovSpectrum spectrum;
+  Report report;
+};
+SpectrumRun run_spectrum(const SpectrumParams& params, const OutputOptions& output = {});
 
 }  // namespace chaos::cli

@@ -307,6 +307,33 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 
+// -p name=value, repeatable: a dict {name: value}.
+void get_settings(const py::dict& p, std::map<std::string, double>& target) {
+  if (!has(p, "parameter")) return;
+  if (!py::isinstance<py::dict>(p["parameter"])) type_error("parameter must be a dict of name: value");
+  for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(p["parameter"])) {
+    if (!py::isinstance<py::str>(name)) type_error("parameter names must be strings");
+    target[py::cast<std::string>(name)] = to_real(value, "parameter");
+  }
+}
+
+py::object spectrum(const std::string& system, const py::dict& p) {
+  SpectrumParams params;
+  params.system = system;
+  get_settings(p, params.parameters);
+  get(p, "time", params.time);
+  get(p, "step", params.step);
+  get(p, "interval", params.flow_interval);
+  get(p, "transient", params.flow_transient);
+  get(p, "iterations", params.iterations);
+  get(p, "map_interval", params.map_interval);
+  get(p, "map_transient", params.map_transient);
+  get(p, "seed", params.seed);
+  get(p, "exponents", params.delay_exponents);
+  get(p, "identity", params.identity);
+  return call([&] { return run_spectrum(params).report.json(); });
+}
+
 // chaos generate: the JSON without the components, which come back as arrays (name, values) in the
 // order the command writes them.
 py::tuple generate(const std::string& system, const py::dict& p) {
@@ -315,13 +342,7 @@ py::tuple generate(const std::string& system, const py::dict& p) {
   get(p, "length", params.length);
   get(p, "seed", params.seed);
   get(p, "components", params.components);
-  if (has(p, "parameter")) {
-    if (!py::isinstance<py::dict>(p["parameter"])) type_error("parameter must be a dict of name: value");
-    for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(p["parameter"])) {
-      if (!py::isinstance<py::str>(name)) type_error("parameter names must be strings");
-      params.parameters[py::cast<std::string>(name)] = to_real(value, "parameter");
-    }
-  }
+  get_settings(p, params.parameters);
   std::optional<GenerateRun> run;
   {
     py::gil_scoped_release release;
@@ -487,6 +508,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("analyze", &analyze);
   m.def("surrogates", &surrogates);
   m.def("generate", &generate);
+  m.def("spectrum", &spectrum);
   m.def("nonlinearity", &nonlinearity);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());

@@ -189,3 +189,25 @@ def test_generate_refuses_with_the_command_s_message():
     with pytest.raises(ValueError) as error:
         chaos.generate("mackey_glass", parameter={"tau": 30})
     assert p.returncode == 3 and p.stderr.strip() == f"chaos: error [invalid_parameter]: {error.value}"
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    (["henon", "--iterations", 20000], dict(iterations=20000)),
+    (["logistic", "--iterations", 5000, "--seed", 3, "-p", "r=3.9"], dict(iterations=5000, seed=3, parameter={"r": 3.9})),
+    (["lorenz", "--time", 50, "--transient", 10, "--interval", 0.2, "--step", 0.005],
+     dict(time=50, transient=10, interval=0.2, step=0.005)),
+    (["lozi", "--iterations", 10000, "--identity"], dict(iterations=10000, identity=True)),
+    (["mackey_glass", "--time", 200, "--exponents", 2], dict(time=200, exponents=2)),
+])
+def test_spectrum(cli_args, kwargs):
+    expected = cli_json("spectrum", *cli_args)
+    r = chaos.spectrum(cli_args[0], **kwargs)
+    assert r.to_dict() == expected
+    assert r.sum == pytest.approx(sum(r.exponents), rel=1e-12, abs=1e-12)  # sum of the exponents, by definition
+
+
+@pytest.mark.parametrize("system, kwargs", [("nosuch", {}), ("lorenz", dict(iterations=10)),
+                                            ("henon", dict(time=10.0)), ("lorenz", dict(exponents=2))])
+def test_spectrum_refuses_as_the_command(system, kwargs):
+    with pytest.raises(ValueError):
+        chaos.spectrum(system, **kwargs)

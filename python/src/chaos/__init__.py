@@ -28,7 +28,7 @@ import numpy as np
 from . import _core
 from ._results import Result, make as _make
 
-__all__ = ["generate", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
+__all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
            "nonlinearity", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
@@ -301,6 +301,29 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
         values.flags.writeable = False
         arrays[name] = values
     return _make(json, {"components": types.MappingProxyType(arrays)})
+
+
+def spectrum(system, *, parameter=None, time=None, step=None, interval=None, transient=None, iterations=None,
+             map_interval=None, map_transient=None, identity=False, exponents=None, seed=1):
+    """The Lyapunov spectrum and the Kaplan-Yorke dimension of a system from its equations
+    (``chaos spectrum SYSTEM``).
+
+    Tangent dynamics with QR re-orthonormalisation every ``interval`` time units (flows, RK4 at
+    ``step``, averaged over ``time`` after ``transient``) or ``map_interval`` iterations (maps,
+    ``iterations`` after ``map_transient``): lambda_i = (1/T) sum ln |R_ii| (Benettin et al.,
+    Meccanica 15, 9, 1980; Shimada and Nagashima, Prog. Theor. Phys. 61, 1605, 1979).
+    D_KY = k + (lambda_1 + ... + lambda_k) / |lambda_{k+1}| (Kaplan and Yorke 1979). ``parameter``:
+    model parameters by name (``-p``); ``identity``: zoo systems, also what the sum must equal;
+    ``exponents``: delay systems, how many leading exponents. Defaults are each system's own.
+    docs/lyapunov_spectrum.md.
+
+    Result keys: parameters, exponents, sum, kaplan_yorke_dimension, renormalisations,
+    averaging_length, initial_state (and identity).
+    """
+    return _make(_core.spectrum(system, dict(parameter=parameter, time=time, step=step, interval=interval,
+                                             transient=transient, iterations=iterations, map_interval=map_interval,
+                                             map_transient=map_transient, identity=identity, exponents=exponents,
+                                             seed=seed)))
 
 
 def embed(x, dimension, delay=1):
