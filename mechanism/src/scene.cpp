@@ -67,7 +67,7 @@ struct EnumNames<JointKind> {
 };
 template <>
 struct EnumNames<SliderContactModel> {
-  static constexpr std::string_view names[] = {"face", "corners"};
+  static constexpr std::string_view names[] = {"face", "corners", "line"};
 };
 template <>
 struct EnumNames<SliderStiffness> {
@@ -181,12 +181,16 @@ void visit_fields(Visitor& v, Scene& s) {
   visit_material(v, "slider.", s.slider.material);
   v.number("driver.speed_rpm", s.driver.speed_rpm, Rule::positive, "constant crank speed, rpm");
   v.number("driver.initial_angle", s.driver.initial_angle, Rule::finite, "crank angle at t = 0, rad");
+  v.number("initial.slider_angle", s.initial.slider_angle, Rule::finite,
+           "rad, the slider's angle at t = 0 (the seed's Eq. 29 starts it level: 0)");
+  v.number("initial.slider_rate", s.initial.slider_rate, Rule::finite, "rad/s, the slider's angular rate at t = 0");
   const std::string t = "joint.slider.";
   v.choice(t + "type", s.slider_guide.kind, "ideal (slider on the guide line) or clearance");
   v.number(t + "clearance", s.slider_guide.clearance, Rule::positive,
            "m, gap per side: guide height = slider height + 2 clearance");
   v.choice(t + "model", s.slider_guide.model,
-           "face (seed Eq. 18-19: one force per surface at the contact centroid) or corners (Flores 2008)");
+           "face (seed Eq. 18-19: one force per surface at the contact centroid), corners (Flores 2008) or line "
+           "(a pressure along each face: conserves energy at any tilt)");
   v.choice(t + "stiffness_model", s.slider_guide.stiffness_model,
            "contact_length (seed Eq. 11-12), flat_face (Eq. 11 at L_c = L_s) or given");
   v.number(t + "stiffness", s.slider_guide.stiffness, Rule::positive,
@@ -387,6 +391,24 @@ void check_consistency(const Scene& s) {
     throw InvalidParameter("conrod.length", format_number(s.conrod.length),
                            "must exceed the crank length plus the clearances (" + format_number(reach) +
                                " m), or the slider cannot stay on the guide");
+  }
+  // A tilted start: the slider needs its angle coordinate (a clearance guide) and must fit in the
+  // guide at t = 0, its corners inside the clearance (a start in deep penetration is a collision,
+  // not an initial state).
+  if (s.initial.slider_angle != 0.0 || s.initial.slider_rate != 0.0) {
+    if (s.slider_guide.kind != JointKind::clearance)
+      throw InvalidParameter(s.initial.slider_angle != 0.0 ? "initial.slider_angle" : "initial.slider_rate",
+                             format_number(s.initial.slider_angle != 0.0 ? s.initial.slider_angle
+                                                                         : s.initial.slider_rate),
+                             "needs joint.slider.type = \"clearance\": on an ideal guide the slider cannot turn");
+    const double a = s.initial.slider_angle;
+    const double half_extent = 0.5 * s.slider.length * std::abs(std::sin(a)) + 0.5 * s.slider.height * std::abs(std::cos(a));
+    const double guide_half = 0.5 * s.slider.height + s.slider_guide.clearance;
+    if (!(std::abs(a) < 1.0) || half_extent > guide_half)
+      throw InvalidParameter("initial.slider_angle", format_number(a),
+                             "must leave the tilted slider inside the guide at t = 0 (its corners reach " +
+                                 format_number(half_extent) + " m from the guide's centre line, the guide surfaces are at " +
+                                 format_number(guide_half) + " m)");
   }
   for (auto [name, j] : {std::pair{"joint.crank_ground", &s.crank_ground},
                          std::pair{"joint.crank_conrod", &s.crank_conrod},

@@ -82,6 +82,50 @@ TEST(Simulation, EnergyIsConservedWithRestitutionOneAndNoFriction) {
   }
 }
 
+// The largest |work of the contact forces| at instants when no site touches, over `duration`: 0 for
+// a conservative contact model (whatever it stored it has returned), up to the integration error.
+double contact_work_when_free(std::vector<std::string> overrides, double duration, std::size_t& free_samples) {
+  overrides.insert(overrides.end(), {"joint.slider.friction.law=none", "joint.slider.contact.restitution=1",
+                                     "run.duration=" + toml_number(duration), "run.output_interval=1e-5"});
+  SliderCrank sys(read_scene("", overrides));
+  double worst = 0;
+  free_samples = 0;
+  SimulationObserver obs;
+  obs.sample = [&](double, const State& x, const Evaluation& ev) {
+    for (const auto& site : ev.sites)
+      if (site.penetration > 0) return;
+    ++free_samples;
+    worst = std::max(worst, std::abs(x[2 * sys.coordinate_count() + 1]));
+  };
+  EXPECT_EQ(simulate(sys, obs).status, SimulationStatus::completed);
+  return worst;
+}
+
+TEST(Simulation, ConservativeSliderModelsConserveEnergyFromTiltedSpinningStarts) {
+  // The audit case (theta4 = 0.01 rad, omega4 = 20 rad/s, e = 1, no friction, 1.2 s) and
+  // a mirrored start with the constant stiffness, for each slider model offered as conservative. A
+  // level start exercises only symmetric contacts; a tilted, spinning one makes the slider rattle
+  // on its corners and faces. (Both models take the flat-face stiffness of Eq. 11 whatever the
+  // contact length, so "contact_length" and "flat_face" run the same dynamics; "given" is the other
+  // law.) Measured with the seed's face model (Eq. 18-19) instead: +6.6 J (contact-length
+  // stiffness) and +18 J (flat face) within the same 1.2 s, which is why it is not in this list
+  // (docs/mechanism/model.md, "Energy from a tilted start"). Bound: the 1e-3 J, against a
+  // kinetic energy of about 30 J.
+  const std::vector<std::vector<std::string>> starts = {
+      {"joint.slider.stiffness_model=contact_length", "initial.slider_angle=0.01", "initial.slider_rate=20"},
+      {"joint.slider.stiffness_model=given", "joint.slider.stiffness=1e10", "initial.slider_angle=-0.01",
+       "initial.slider_rate=20"}};
+  for (const char* model : {"corners", "line"}) {
+    for (auto scene : starts) {
+      scene.push_back(std::string("joint.slider.model=") + model);
+      std::size_t free_samples = 0;
+      const double w = contact_work_when_free(scene, 1.2, free_samples);
+      EXPECT_GT(free_samples, 10000u) << model;  // the slider does fly free between contacts
+      EXPECT_LT(w, 1e-3) << model << ", " << scene[0] << ", " << scene[1];
+    }
+  }
+}
+
 TEST(Simulation, DriveWorkEqualsEnergyChangePlusDissipation) {
   // Restitution 0.9 and Coulomb friction: energy leaves through the contacts, and the drive's work
   // equals the change of energy plus the dissipated energy up to the integration error, which

@@ -90,6 +90,29 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"driver.speed_rpm=nan"}).find("driver.speed_rpm"), std::string::npos);
 }
 
+TEST(Scene, TiltedStartIsReadAndChecked) {
+  // The default starts level and at rest relative to the ideal mechanism (seed Eq. 29).
+  const Scene level = read_scene("");
+  EXPECT_EQ(level.initial.slider_angle, 0.0);
+  EXPECT_EQ(level.initial.slider_rate, 0.0);
+  const Scene tilted = read_scene("", {"initial.slider_angle=0.01", "initial.slider_rate=-20"});
+  EXPECT_EQ(tilted.initial.slider_angle, 0.01);
+  EXPECT_EQ(tilted.initial.slider_rate, -20.0);
+  EXPECT_EQ(read_scene(to_toml(tilted)).initial.slider_angle, 0.01);  // printed and read back
+  // The slider must fit in the guide at t = 0: its corners reach 0.025 sin(a) + 0.025 cos(a) from
+  // the centre line, the guide surfaces are at 0.025 + 0.5e-3 (the default clearance): a = 0.02 fits
+  // (0.025495), a = 0.021 does not (0.025519).
+  EXPECT_EQ(refusal("", {"initial.slider_angle=0.02"}), "(accepted)");
+  EXPECT_NE(refusal("", {"initial.slider_angle=0.021"}).find("initial.slider_angle = 0.021: must leave the tilted slider"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"initial.slider_angle=0.01", "joint.slider.clearance=1e-6"}).find("inside the guide"),
+            std::string::npos);
+  // On an ideal guide the slider has no angle coordinate.
+  EXPECT_NE(refusal("", {"joint.slider.type=ideal", "initial.slider_rate=5"}).find("needs joint.slider.type"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"initial.slider_rate=inf"}).find("initial.slider_rate"), std::string::npos);
+}
+
 TEST(Scene, AcceptsEveryLawByItsOwnName) {
   // The scene reads the law names from the law modules; every law must be reachable from a scene.
   for (auto law : {NormalContactLaw::hertz, NormalContactLaw::hunt_crossley, NormalContactLaw::lankarani_nikravesh,
