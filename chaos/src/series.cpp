@@ -201,14 +201,43 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   return series;
 }
 
-Series read_series(const std::string& path, const ReadOptions& options) {
-  if (path == "-") return read_series(std::cin, "<stdin>", options);
+namespace {
+
+std::ifstream open_file(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
     throw InvalidInput(ErrorCode::io, path + ": is a directory, not a series file");
-  std::ifstream file(path);
+  std::ifstream file(path, std::ios::binary);
   if (!file) throw InvalidInput(ErrorCode::io, path + ": cannot open file (missing or unreadable)");
+  return file;
+}
+
+}  // namespace
+
+Series read_series(const std::string& path, const ReadOptions& options) {
+  if (path == "-") return read_series(std::cin, "<stdin>", options);
+  std::ifstream file = open_file(path);
   return read_series(file, path, options);
+}
+
+std::string read_text(const std::string& path) {
+  std::ostringstream text;
+  if (path == "-") {
+    text << std::cin.rdbuf();
+  } else {
+    std::ifstream file = open_file(path);
+    text << file.rdbuf();
+  }
+  return text.str();
+}
+
+std::size_t count_columns(std::istream& in) {
+  std::string line;
+  for (std::size_t number = 1; read_line(in, line); ++number) {
+    if (number == 1 && std::string_view(line).substr(0, 3) == byte_order_mark) line.erase(0, 3);
+    if (const auto tokens = tokenize(line); !tokens.empty()) return tokens.size();
+  }
+  return 0;
 }
 
 void require_finite(std::span<const double> x, const std::string& what) {
