@@ -46,6 +46,7 @@ struct AnalyzeArgs {
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
   std::string plot;
+  bool quiet = false;
 };
 
 // The built-in demonstration: Lorenz (10, 28, 8/3), x, RK4 h = 0.001 sampled every 0.01.
@@ -190,6 +191,11 @@ void run(AnalyzeArgs& args) {
   options.max_delay = args.max_delay;
   options.boxes = args.boxes;
   options.max_dimension = args.max_dimension;
+  Progress progress(args.quiet);
+  progress.hint("analyze", x.size(),
+                "Cao's method, the correlation sums and two divergence curves on all the samples may take long; "
+                "-l 100000 analyses the first 10^5 samples");
+  options.progress = progress.steps();
   const AutomaticAnalysis a = analyse_series(x, series.dt, options);
   const TimeScales& scales = a.scales;
   const std::string theiler_source = args.theiler ? "given (-t)" : scales.theiler_source;
@@ -202,6 +208,7 @@ void run(AnalyzeArgs& args) {
     fnn_options.delay = *a.delay;
     fnn_options.theiler = a.theiler;
     fnn_options.max_dimension = args.max_dimension;
+    fnn_options.progress = progress.callback("false nearest neighbours");
     fnn = false_nearest_neighbors(x, fnn_options);
   }
   // The surrogate test on the first test_length samples, trimmed to their best end match (an end
@@ -221,6 +228,7 @@ void run(AnalyzeArgs& args) {
     t.prediction.dimension = *a.dimension;
     t.prediction.delay = *a.delay;
     t.prediction.theiler = a.theiler;
+    t.progress = progress.callback("nonlinearity test");
     nonlinear = nonlinearity_test(head.subspan(segment->offset, segment->length), t);
   }
   if (!args.plot.empty()) {
@@ -380,6 +388,7 @@ void register_analyze(CLI::App& app) {
   command->add_option("--seed", args->seed, "seed of the surrogates")->capture_default_str();
   add_plot_option(*command, args->plot,
                   "draw the evidence (mutual information, Cao, false neighbours, D2 local slopes) to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

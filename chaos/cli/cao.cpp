@@ -16,6 +16,7 @@ struct CaoArgs {
   CaoOptions options;
   std::string norm = "max";
   std::string plot;
+  bool quiet = false;
 };
 
 // E1(m) and E2(m) against m, the level 1 and the saturation dimension marked.
@@ -47,6 +48,11 @@ std::string plot_script(const CaoResult& result) {
 void run(CaoArgs& args) {
   const Series series = load_series(args.input);
   args.options.norm = parse_norm(args.norm);
+  Progress progress(args.quiet);
+  progress.hint("cao", series.values.size(),
+                "a nearest-neighbour search from every point in each dimension may take long; -l 100000 uses "
+                "the first 10^5 samples, a smaller -M fewer dimensions");
+  args.options.progress = progress.callback("Cao's method");
   const CaoResult result = cao(series.values, args.options);
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
 
@@ -103,6 +109,7 @@ void register_cao(CLI::App& app) {
                       "stochastic when every |E2 - 1| is within this many standard errors")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw E1(m) and E2(m) with the saturation dimension to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

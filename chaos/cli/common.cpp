@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include <unistd.h>
+
 #include "chaos/time_scales.hpp"
 
 #include <algorithm>
@@ -16,6 +18,33 @@
 #include "output_path.hpp"
 
 namespace chaos::cli {
+
+void add_quiet_option(CLI::App& command, bool& quiet) {
+  command.add_flag("-q,--quiet", quiet, "no progress line and no long-run hint on standard error");
+}
+
+Progress::Progress(bool quiet) : quiet_(quiet), bar_(!quiet && isatty(fileno(stderr))) {}
+
+void Progress::hint(const std::string& command, std::size_t n, const std::string& text) const {
+  if (!quiet_ && n > long_run_points)
+    std::cerr << "chaos " << command << ": N = " << n << " samples: " << text << " (-q silences this)\n";
+}
+
+void Progress::update(const std::string& step, double fraction) {
+  if (step != step_) {
+    step_ = step;
+    bar_.restart();
+  }
+  bar_.update(fraction, step);
+}
+
+std::function<void(double)> Progress::callback(const std::string& step) {
+  return [this, step](double fraction) { update(step, fraction); };
+}
+
+std::function<void(const std::string&, double)> Progress::steps() {
+  return [this](const std::string& step, double fraction) { update(step, fraction); };
+}
 
 void add_input_options(CLI::App& command, InputOptions& input) {
   command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")

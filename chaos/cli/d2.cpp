@@ -1,8 +1,6 @@
 // chaos d2: correlation sums C(eps, m) for m = min..max in one pass, local slopes, the scaling
 // region chosen automatically, D2 per m and saturated with intervals, and a Takens-Theiler check.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,7 +13,6 @@
 #include "chaos/error.hpp"
 #include "common.hpp"
 #include "plot.hpp"
-#include "progress_bar.hpp"
 
 namespace chaos::cli {
 
@@ -36,10 +33,6 @@ struct D2Args {
   bool halves = false;
   bool quiet = false;
 };
-
-// Exact sums over more points than this take minutes to hours (the pairs grow as N^2): the user is
-// told before the wait, with the option that shortens it.
-constexpr std::size_t long_run_points = 200'000;
 
 CorrelationSearch parse_search(const std::string& name) {
   if (name == "box") return CorrelationSearch::box_assisted;
@@ -115,14 +108,16 @@ void run(D2Args& args) {
   const double r_min = args.r_min.value_or(range / 1000.0);
   args.sums.radii = args.radius_list.empty() ? log_radii(r_min, r_max, args.radii) : args.radius_list;
 
-  if (!args.quiet && x.size() > long_run_points && args.sums.reference_points == 0 && args.sums.pairs_per_radius == 0)
-    std::cerr << "chaos d2: N = " << x.size() << " samples: the exact correlation sums count about "
-              << number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size()))
-              << " pairs and may take long; --reference-points 20000 counts from a random subset of "
-                 "reference points in a fraction of the time (-q silences this)\n";
-  // A progress line on a terminal's stderr (ProgressBar draws after 2 s, so short runs show none).
-  cli_support::ProgressBar bar(!args.quiet && isatty(fileno(stderr)));
-  args.sums.progress = [&bar](double fraction) { bar.update(fraction, "correlation sums"); };
+  // Exact sums over many points take minutes to hours (the pairs grow as N^2): the user is told
+  // before the wait, with the option that shortens it.
+  Progress progress(args.quiet);
+  if (args.sums.reference_points == 0 && args.sums.pairs_per_radius == 0)
+    progress.hint("d2", x.size(),
+                  "the exact correlation sums count about " +
+                      number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size())) +
+                      " pairs and may take long; --reference-points 20000 counts from a random subset of "
+                      "reference points in a fraction of the time");
+  args.sums.progress = progress.callback("correlation sums");
   const CorrelationSumResult sums = correlation_sum(x, args.sums);
   CorrelationDimensionResult d2 = correlation_dimension(sums, args.dimension);
   if (args.halves) {
@@ -245,7 +240,7 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-region-fraction", args->dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
-  command->add_flag("-q,--quiet", args->quiet, "no progress line and no long-run hint on standard error");
+  add_quiet_option(*command, args->quiet);
   command->add_flag("--halves", args->halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
   add_plot_option(*command, args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");

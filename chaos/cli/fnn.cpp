@@ -16,6 +16,7 @@ struct FnnArgs {
   FnnOptions options;
   std::string norm = "euclidean";
   std::string plot;
+  bool quiet = false;
 };
 
 // The false-neighbour fraction against m, the threshold and the chosen dimension marked.
@@ -42,6 +43,11 @@ std::string plot_script(const FnnResult& result, double threshold) {
 void run(FnnArgs& args) {
   const Series series = load_series(args.input);
   args.options.norm = parse_norm(args.norm);
+  Progress progress(args.quiet);
+  progress.hint("fnn", series.values.size(),
+                "a nearest-neighbour search from every point in each dimension may take long; -l 100000 uses "
+                "the first 10^5 samples, a smaller -M fewer dimensions");
+  args.options.progress = progress.callback("false nearest neighbours");
   const FnnResult result = false_nearest_neighbors(series.values, args.options);
   if (!args.plot.empty()) render_plot(plot_script(result, args.options.threshold), args.plot);
 
@@ -85,6 +91,7 @@ void register_fnn(CLI::App& app) {
   command->add_option("--threshold", args->options.threshold, "dimension chosen where the false fraction <= this")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the false fraction against m to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }
