@@ -5,6 +5,7 @@
 #include "chaos/cao.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -22,26 +23,11 @@ struct CaoArgs {
 // E1(m) and E2(m) against m, the level 1 and the saturation dimension marked.
 std::string plot_script(const CaoResult& result) {
   std::ostringstream s;
-  s << "set grid\nset key bottom right\nset xlabel 'embedding dimension m'\nset ylabel 'E1(m), E2(m)'\n"
-    << "set xtics 1\nset offsets 0.5, 0.5, 0.1, 0.1\nset title \"Cao's method: ";
-  if (result.embedding_dimension)
-    s << "E1 saturates at m = " << *result.embedding_dimension;
-  else if (result.stochastic)
-    s << "none, E2 stays near 1 (stochastic)";
-  else
-    s << "none, E1 does not settle (not saturated)";
-  s << "\" noenhanced\n";
-  s << "set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n";
-  if (result.embedding_dimension)
-    s << "set arrow 2 from first " << *result.embedding_dimension << ", graph 0 to first " << *result.embedding_dimension
-      << ", graph 1 nohead dt 2 lc rgb 'black'\n"
-      << "set label 1 'm = " << *result.embedding_dimension << "' at first " << *result.embedding_dimension
-      << ", graph 0.05 offset 0.5, 0\n";
-  s << "plot '-' using 1:2 with linespoints pt 7 ps 0.8 title 'E1', '-' using 1:2 with linespoints pt 5 ps 0.8 title 'E2'\n";
-  for (std::size_t k = 0; k < result.dimension.size(); ++k) s << result.dimension[k] << " " << result.E1[k] << "\n";
-  s << "e\n";
-  for (std::size_t k = 0; k < result.dimension.size(); ++k) s << result.dimension[k] << " " << result.E2[k] << "\n";
-  s << "e\n";
+  s << "set grid\n";
+  cao_panel(s, result,
+            "Cao's method: " + (result.embedding_dimension ? "E1 saturates at m = " + std::to_string(*result.embedding_dimension)
+                                : result.stochastic      ? std::string("none, E2 stays near 1 (stochastic)")
+                                                         : std::string("none, E1 does not settle (not saturated)")));
   return s.str();
 }
 

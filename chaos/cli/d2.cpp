@@ -13,6 +13,7 @@
 #include "chaos/error.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -63,22 +64,9 @@ std::string plot_script(const CorrelationSumResult& sums, const CorrelationDimen
       if (sums.correlation_sum[d][k] > 0.0) s << sums.radius[k] << " " << sums.correlation_sum[d][k] << "\n";
     s << "e\n";
   }
-  s << "unset logscale y\nset ylabel 'd ln C / d ln eps'\nset title '" << to_string(d2.status);
-  if (d2.d2) s << ": D2 = " << number(*d2.d2) << " in " << interval_text(d2.d2_interval);
-  s << "'\n";
-  if (d2.scaling_region)
-    s << "set object 1 rect from " << d2.scaling_region->low << ", graph 0 to " << d2.scaling_region->high
-      << ", graph 1 fc rgb '#dddddd' fs solid 0.5 behind\n";
-  if (d2.d2) s << "set arrow 1 from graph 0, first " << *d2.d2 << " to graph 1, first " << *d2.d2 << " nohead dt 2\n";
-  s << "plot ";
-  for (std::size_t d = 0; d < sums.dimension.size(); ++d)
-    s << (d ? ", " : "") << "'-' using 1:2 with linespoints pt 7 ps 0.4 title 'm=" << sums.dimension[d] << "'";
-  s << "\n";
-  for (std::size_t d = 0; d < sums.dimension.size(); ++d) {
-    for (std::size_t k = 0; k < sums.radius.size(); ++k)
-      if (d2.local_slope[d][k]) s << sums.radius[k] << " " << *d2.local_slope[d][k] << "\n";
-    s << "e\n";
-  }
+  local_slopes_panel(s, d2,
+                     std::string(to_string(d2.status)) +
+                         (d2.d2 ? ": D2 = " + number(*d2.d2) + " in " + interval_text(d2.d2_interval) : std::string()));
   s << "unset multiplot\n";
   return s.str();
 }
