@@ -46,6 +46,22 @@ std::function<void(const std::string&, double)> Progress::steps() {
   return [this](const std::string& step, double fraction) { update(step, fraction); };
 }
 
+void write_columns(std::ostream& out, const std::vector<std::string>& names,
+                   const std::vector<std::span<const double>>& columns) {
+  out << "#";
+  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "\t" : " ") << names[c];
+  out << "\n";
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.17g", columns[c][i]);
+      out << (c ? "\t" : "") << buffer;
+    }
+    out << "\n";
+  }
+}
+
 void add_input_options(CLI::App& command, InputOptions& input) {
   command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")
       ->capture_default_str();

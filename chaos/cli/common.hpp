@@ -76,6 +76,11 @@ class Progress {
   std::string step_;
 };
 
+// Writes samples as rows of full-precision numbers (%.17g, which reads back exactly), one column
+// each, tab-separated, under a "# name1\tname2 ..." line: the series of `generate` and `zoo --series`.
+void write_columns(std::ostream& out, const std::vector<std::string>& names,
+                   const std::vector<std::span<const double>>& columns);
+
 // Formats a double with enough digits to round-trip the estimate's meaningful precision.
 std::string number(double value);
 
