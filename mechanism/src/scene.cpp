@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -253,6 +254,11 @@ struct Reader {
       throw InvalidParameter(key, node_text(*n), "must be a number");
     }
     if (!satisfies(rule, v)) throw InvalidParameter(key, node_text(*n), rule_text(rule));
+    // A subnormal size or modulus passed "> 0" and overflowed what is computed from it: a Young's
+    // modulus of 1e-320 gave "sigma_slider = inf", an inertia of 1e-320 a non-finite state (issue
+    // 16, corrupt-file tier).
+    if (rule == Rule::positive && v < std::numeric_limits<double>::min())
+      throw InvalidParameter(key, node_text(*n), "must be at least 2.2e-308 (the smallest normal double)");
     out = v;
   }
   void flag(const std::string& key, bool& out, std::string_view) {
@@ -439,7 +445,8 @@ void check_consistency(const Scene& s) {
   }
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),
-                           "must not exceed the crank period (" + format_number(s.driver.period()) + " s)");
+                           "must not exceed the crank period, 60 / driver.speed_rpm = " +
+                               format_number(s.driver.period()) + " s");
   }
   check_run_size(s);
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Corrupt files (issue 16): series files to every `chaos` command that reads one, scene files to
-# `mechanism simulate`, `study sweep` and `study pipeline`, and result files (a point file,
+# `mechanism simulate` and `scene`, `study sweep` and `study pipeline`, and result files (a point file,
 # spec.txt and the lock of a `study sweep` directory, then --resume; the assembled tables, then
 # `study plot`). Each run must end within its time limit with an exit code below 128 that is not 1
 # (README.md and docs/study.md: 1 is an internal error, >= 128 a crash), a message on stderr that
@@ -197,6 +197,7 @@ for ((n = 0; n < scenes; n++)); do
   scene_case "$f"
   # mechanism: 0 ok, 3 invalid scene, 5 the integration could not continue (README.md).
   check mechanism "0 3 5" "$names" -- simulate -q "$f"
+  ((n % 4 == 0)) && check mechanism "0 3" "$names" -- scene "$f"
 done
 mkdir -p "$work/scene_dir.toml"
 check mechanism "3" "scene_dir.toml" -- simulate -q "$work/scene_dir.toml"
