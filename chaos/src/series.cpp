@@ -80,8 +80,21 @@ bool read_line(std::istream& in, std::string& line) {
 
 constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
 
+// The length of the valid UTF-8 sequence at the start of `s` (2 to 4 bytes), or 0.
+std::size_t utf8_sequence(std::string_view s) {
+  const auto lead = static_cast<unsigned char>(s[0]);
+  const std::size_t length = lead >= 0xC2 && lead <= 0xDF   ? 2
+                             : lead >= 0xE0 && lead <= 0xEF ? 3
+                             : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                            : 0;
+  if (length == 0 || s.size() < length) return 0;
+  for (std::size_t k = 1; k < length; ++k)
+    if ((static_cast<unsigned char>(s[k]) & 0xC0) != 0x80) return 0;
+  return length;
+}
+
 // A token as a message shows it: at most 60 bytes (a 1 MB token echoed whole buries the message),
-// a byte-order mark as <BOM>, control bytes as \xHH.
+// a byte-order mark as <BOM>, control bytes and bytes that are not UTF-8 (binary garbage) as \xHH.
 std::string shown(std::string_view token) {
   constexpr std::size_t limit = 60;
   std::string out;
@@ -93,7 +106,10 @@ std::string shown(std::string_view token) {
       continue;
     }
     const auto c = static_cast<unsigned char>(token[i]);
-    if (c < 0x20 || c == 0x7f) {
+    if (const std::size_t length = c >= 0x80 ? utf8_sequence(token.substr(i)) : 0; length > 0) {
+      out += token.substr(i, length);
+      i += length - 1;
+    } else if (c < 0x20 || c >= 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02X", c);
       out += hex;

@@ -93,6 +93,9 @@ TEST(ReadSeries, RefusedTokensAreShownShortAndVisible) {
   }
   expect_refusal([] { read("1\n\xEF\xBB\xBF" "2\n"); }, ErrorCode::parse, {"'<BOM>2' is not a number", "byte-order mark"});
   expect_refusal([] { read("1\n2\x01\n"); }, ErrorCode::parse, {"'2\\x01' is not a number"});
+  // Binary garbage is shown as \xHH too (it reached the terminal raw), UTF-8 text as it is.
+  expect_refusal([] { read("1\n2\xE9\xFF\n"); }, ErrorCode::parse, {"'2\\xE9\\xFF' is not a number"});
+  expect_refusal([] { read("1\n2\xC3\xA9\n"); }, ErrorCode::parse, {"'2\xC3\xA9' is not a number"});
   expect_refusal([] { read("nan\n1\n"); }, ErrorCode::non_finite, {"input.dat:1"});  // not a header
 }
 
