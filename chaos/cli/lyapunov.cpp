@@ -24,6 +24,7 @@ struct LyapunovArgs {
   std::string method = "rosenstein";
   std::string norm = "max";
   std::string plot;
+  bool quiet = false;
 };
 
 LyapunovMethod parse_method(const std::string& name) {
@@ -124,6 +125,12 @@ void run(LyapunovArgs& args) {
     args.options.steps = automatic_lyapunov_steps(correlation.samples, args.fit.period, x.size());
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
+  Progress progress(args.quiet);
+  if (args.options.reference_points == 0)
+    progress.hint("lyapunov", x.size(),
+                  "the divergence curve follows the neighbours of every one of the points and may take long; "
+                  "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
+  args.options.progress = progress.callback(std::string("divergence curve (") + to_string(args.options.method) + ")");
   const LyapunovResult r = largest_lyapunov(x, args.options, args.fit, series.dt);
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
 
@@ -247,6 +254,7 @@ void register_lyapunov(CLI::App& app) {
   command->add_option("--min-rise", args->fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

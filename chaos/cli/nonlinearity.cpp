@@ -21,6 +21,7 @@ struct NonlinearityArgs {
   std::string norm = "max";
   std::size_t delay = 1;
   bool end_match = false;
+  bool quiet = false;
 };
 
 NonlinearityStatistic parse_statistic(const std::string& name) {
@@ -60,6 +61,11 @@ void run(NonlinearityArgs& args) {
     match = end_match(x);
     x = x.subspan(match->offset, match->length);
   }
+  Progress progress(args.quiet);
+  progress.hint("nonlinearity", x.size(),
+                "each surrogate takes up to --max-iterations Fourier transforms of all the samples and may take "
+                "long; -l 100000 tests the first 10^5 samples");
+  o.progress = progress.callback("surrogates");
   const NonlinearityTestResult r = nonlinearity_test(x, o);
 
   Report report("nonlinearity", args.output);
@@ -125,6 +131,7 @@ void register_nonlinearity(CLI::App& app) {
   command->add_option("--norm", args->norm, "prediction: max or euclidean")->capture_default_str();
   command->add_flag("--end-match", args->end_match,
                     "first trim the series to the segment whose ends match best (TISEAN endtoend)");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -21,6 +21,7 @@ struct SurrogatesArgs {
   std::uint64_t seed = 1;
   bool end_match = false;
   EndMatchOptions end;
+  bool quiet = false;
 };
 
 SurrogateMethod parse_method(const std::string& name) {
@@ -40,6 +41,11 @@ void run(SurrogatesArgs& args) {
     match = end_match(x, args.end);
     x = x.subspan(match->offset, match->length);
   }
+  Progress progress(args.quiet);
+  progress.hint("surrogates", x.size(),
+                "each surrogate takes up to --max-iterations Fourier transforms of all the samples and may take "
+                "long; -l 100000 uses the first 10^5 samples");
+  args.options.progress = progress.callback("surrogates");
   const std::vector<Surrogate> made = surrogates(x, args.count, args.seed, args.options);
 
   Report report("surrogates", args.output);
@@ -107,6 +113,7 @@ void register_surrogates(CLI::App& app) {
   command->add_flag("--end-match", args->end_match,
                     "first trim the series to the segment whose ends match best (TISEAN endtoend)");
   command->add_option("--max-trim", args->end.max_trim, "end matching: largest fraction cut off")->capture_default_str();
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -257,6 +258,11 @@ struct Reader {
       throw InvalidParameter(key, node_text(*n), "must be a number");
     }
     if (!satisfies(rule, v)) throw InvalidParameter(key, node_text(*n), rule_text(rule));
+    // A subnormal size or modulus passed "> 0" and overflowed what is computed from it: a Young's
+    // modulus of 1e-320 gave "sigma_slider = inf", an inertia of 1e-320 a non-finite state (issue
+    // 16, corrupt-file tier).
+    if (rule == Rule::positive && v < std::numeric_limits<double>::min())
+      throw InvalidParameter(key, node_text(*n), "must be at least 2.2e-308 (the smallest normal double)");
     out = v;
   }
   void flag(const std::string& key, bool& out, std::string_view) {
@@ -382,14 +388,22 @@ void apply_override(toml::table& table, const std::string& assignment) {
 void check_consistency(const Scene& s) {
   // The conrod must reach the guide line from every crank position (and the clearances only add
   // to the offset), so that the ideal-joint initial conditions and the ideal slider exist.
+  // The message names every key in the sum: the one a user set wrong may be any of them.
   double reach = s.crank.length;
-  for (const RevoluteJoint* j : {&s.crank_ground, &s.crank_conrod, &s.conrod_slider}) {
-    if (j->kind == JointKind::clearance) reach += j->clearance;
+  std::string keys = "crank.length";
+  for (auto [name, j] : {std::pair{"joint.crank_ground", &s.crank_ground}, std::pair{"joint.crank_conrod", &s.crank_conrod},
+                         std::pair{"joint.conrod_slider", &s.conrod_slider}}) {
+    if (j->kind != JointKind::clearance) continue;
+    reach += j->clearance;
+    keys += std::string(" + ") + name + ".clearance";
   }
-  if (s.slider_guide.kind == JointKind::clearance) reach += s.slider_guide.clearance;
+  if (s.slider_guide.kind == JointKind::clearance) {
+    reach += s.slider_guide.clearance;
+    keys += " + joint.slider.clearance";
+  }
   if (!(s.conrod.length > reach)) {
     throw InvalidParameter("conrod.length", format_number(s.conrod.length),
-                           "must exceed the crank length plus the clearances (" + format_number(reach) +
+                           "must exceed " + keys + " (" + format_number(reach) +
                                " m), or the slider cannot stay on the guide");
   }
   // A tilted start: the slider needs its angle coordinate (a clearance guide) and must fit in the
@@ -453,7 +467,8 @@ void check_consistency(const Scene& s) {
   }
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),
-                           "must not exceed the crank period (" + format_number(s.driver.period()) + " s)");
+                           "must not exceed the crank period, 60 / driver.speed_rpm = " +
+                               format_number(s.driver.period()) + " s");
   }
   check_run_size(s);
 }
@@ -471,11 +486,16 @@ void check_run_size(const Scene& s) {
   const double longest = rk4 ? s.driver.period() / std::ceil(s.driver.period() / s.integrator.step - 1e-9)
                              : s.integrator.max_step;
   const double steps = simulated / longest;
+  // A step of 1e-320 s made this "needs inf RK4 steps of 0.0 s" without naming the step (issue 16,
+  // corrupt-file tier): the step's key and value are named, and an overflowing count is said so.
   if (!(steps <= max_run_steps))
     throw InvalidParameter("run.duration", format_number(s.run.duration),
-                           "with run.transient " + format_number(s.run.transient) + " s needs " + format_number(steps) +
-                               (rk4 ? " RK4 steps of " : " dopri5 steps of at most ") + format_number(longest) +
-                               " s, more than the limit of " + format_number(max_run_steps) + " steps");
+                           "with run.transient " + format_number(s.run.transient) + " s and " +
+                               (rk4 ? "integrator.step = " + format_number(s.integrator.step) + " s needs "
+                                    : "integrator.max_step = " + format_number(s.integrator.max_step) + " s needs ") +
+                               (std::isfinite(steps) ? format_number(steps) : std::string("more than 1e308")) +
+                               (rk4 ? " RK4 steps" : " dopri5 steps") + ", more than the limit of " +
+                               format_number(max_run_steps) + " steps");
   if (s.run.output_interval > 0.0) {
     const double rows = s.run.duration / s.run.output_interval;
     if (!(rows <= max_output_rows))

@@ -77,7 +77,17 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"crank.mass=-0.3"}).find("crank.mass = -0.3: must be a finite number > 0"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.clearance=0"}).find("joint.slider.clearance"), std::string::npos);
   EXPECT_NE(refusal("", {"integrator.step=0"}).find("integrator.step"), std::string::npos);
-  EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed the crank length"), std::string::npos);
+  EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed crank.length + joint.slider.clearance"), std::string::npos);
+  // Issue 16, corrupt-file tier: a huge clearance was refused naming only conrod.length and "the
+  // clearances"; a step of 1e-320 s as "needs inf RK4 steps of 0.0 s". The keys are named, and a
+  // subnormal size, modulus or step is refused as such.
+  EXPECT_NE(refusal("", {"joint.crank_ground.type=\"clearance\"", "joint.crank_ground.clearance=1.0"})
+                .find("crank.length + joint.crank_ground.clearance + joint.slider.clearance (1.05"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"slider.young_modulus=1e-320"}).find("slider.young_modulus = 1e-320: must be at least 2.2e-308"),
+            std::string::npos);
+  const std::string tiny_step = refusal("", {"integrator.step=1e-300"});
+  EXPECT_NE(tiny_step.find("and integrator.step = 1e-300 s needs 6"), std::string::npos) << tiny_step;
   EXPECT_NE(refusal("", {"joint.slider.contact.restitution=1.5"}).find("(0, 1]"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.model=\"wedge\""}).find("must be one of"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.type=true"}).find("joint.slider.type"), std::string::npos);
