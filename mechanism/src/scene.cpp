@@ -328,12 +328,16 @@ struct Writer {
       d += " (";
       bool first = true;
       for (auto n : EnumNames<E>::names) {
-        d += (first ? "" : " | ") + std::string(n);
+        if (!first) d += " | ";
+        d += n;
         first = false;
       }
       d += ")";
     }
-    line(key, "\"" + std::string(EnumNames<E>::names[static_cast<std::size_t>(v)]) + "\"", d);
+    std::string value = "\"";
+    value += EnumNames<E>::names[static_cast<std::size_t>(v)];
+    value += '"';
+    line(key, value, d);
   }
 };
 
@@ -385,6 +389,21 @@ void apply_override(toml::table& table, const std::string& assignment) {
   }
 }
 
+// The laws' own rules (a friction law's mu_s > 0 for LuGre, ...), refused under the scene key that
+// holds the value ("joint.slider.friction.static_coefficient", not "static_coefficient").
+void validate_laws(const std::string& joint, const ContactLawParameters& contact, const FrictionLawParameters& friction) {
+  try {
+    contact.validate();
+  } catch (const InvalidParameter& e) {
+    throw InvalidParameter(joint + ".contact." + e.key(), e.value(), e.rule());
+  }
+  try {
+    friction.validate();
+  } catch (const InvalidParameter& e) {
+    throw InvalidParameter(joint + ".friction." + e.key(), e.value(), e.rule());
+  }
+}
+
 void check_consistency(const Scene& s) {
   // The conrod must reach the guide line from every crank position (and the clearances only add
   // to the offset), so that the ideal-joint initial conditions and the ideal slider exist.
@@ -432,15 +451,10 @@ void check_consistency(const Scene& s) {
                              "must be smaller than bearing_radius (" + format_number(j->bearing_radius) +
                                  " m): the journal radius would be <= 0");
     }
-    if (j->kind == JointKind::clearance) {
-      j->contact.validate();
-      j->friction.validate();
-    }
+    if (j->kind == JointKind::clearance) validate_laws(std::string(name), j->contact, j->friction);
   }
-  if (s.slider_guide.kind == JointKind::clearance) {
-    s.slider_guide.contact.validate();
-    s.slider_guide.friction.validate();
-  }
+  if (s.slider_guide.kind == JointKind::clearance)
+    validate_laws("joint.slider", s.slider_guide.contact, s.slider_guide.friction);
   if (s.run.output_interval > 0.0 && s.run.output_interval > s.run.duration) {
     throw InvalidParameter("run.output_interval", format_number(s.run.output_interval),
                            "must not exceed run.duration (" + format_number(s.run.duration) + " s)");

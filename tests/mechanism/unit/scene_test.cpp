@@ -98,6 +98,11 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
             std::string::npos);
   EXPECT_NE(refusal("", {"slider.poisson_ratio=0.5"}).find("[0, 0.5)"), std::string::npos);
   EXPECT_NE(refusal("", {"driver.speed_rpm=nan"}).find("driver.speed_rpm"), std::string::npos);
+  // A law's own rule is refused under the scene key that holds the value (found by the corrupt-file
+  // tier: LuGre's mu_s = 0 was refused as plain "static_coefficient").
+  EXPECT_NE(refusal("", {"joint.slider.friction.static_coefficient=0"})
+                .find("joint.slider.friction.static_coefficient = 0: must be finite and > 0"),
+            std::string::npos);
 }
 
 TEST(Scene, TiltedStartIsReadAndChecked) {
