@@ -17,6 +17,9 @@ class ProgressBar {
   ProgressBar& operator=(const ProgressBar&) = delete;
 
   void update(double fraction, const std::string& detail);
+  // Starts the time-left estimate afresh, for the next step of a job run in steps; a bar already
+  // drawn keeps drawing.
+  void restart();
 
  private:
   bool enabled_, shown_ = false;

@@ -29,6 +29,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -40,6 +41,7 @@ struct AnalyzeArgs {
   AnalyzeParams params;
   std::size_t length = 100000;  // of the built-in series (enough for a confident lambda_1)
   std::string plot;
+  bool quiet = false;
 };
 
 // `text` inside a gnuplot single-quoted string (a quote is doubled).
@@ -70,49 +72,32 @@ std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualIn
   };
   s << "set multiplot layout 2,2 title 'chaos analyze: the evidence'\nset grid\n";
   // Mutual information.
-  if (mi) {
-    s << "set key top right\nset xlabel 'delay tau (samples)'\nset ylabel 'I(tau) (nats)'\n"
-      << "set title 'mutual information: delay " << (a.delay ? std::to_string(*a.delay) : std::string("none")) << "'\n";
-    if (a.delay)
-      s << "set arrow 1 from first " << *a.delay << ", graph 0 to first " << *a.delay << ", graph 1 nohead dt 2\n";
-    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.4 title 'I(tau)'\n";
-    for (std::size_t k = 0; k < mi->delay.size(); ++k) s << mi->delay[k] << " " << mi->information[k] << "\n";
-    s << "e\n";
-  } else {
+  if (mi)
+    mutual_information_panel(s, *mi, a.delay, "delay",
+                             "mutual information: delay " + (a.delay ? std::to_string(*a.delay) : std::string("none")),
+                             std::nullopt, 0.4);
+  else
     empty_panel(s, "mutual information", stopped);
-  }
   reset();
   // Cao.
   if (a.cao) {
     const CaoResult& c = *a.cao;
-    s << "set key bottom right\nset xlabel 'embedding dimension m'\nset ylabel 'E1(m), E2(m)'\nset xtics 1\n"
-      << "set offsets 0.5, 0.5, 0.1, 0.1\nset title \"Cao: m = "
-      << (c.embedding_dimension ? std::to_string(*c.embedding_dimension) : std::string(c.stochastic ? "none (stochastic)" : "none (not saturated)"))
-      << "\"\nset arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n";
-    if (c.embedding_dimension)
-      s << "set arrow 2 from first " << *c.embedding_dimension << ", graph 0 to first " << *c.embedding_dimension
-        << ", graph 1 nohead dt 2 lc rgb 'black'\n";
-    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.6 title 'E1', '-' using 1:2 with linespoints pt 5 ps 0.6 title 'E2'\n";
-    for (std::size_t k = 0; k < c.dimension.size(); ++k) s << c.dimension[k] << " " << c.E1[k] << "\n";
-    s << "e\n";
-    for (std::size_t k = 0; k < c.dimension.size(); ++k) s << c.dimension[k] << " " << c.E2[k] << "\n";
-    s << "e\n";
+    cao_panel(s, c,
+              "Cao: m = " + (c.embedding_dimension ? std::to_string(*c.embedding_dimension)
+                                                   : std::string(c.stochastic ? "none (stochastic)" : "none (not saturated)")),
+              0.6);
   } else {
     empty_panel(s, "Cao", stopped);
   }
   reset();
   // False nearest neighbours.
-  if (fnn) {
-    s << "set key top right\nset xlabel 'embedding dimension m'\nset ylabel 'false neighbours (fraction)'\nset xtics 1\n"
-      << "set offsets 0.5, 0.5, 0, 0\nset yrange [0:*]\nset title 'false nearest neighbours: m = "
-      << (fnn->embedding_dimension ? std::to_string(*fnn->embedding_dimension) : std::string("none")) << "'\n"
-      << "set arrow 1 from graph 0, first " << fnn_threshold << " to graph 1, first " << fnn_threshold << " nohead dt 2\n";
-    s << "plot '-' using 1:2 with linespoints pt 7 ps 0.6 title 'false fraction'\n";
-    for (std::size_t k = 0; k < fnn->dimension.size(); ++k) s << fnn->dimension[k] << " " << fnn->false_fraction[k] << "\n";
-    s << "e\n";
-  } else {
+  if (fnn)
+    fnn_panel(s, *fnn, fnn_threshold,
+              "false nearest neighbours: m = " +
+                  (fnn->embedding_dimension ? std::to_string(*fnn->embedding_dimension) : std::string("none")),
+              0.6);
+  else
     empty_panel(s, "false nearest neighbours", stopped);
-  }
   reset();
   // D2: local slopes.
   bool slopes = false;
@@ -121,34 +106,13 @@ std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualIn
       slopes = slopes || std::any_of(row.begin(), row.end(), [](const auto& v) { return v.has_value(); });
   if (slopes) {
     const CorrelationDimensionResult& d = *a.d2;
-    s << "set key outside right samplen 1\nset logscale x\nset xlabel 'eps'\nset ylabel 'd ln C / d ln eps'\n"
-      << "set title '" << to_string(d.status);
+    std::string title = to_string(d.status);
     if (d.d2) {
       char d2_text[32];
       std::snprintf(d2_text, sizeof d2_text, "%.4g", *d.d2);
-      s << ": D2 = " << d2_text;
+      title += std::string(": D2 = ") + d2_text;
     }
-    s << "'\n";
-    if (d.scaling_region)
-      s << "set object 1 rect from " << d.scaling_region->low << ", graph 0 to " << d.scaling_region->high
-        << ", graph 1 fc rgb '#dddddd' fs solid 0.5 behind\n";
-    if (d.d2) s << "set arrow 1 from graph 0, first " << *d.d2 << " to graph 1, first " << *d.d2 << " nohead dt 2\n";
-    s << "plot ";
-    bool first = true;
-    for (std::size_t m = 0; m < d.dimension.size(); ++m) {
-      if (std::none_of(d.local_slope[m].begin(), d.local_slope[m].end(), [](const auto& v) { return v.has_value(); }))
-        continue;
-      s << (first ? "" : ", ") << "'-' using 1:2 with linespoints pt 7 ps 0.3 title 'm=" << d.dimension[m] << "'";
-      first = false;
-    }
-    s << "\n";
-    for (std::size_t m = 0; m < d.dimension.size(); ++m) {
-      if (std::none_of(d.local_slope[m].begin(), d.local_slope[m].end(), [](const auto& v) { return v.has_value(); }))
-        continue;
-      for (std::size_t k = 0; k < d.radius.size(); ++k)
-        if (d.local_slope[m][k]) s << d.radius[k] << " " << *d.local_slope[m][k] << "\n";
-      s << "e\n";
-    }
+    local_slopes_panel(s, d, title, 0.3);
   } else {
     empty_panel(s, "correlation dimension", a.d2 ? std::string("no local slopes") : stopped);
   }
@@ -162,6 +126,11 @@ void run(AnalyzeArgs& args) {
   const std::vector<double>& x = series.values;
   AnalyzeParams params = args.params;
   params.mutual_curve = !args.plot.empty();
+  Progress progress(args.quiet);
+  progress.hint("analyze", x.size(),
+                "Cao's method, the correlation sums and two divergence curves on all the samples may take long; "
+                "-l 100000 analyses the first 10^5 samples");
+  params.progress = progress.steps();
   AnalyzeRun run = run_analyze({x, builtin ? std::string(builtin_series_name) : args.input.file, series.column, series.dt},
                                params, args.output);
   const AutomaticAnalysis& a = run.analysis;
@@ -265,6 +234,7 @@ void register_analyze(CLI::App& app) {
   command->add_option("--seed", args->params.seed, "seed of the surrogates")->capture_default_str();
   add_plot_option(*command, args->plot,
                   "draw the evidence (mutual information, Cao, false neighbours, D2 local slopes) to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

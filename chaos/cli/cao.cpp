@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -16,36 +17,27 @@ struct CaoArgs {
   OutputOptions output;
   CaoParams params;
   std::string plot;
+  bool quiet = false;
 };
 
 // E1(m) and E2(m) against m, the level 1 and the saturation dimension marked.
 std::string plot_script(const CaoResult& result) {
   std::ostringstream s;
-  s << "set grid\nset key bottom right\nset xlabel 'embedding dimension m'\nset ylabel 'E1(m), E2(m)'\n"
-    << "set xtics 1\nset offsets 0.5, 0.5, 0.1, 0.1\nset title \"Cao's method: ";
-  if (result.embedding_dimension)
-    s << "E1 saturates at m = " << *result.embedding_dimension;
-  else if (result.stochastic)
-    s << "none, E2 stays near 1 (stochastic)";
-  else
-    s << "none, E1 does not settle (not saturated)";
-  s << "\" noenhanced\n";
-  s << "set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n";
-  if (result.embedding_dimension)
-    s << "set arrow 2 from first " << *result.embedding_dimension << ", graph 0 to first " << *result.embedding_dimension
-      << ", graph 1 nohead dt 2 lc rgb 'black'\n"
-      << "set label 1 'm = " << *result.embedding_dimension << "' at first " << *result.embedding_dimension
-      << ", graph 0.05 offset 0.5, 0\n";
-  s << "plot '-' using 1:2 with linespoints pt 7 ps 0.8 title 'E1', '-' using 1:2 with linespoints pt 5 ps 0.8 title 'E2'\n";
-  for (std::size_t k = 0; k < result.dimension.size(); ++k) s << result.dimension[k] << " " << result.E1[k] << "\n";
-  s << "e\n";
-  for (std::size_t k = 0; k < result.dimension.size(); ++k) s << result.dimension[k] << " " << result.E2[k] << "\n";
-  s << "e\n";
+  s << "set grid\n";
+  cao_panel(s, result,
+            "Cao's method: " + (result.embedding_dimension ? "E1 saturates at m = " + std::to_string(*result.embedding_dimension)
+                                : result.stochastic      ? std::string("none, E2 stays near 1 (stochastic)")
+                                                         : std::string("none, E1 does not settle (not saturated)")));
   return s.str();
 }
 
 void run(CaoArgs& args) {
   const Series series = load_series(args.input);
+  Progress progress(args.quiet);
+  progress.hint("cao", series.values.size(),
+                "a nearest-neighbour search from every point in each dimension may take long; -l 100000 uses "
+                "the first 10^5 samples, a smaller -M fewer dimensions");
+  args.params.options.progress = progress.callback("Cao's method");
   auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
   std::ostream& out = report.stream();
@@ -81,6 +73,7 @@ void register_cao(CLI::App& app) {
                       "stochastic when every |E2 - 1| is within this many standard errors")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw E1(m) and E2(m) with the saturation dimension to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

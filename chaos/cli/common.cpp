@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include <unistd.h>
+
 #include "chaos/time_scales.hpp"
 
 #include <algorithm>
@@ -16,6 +18,49 @@
 #include "output_path.hpp"
 
 namespace chaos::cli {
+
+void add_quiet_option(CLI::App& command, bool& quiet) {
+  command.add_flag("-q,--quiet", quiet, "no progress line and no long-run hint on standard error");
+}
+
+Progress::Progress(bool quiet) : quiet_(quiet), bar_(!quiet && isatty(fileno(stderr))) {}
+
+void Progress::hint(const std::string& command, std::size_t n, const std::string& text) const {
+  if (!quiet_ && n > long_run_points)
+    std::cerr << "chaos " << command << ": N = " << n << " samples: " << text << " (-q silences this)\n";
+}
+
+void Progress::update(const std::string& step, double fraction) {
+  if (step != step_) {
+    step_ = step;
+    bar_.restart();
+  }
+  bar_.update(fraction, step);
+}
+
+std::function<void(double)> Progress::callback(const std::string& step) {
+  return [this, step](double fraction) { update(step, fraction); };
+}
+
+std::function<void(const std::string&, double)> Progress::steps() {
+  return [this](const std::string& step, double fraction) { update(step, fraction); };
+}
+
+void write_columns(std::ostream& out, const std::vector<std::string>& names,
+                   const std::vector<std::span<const double>>& columns) {
+  out << "#";
+  for (std::size_t c = 0; c < names.size(); ++c) out << (c ? "\t" : " ") << names[c];
+  out << "\n";
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.17g", columns[c][i]);
+      out << (c ? "\t" : "") << buffer;
+    }
+    out << "\n";
+  }
+}
 
 void add_input_options(CLI::App& command, InputOptions& input) {
   command.add_option("file", input.file, "input file, one value per row (columns separated by blanks or commas); - for stdin")

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -20,6 +21,7 @@
 #include "chaos/cao.hpp"
 #include "chaos/norm.hpp"
 #include "chaos/series.hpp"
+#include "progress_bar.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -46,6 +48,35 @@ void add_output_options(CLI::App& command, OutputOptions& output);
 // Registers --plot FILE.png|FILE.svg, refused while the command line is read when the extension is
 // neither, or the file could not be written (output_path.hpp); register the input file first.
 void add_plot_option(CLI::App& command, std::string& path, const std::string& description);
+
+// What the long commands (d2, lyapunov, cao, fnn, surrogates, nonlinearity, analyze) say on
+// standard error while they work: a hint before a job on more than long_run_points samples (what is
+// slow, and the option that shortens it), and a progress line on a terminal (drawn after 2 s, so
+// short runs show none); -q,--quiet, which add_quiet_option registers, silences both.
+constexpr std::size_t long_run_points = 200'000;
+void add_quiet_option(CLI::App& command, bool& quiet);
+class Progress {
+ public:
+  explicit Progress(bool quiet);
+  // "chaos COMMAND: N = n samples: TEXT (-q silences this)" when n > long_run_points.
+  void hint(const std::string& command, std::size_t n, const std::string& text) const;
+  // For an options struct's `progress`: redraws the line with `step` as its detail (a new step
+  // starts the time-left estimate afresh).
+  std::function<void(double)> callback(const std::string& step);
+  // For AutomaticAnalysisOptions::progress.
+  std::function<void(const std::string&, double)> steps();
+
+ private:
+  void update(const std::string& step, double fraction);
+  bool quiet_;
+  cli_support::ProgressBar bar_;
+  std::string step_;
+};
+
+// Writes samples as rows of full-precision numbers (%.17g, which reads back exactly), one column
+// each, tab-separated, under a "# name1\tname2 ..." line: the series of `generate` and `zoo --series`.
+void write_columns(std::ostream& out, const std::vector<std::string>& names,
+                   const std::vector<std::span<const double>>& columns);
 
 // Thrown by `validate` after its report is written, to leave with exit code 4.
 struct ValidationFailed {};

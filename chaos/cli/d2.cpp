@@ -1,8 +1,6 @@
 // chaos d2: correlation sums C(eps, m) for m = min..max in one pass, local slopes, the scaling
 // region chosen automatically, D2 per m and saturated with intervals, and a Takens-Theiler check.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +14,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
-#include "progress_bar.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -30,9 +28,6 @@ struct D2Args {
   bool quiet = false;
 };
 
-// Exact sums over more points than this take minutes to hours (the pairs grow as N^2): the user is
-// told before the wait, with the option that shortens it.
-constexpr std::size_t long_run_points = 200'000;
 
 std::string interval_text(const std::optional<Interval>& i) {
   return i ? "[" + number(i->low) + ", " + number(i->high) + "]" : std::string("none");
@@ -52,22 +47,9 @@ std::string plot_script(const CorrelationSumResult& sums, const CorrelationDimen
       if (sums.correlation_sum[d][k] > 0.0) s << sums.radius[k] << " " << sums.correlation_sum[d][k] << "\n";
     s << "e\n";
   }
-  s << "unset logscale y\nset ylabel 'd ln C / d ln eps'\nset title '" << to_string(d2.status);
-  if (d2.d2) s << ": D2 = " << number(*d2.d2) << " in " << interval_text(d2.d2_interval);
-  s << "'\n";
-  if (d2.scaling_region)
-    s << "set object 1 rect from " << d2.scaling_region->low << ", graph 0 to " << d2.scaling_region->high
-      << ", graph 1 fc rgb '#dddddd' fs solid 0.5 behind\n";
-  if (d2.d2) s << "set arrow 1 from graph 0, first " << *d2.d2 << " to graph 1, first " << *d2.d2 << " nohead dt 2\n";
-  s << "plot ";
-  for (std::size_t d = 0; d < sums.dimension.size(); ++d)
-    s << (d ? ", " : "") << "'-' using 1:2 with linespoints pt 7 ps 0.4 title 'm=" << sums.dimension[d] << "'";
-  s << "\n";
-  for (std::size_t d = 0; d < sums.dimension.size(); ++d) {
-    for (std::size_t k = 0; k < sums.radius.size(); ++k)
-      if (d2.local_slope[d][k]) s << sums.radius[k] << " " << *d2.local_slope[d][k] << "\n";
-    s << "e\n";
-  }
+  local_slopes_panel(s, d2,
+                     std::string(to_string(d2.status)) +
+                         (d2.d2 ? ": D2 = " + number(*d2.d2) + " in " + interval_text(d2.d2_interval) : std::string()));
   s << "unset multiplot\n";
   return s.str();
 }
@@ -76,15 +58,17 @@ void run(D2Args& args) {
   const Series series = load_series(args.input);
   const std::vector<double>& x = series.values;
   const CorrelationSumOptions& sums_options = args.params.sums;
-  if (!args.quiet && x.size() > long_run_points && sums_options.reference_points == 0 && sums_options.pairs_per_radius == 0)
-    std::cerr << "chaos d2: N = " << x.size() << " samples: the exact correlation sums count about "
-              << number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size()))
-              << " pairs and may take long; --reference-points 20000 counts from a random subset of "
-                 "reference points in a fraction of the time (-q silences this)\n";
-  // A progress line on a terminal's stderr (ProgressBar draws after 2 s, so short runs show none).
-  cli_support::ProgressBar bar(!args.quiet && isatty(fileno(stderr)));
+  // Exact sums over many points take minutes to hours (the pairs grow as N^2): the user is told
+  // before the wait, with the option that shortens it.
+  Progress progress(args.quiet);
+  if (sums_options.reference_points == 0 && sums_options.pairs_per_radius == 0)
+    progress.hint("d2", x.size(),
+                  "the exact correlation sums count about " +
+                      number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size())) +
+                      " pairs and may take long; --reference-points 20000 counts from a random subset of "
+                      "reference points in a fraction of the time");
   D2Params params = args.params;
-  params.sums.progress = [&bar](double fraction) { bar.update(fraction, "correlation sums"); };
+  params.sums.progress = progress.callback("correlation sums");
   auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), args.output);
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
   std::ostream& out = report.stream();
@@ -147,7 +131,7 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
-  command->add_flag("-q,--quiet", args->quiet, "no progress line and no long-run hint on standard error");
+  add_quiet_option(*command, args->quiet);
   command->add_flag("--halves", args->params.halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
   add_plot_option(*command, args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");

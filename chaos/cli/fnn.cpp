@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -16,31 +17,28 @@ struct FnnArgs {
   OutputOptions output;
   FnnParams params;
   std::string plot;
+  bool quiet = false;
 };
 
 // The false-neighbour fraction against m, the threshold and the chosen dimension marked.
 std::string plot_script(const FnnResult& result, double threshold) {
   std::ostringstream s;
-  s << "set grid\nset key top right\nset xlabel 'embedding dimension m'\nset ylabel 'false nearest neighbours (fraction)'\n"
-    << "set xtics 1\nset offsets 0.5, 0.5, 0, 0\nset yrange [0:*]\nset title 'false nearest neighbours: ";
-  if (result.embedding_dimension)
-    s << "fraction <= " << number(threshold) << " from m = " << *result.embedding_dimension;
-  else
-    s << "fraction stays above " << number(threshold);
-  s << "' noenhanced\n";
-  s << "set arrow 1 from graph 0, first " << threshold << " to graph 1, first " << threshold << " nohead dt 2\n";
-  if (result.embedding_dimension)
-    s << "set arrow 2 from first " << *result.embedding_dimension << ", graph 0 to first " << *result.embedding_dimension
-      << ", graph 1 nohead dt 2 lc rgb 'black'\n";
-  s << "plot '-' using 1:2 with linespoints pt 7 ps 0.8 title 'false fraction'\n";
-  for (std::size_t k = 0; k < result.dimension.size(); ++k)
-    s << result.dimension[k] << " " << result.false_fraction[k] << "\n";
-  s << "e\n";
+  s << "set grid\n";
+  fnn_panel(s, result, threshold,
+            "false nearest neighbours: " +
+                (result.embedding_dimension
+                     ? "fraction <= " + number(threshold) + " from m = " + std::to_string(*result.embedding_dimension)
+                     : "fraction stays above " + number(threshold)));
   return s.str();
 }
 
 void run(FnnArgs& args) {
   const Series series = load_series(args.input);
+  Progress progress(args.quiet);
+  progress.hint("fnn", series.values.size(),
+                "a nearest-neighbour search from every point in each dimension may take long; -l 100000 uses "
+                "the first 10^5 samples, a smaller -M fewer dimensions");
+  args.params.options.progress = progress.callback("false nearest neighbours");
   auto [result, report] = run_fnn({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(result, args.params.options.threshold), args.plot);
   std::ostream& out = report.stream();
@@ -73,6 +71,7 @@ void register_fnn(CLI::App& app) {
   command->add_option("--threshold", args->params.options.threshold, "dimension chosen where the false fraction <= this")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the false fraction against m to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -72,17 +72,13 @@ void run(const GenerateArgs& args) {
     return;
   }
   report.write_header(out);
-  out << "#";
-  for (std::size_t c = 0; c < chosen.size(); ++c) out << (c ? "\t" : " ") << trajectory.names[chosen[c]];
-  out << "\n";
-  for (std::size_t i = 0; i < trajectory.size(); ++i) {
-    for (std::size_t c = 0; c < chosen.size(); ++c) {
-      char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%.17g", trajectory.components[chosen[c]][i]);
-      out << (c ? "\t" : "") << buffer;
-    }
-    out << "\n";
+  std::vector<std::string> names;
+  std::vector<std::span<const double>> columns;
+  for (const std::size_t k : chosen) {
+    names.push_back(trajectory.names[k]);
+    columns.emplace_back(trajectory.components[k]);
   }
+  write_columns(out, names, columns);
 }
 
 }  // namespace

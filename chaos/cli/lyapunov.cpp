@@ -21,6 +21,7 @@ struct LyapunovArgs {
   OutputOptions output;
   LyapunovParams params;
   std::string plot;
+  bool quiet = false;
 };
 
 std::string interval_text(const std::optional<Interval>& i) {
@@ -81,6 +82,12 @@ std::string plot_script(const LyapunovResult& r) {
 
 void run(LyapunovArgs& args) {
   const Series series = load_series(args.input);
+  Progress progress(args.quiet);
+  if (args.params.options.reference_points == 0)
+    progress.hint("lyapunov", series.values.size(),
+                  "the divergence curve follows the neighbours of every one of the points and may take long; "
+                  "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
+  args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
   const bool per_time = r.dt.has_value();
@@ -153,6 +160,7 @@ void register_lyapunov(CLI::App& app) {
   command->add_option("--min-rise", args->params.fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
+#include "plot_panels.hpp"
 
 namespace chaos::cli {
 
@@ -22,27 +23,15 @@ struct MutualArgs {
 // I(tau) against tau (samples, or time units with --dt) with the first minimum marked.
 std::string plot_script(const MutualInformationResult& result, const std::optional<std::size_t>& minimum,
                         const std::optional<double>& dt) {
-  const double scale = dt.value_or(1.0);
   std::ostringstream s;
-  s << "set grid\nset key top right\nset xlabel '" << (dt ? "delay tau (time units)" : "delay tau (samples)")
-    << "'\nset ylabel 'I(tau) (nats)'\nset title 'average mutual information: first minimum ";
-  if (minimum)
-    s << "at tau = " << *minimum << (dt ? " samples = " + number(static_cast<double>(*minimum) * scale) : std::string());
-  else
-    s << "none within the range";
-  s << "' noenhanced\n";
-  if (minimum)
-    s << "set arrow 1 from first " << static_cast<double>(*minimum) * scale << ", graph 0 to first "
-      << static_cast<double>(*minimum) * scale << ", graph 1 nohead dt 2\n";
-  s << "plot '-' using 1:2 with linespoints pt 7 ps 0.4 title 'I(tau)'";
-  if (minimum) s << ", '-' using 1:2 with points pt 6 ps 2 lw 2 title 'first minimum'";
-  s << "\n";
-  for (std::size_t k = 0; k < result.delay.size(); ++k)
-    s << static_cast<double>(result.delay[k]) * scale << " " << result.information[k] << "\n";
-  s << "e\n";
-  if (minimum)
-    for (std::size_t k = 0; k < result.delay.size(); ++k)
-      if (result.delay[k] == *minimum) s << static_cast<double>(*minimum) * scale << " " << result.information[k] << "\ne\n";
+  s << "set grid\n";
+  mutual_information_panel(
+      s, result, minimum, "first minimum",
+      "average mutual information: first minimum " +
+          (minimum ? "at tau = " + std::to_string(*minimum) +
+                         (dt ? " samples = " + number(static_cast<double>(*minimum) * *dt) : std::string())
+                   : std::string("none within the range")),
+      dt);
   return s.str();
 }
 

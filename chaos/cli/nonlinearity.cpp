@@ -16,10 +16,16 @@ struct NonlinearityArgs {
   InputOptions input;
   OutputOptions output;
   NonlinearityParams params;
+  bool quiet = false;
 };
 
 void run(NonlinearityArgs& args) {
   const Series series = load_series(args.input);
+  Progress progress(args.quiet);
+  progress.hint("nonlinearity", series.values.size(),
+                "each surrogate takes up to --max-iterations Fourier transforms of all the samples and may take "
+                "long; -l 100000 tests the first 10^5 samples");
+  args.params.options.progress = progress.callback("surrogates");
   auto [r, report] = run_nonlinearity({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
@@ -62,6 +68,7 @@ void register_nonlinearity(CLI::App& app) {
   command->add_option("--norm", args->params.norm, "prediction: max or euclidean")->capture_default_str();
   command->add_flag("--end-match", args->params.end_match,
                     "first trim the series to the segment whose ends match best (TISEAN endtoend)");
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -40,37 +40,6 @@ CrossingDirection parse_direction(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "direction must be up, down or both (got '" + name + "')");
 }
 
-// The whole input, read once, so that several columns can be taken from standard input.
-std::string slurp(const std::string& path) {
-  std::ostringstream text;
-  if (path == "-") {
-    text << std::cin.rdbuf();
-  } else {
-    std::ifstream in(path);
-    if (!in) throw InvalidInput(ErrorCode::io, path + ": cannot open file (missing or unreadable)");
-    text << in.rdbuf();
-  }
-  return text.str();
-}
-
-// Columns in the first data row, split as the series reader does (blanks, tabs, commas; '#' ends it).
-std::size_t columns_in_first_row(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    line = line.substr(0, line.find('#'));
-    std::size_t count = 0;
-    bool inside = false;
-    for (char c : line) {
-      const bool separator = c == ',' || c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-      if (!separator && !inside) ++count;
-      inside = !separator;
-    }
-    if (count > 0) return count;
-  }
-  return 0;
-}
-
 std::vector<double> read_column(const std::string& text, const std::string& name, std::size_t column, const SectionArgs& a) {
   ReadOptions o;
   o.column = column;
@@ -87,9 +56,11 @@ void run(SectionArgs& a) {
   if (a.hyperplane && !a.level) throw InvalidInput(ErrorCode::invalid_parameter, "--hyperplane needs --level C (the plane is column = C)");
   if (!(a.dt > 0.0) || !std::isfinite(a.dt)) throw InvalidInput(ErrorCode::invalid_parameter, "dt must be finite and > 0 (got " + number(a.dt) + ")");
   const CrossingDirection direction = parse_direction(a.direction);
-  const std::string text = slurp(a.file), name = a.file == "-" ? "<stdin>" : a.file;
+  // The whole input, read once, so that several columns can be taken from standard input.
+  const std::string text = read_text(a.file), name = a.file == "-" ? "<stdin>" : a.file;
   if (a.columns.empty()) {
-    const std::size_t n = columns_in_first_row(text);
+    std::istringstream in(text);
+    const std::size_t n = count_columns(in);
     for (std::size_t c = 1; c <= n; ++c) {
       if (c != a.time_column) a.columns.push_back(c);
     }

@@ -17,10 +17,16 @@ struct SurrogatesArgs {
   InputOptions input;
   OutputOptions output;
   SurrogatesParams params;
+  bool quiet = false;
 };
 
 void run(SurrogatesArgs& args) {
   const Series series = load_series(args.input);
+  Progress progress(args.quiet);
+  progress.hint("surrogates", series.values.size(),
+                "each surrogate takes up to --max-iterations Fourier transforms of all the samples and may take "
+                "long; -l 100000 uses the first 10^5 samples");
+  args.params.options.progress = progress.callback("surrogates");
   auto [made, match, length, report] =
       run_surrogates({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   std::ostream& out = report.stream();
@@ -67,6 +73,7 @@ void register_surrogates(CLI::App& app) {
   command->add_flag("--end-match", args->params.end_match,
                     "first trim the series to the segment whose ends match best (TISEAN endtoend)");
   command->add_option("--max-trim", args->params.end.max_trim, "end matching: largest fraction cut off")->capture_default_str();
+  add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

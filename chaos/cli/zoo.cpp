@@ -96,12 +96,7 @@ void write_case_series(const ZooArgs& args) {
       .parameter("N", x.size()).parameter("dt", c.dt);
   std::ostream& out = report.stream();
   report.write_header(out);
-  out << "# x\n";
-  for (const double v : x) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    out << buffer << "\n";
-  }
+  write_columns(out, {"x"}, {std::span<const double>(x)});
 }
 
 void run(const ZooArgs& args) {

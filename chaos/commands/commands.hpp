@@ -125,6 +125,9 @@ struct AnalyzeParams {
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
   bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
+  // Called with each step's name and the fraction of it done (AutomaticAnalysisOptions::progress),
+  // also for the false neighbours and the surrogate test; may throw to stop.
+  std::function<void(const std::string&, double)> progress;
 };
 struct AnalyzeRun {
   AutomaticAnalysis analysis;

@@ -226,6 +226,13 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   options.max_delay = params.max_delay;
   options.boxes = params.boxes;
   options.max_dimension = params.max_dimension;
+  options.progress = params.progress;
+  // A step's own callback, copied into the options of that one call (the options kept in the run
+  // hold none).
+  const auto step = [&](const char* name) -> std::function<void(double)> {
+    if (!params.progress) return nullptr;
+    return [progress = params.progress, name](double fraction) { progress(name, fraction); };
+  };
   AnalyzeRun run{analyse_series(x, in.dt, options), std::nullopt, {}, std::nullopt, std::nullopt, std::nullopt, {},
                  Report("analyze", output)};
   const AutomaticAnalysis& a = run.analysis;
@@ -236,7 +243,9 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     run.fnn_options.delay = *a.delay;
     run.fnn_options.theiler = a.theiler;
     run.fnn_options.max_dimension = params.max_dimension;
-    run.fnn = false_nearest_neighbors(x, run.fnn_options);
+    FnnOptions fnn_options = run.fnn_options;
+    fnn_options.progress = step("false nearest neighbours");
+    run.fnn = false_nearest_neighbors(x, fnn_options);
   }
   // The surrogate test on the first test_length samples, trimmed to their best end match (an end
   // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
@@ -253,6 +262,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     t.prediction.dimension = *a.dimension;
     t.prediction.delay = *a.delay;
     t.prediction.theiler = a.theiler;
+    t.progress = step("nonlinearity test");
     run.nonlinear = nonlinearity_test(head.subspan(run.segment->offset, run.segment->length), t);
   }
   if (params.mutual_curve && scales.stationary) {

@@ -122,6 +122,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     c.delay = *a.delay;
     c.theiler = a.theiler;
     c.max_dimension = options.max_dimension;
+    if (options.progress) c.progress = [&](double f) { options.progress("Cao's method", f); };
     a.cao = cao(x, c);
     a.dimension = a.cao->embedding_dimension;
     if (!a.dimension) {
@@ -134,11 +135,16 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   CorrelationSumOptions s =
       automatic_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
+  if (options.progress) s.progress = [&](double f) { options.progress("correlation sums", f); };
   a.d2 = automatic_correlation_dimension(x, s, options.check_halves);
 
   const auto lyapunov = [&](LyapunovMethod method) {
     LyapunovOptions l = automatic_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);
     l.threads = options.threads;
+    if (options.progress)
+      l.progress = [&options, method](double f) {
+        options.progress(std::string("Lyapunov exponent (") + to_string(method) + ")", f);
+      };
     return largest_lyapunov(x, l, automatic_lyapunov_fit(a.scales), dt);
   };
   try {

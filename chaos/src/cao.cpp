@@ -80,6 +80,9 @@ CaoResult cao(std::span<const double> x, const CaoOptions& options) {
     double sum_a = 0.0, sum_star = 0.0, sum_star_squares = 0.0;
     std::size_t used = 0;
     for (std::size_t i = 0; i < points; ++i) {
+      if (options.progress && i % 4096 == 0)
+        options.progress((static_cast<double>(k) + static_cast<double>(i) / static_cast<double>(points)) /
+                         static_cast<double>(count + 1));
       const auto neighbour = tree.nearest(i, query);
       if (!neighbour) {
         ++without[k];

@@ -83,6 +83,10 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
     const KdTree tree(embedded, options.norm);
     std::size_t tested = 0, false_count = 0;
     for (std::size_t i = 0; i < points; ++i) {
+      if (options.progress && i % 4096 == 0)
+        options.progress((static_cast<double>(m - options.min_dimension) +
+                          static_cast<double>(i) / static_cast<double>(points)) /
+                         static_cast<double>(options.max_dimension - options.min_dimension + 1));
       const auto neighbour = tree.nearest(i, query);
       if (!neighbour) continue;
       const std::size_t j = neighbour->index;

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -89,10 +90,11 @@ struct Scratch {
 
 // Runs work(reference index, partial, scratch) for every reference point, in blocks, on `threads`
 // threads, and adds the blocks' partial sums in block order. An exception in a worker is
-// rethrown here after every thread has stopped.
+// rethrown here after every thread has stopped. The calling thread reports the fraction of
+// blocks taken to `progress`, when set.
 template <class Work>
 Partial for_each_reference(const std::vector<std::size_t>& references, std::size_t steps, std::size_t threads,
-                           const Work& work) {
+                           const std::function<void(double)>& progress, const Work& work) {
   const std::size_t blocks = (references.size() + block_size - 1) / block_size;
   std::vector<Partial> partials(std::min(blocks, round_blocks), Partial(steps));
   Partial total(steps);
@@ -102,10 +104,11 @@ Partial for_each_reference(const std::vector<std::size_t>& references, std::size
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_lock;
-    const auto run = [&] {
+    const auto run = [&](bool report) {
       try {
         Scratch scratch;
         for (std::size_t b; (b = next.fetch_add(1)) < count;) {
+          if (report && progress) progress(static_cast<double>(first + b) / static_cast<double>(blocks));
           const std::size_t begin = (first + b) * block_size;
           const std::size_t end = std::min(references.size(), begin + block_size);
           for (std::size_t r = begin; r < end; ++r) work(references[r], partials[b], scratch);
@@ -117,8 +120,8 @@ Partial for_each_reference(const std::vector<std::size_t>& references, std::size
       }
     };
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run);
-    run();
+    for (std::size_t t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run, false);
+    run(true);
     for (auto& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
     for (std::size_t b = 0; b < count; ++b) total.add(partials[b]);
@@ -219,7 +222,7 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
   curve.reference_points = references.size();
   Partial total(steps);
   if (options.method == LyapunovMethod::rosenstein) {
-    total = for_each_reference(references, steps, options.threads, [&](std::size_t i, Partial& p, Scratch& s) {
+    total = for_each_reference(references, steps, options.threads, options.progress, [&](std::size_t i, Partial& p, Scratch& s) {
       const auto neighbour = tree.nearest(i, query);
       if (!neighbour) return;
       ++p.used;
@@ -274,7 +277,7 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
       }
     }
     curve.radius = std::ldexp(eps, exponent);
-    total = for_each_reference(references, steps, options.threads, [&](std::size_t i, Partial& p, Scratch& s) {
+    total = for_each_reference(references, steps, options.threads, options.progress, [&](std::size_t i, Partial& p, Scratch& s) {
       tree.within(i, eps, s.neighbourhood, query);
       if (s.neighbourhood.size() < options.min_neighbours || s.neighbourhood.empty()) return;
       ++p.used;

@@ -215,18 +215,23 @@ NonlinearityTestResult nonlinearity_test(std::span<const double> x, const Nonlin
                ? prediction_error(series, options.prediction)
                : time_reversal_asymmetry(series, options.time_reversal_delay);
   };
-  SurrogateGenerator generator(x, options.surrogate);  // refuses short, non-finite and constant input
+  // Refuses short, non-finite and constant input. Its IAAFT iterations report to options.progress.
+  std::size_t k = 0;
+  SurrogateOptions each = options.surrogate;
+  each.progress = options.progress;
+  SurrogateGenerator generator(x, with_progress_over(each, k, options.surrogates));
   NonlinearityTestResult out;
   out.options = options;
   out.data_statistic = statistic(x);
   Random seeds(options.seed);
   out.surrogate_statistics.reserve(options.surrogates);
-  for (std::size_t k = 0; k < options.surrogates; ++k) {
+  for (; k < options.surrogates; ++k) {
     const Surrogate s = generator.generate(seeds.next());
     out.surrogate_statistics.push_back(statistic(s.values));
     out.surrogate_iterations.push_back(s.iterations);
     out.surrogate_spectral_deviations.push_back(s.spectral_deviation);
     if (s.status == SurrogateStatus::max_iterations) ++out.surrogates_not_converged;
+    if (options.progress) options.progress(static_cast<double>(k + 1) / static_cast<double>(options.surrogates));
   }
   out.test = rank_test(out.data_statistic, out.surrogate_statistics, options.alternative);
   return out;

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -46,16 +47,54 @@ std::string short_number(double v) {
   return out.str();
 }
 
-bool parse_double(std::string_view token, double& value) {
+enum class Parsed { number, not_a_number, out_of_range };
+
+Parsed parse_double(std::string_view token, double& value) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc() && end == token.data() + token.size();
+  if (end != token.data() + token.size()) return Parsed::not_a_number;
+  if (ec == std::errc::result_out_of_range) return Parsed::out_of_range;  // 1e400, 1e-400
+  return ec == std::errc() ? Parsed::number : Parsed::not_a_number;
+}
+
+// One line of the input, ended by LF, CR LF or a lone CR (a classic Mac file, or lines mixed by
+// editors): with only LF as the end, a CR-separated file read as one line of many columns, and
+// column 1 of it as a one-sample series (issue 16, corrupt-file tier).
+bool read_line(std::istream& in, std::string& line) {
+  line.clear();
+  std::streambuf* buffer = in.rdbuf();
+  for (;;) {
+    const int c = buffer->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      if (line.empty()) in.setstate(std::ios::eofbit);
+      return !line.empty();
+    }
+    if (c == '\n') return true;
+    if (c == '\r') {
+      if (buffer->sgetc() == '\n') buffer->sbumpc();
+      return true;
+    }
+    line.push_back(static_cast<char>(c));
+  }
 }
 
 constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
 
+// The length of the valid UTF-8 sequence at the start of `s` (2 to 4 bytes), or 0.
+std::size_t utf8_sequence(std::string_view s) {
+  const auto lead = static_cast<unsigned char>(s[0]);
+  const std::size_t length = lead >= 0xC2 && lead <= 0xDF   ? 2
+                             : lead >= 0xE0 && lead <= 0xEF ? 3
+                             : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                            : 0;
+  if (length == 0 || s.size() < length) return 0;
+  for (std::size_t k = 1; k < length; ++k)
+    if ((static_cast<unsigned char>(s[k]) & 0xC0) != 0x80) return 0;
+  return length;
+}
+
 // A token as a message shows it: at most 60 bytes (a 1 MB token echoed whole buries the message),
-// a byte-order mark as <BOM>, control bytes as \xHH.
+// a byte-order mark as <BOM>, control bytes and bytes that are not UTF-8 (binary garbage) as \xHH.
 std::string shown(std::string_view token) {
   constexpr std::size_t limit = 60;
   std::string out;
@@ -67,7 +106,10 @@ std::string shown(std::string_view token) {
       continue;
     }
     const auto c = static_cast<unsigned char>(token[i]);
-    if (c < 0x20 || c == 0x7f) {
+    if (const std::size_t length = c >= 0x80 ? utf8_sequence(token.substr(i)) : 0; length > 0) {
+      out += token.substr(i, length);
+      i += length - 1;
+    } else if (c < 0x20 || c >= 0x7f) {
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02X", c);
       out += hex;
@@ -80,11 +122,12 @@ std::string shown(std::string_view token) {
 }
 
 // A header names columns: every token starts like a name, not like a number ("1e999" and "2.5.3"
-// are bad numbers, not names), and none is NaN or infinity spelled out.
+// are bad numbers, not names; a token starting with a NUL or another control byte is neither), and
+// none is NaN or infinity spelled out.
 bool is_header(const std::vector<std::string_view>& tokens) {
   for (const auto token : tokens) {
-    const char c = token.front();
-    if ((c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.') return false;
+    const auto c = static_cast<unsigned char>(token.front());
+    if ((c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.' || c < 0x20 || c == 0x7f) return false;
     std::string lower(token);
     for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (lower == "nan" || lower == "inf" || lower == "infinity") return false;
@@ -115,7 +158,7 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   std::vector<std::string> header;  // the column names, when the first data line holds them
   bool first = true;
   const auto where = [&] { return source_name + ":" + std::to_string(line_number) + ": "; };
-  while (series.values.size() < options.length && std::getline(in, line)) {
+  while (series.values.size() < options.length && read_line(in, line)) {
     ++line_number;
     if (line_number == 1 && std::string_view(line).substr(0, 3) == byte_order_mark) line.erase(0, 3);
     const auto tokens = tokenize(line);
@@ -148,7 +191,11 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
                                                " column(s)");
     const std::string_view token = tokens[column - 1];
     double value = 0.0;
-    if (!parse_double(token, value))
+    const Parsed parsed = parse_double(token, value);
+    if (parsed == Parsed::out_of_range)
+      throw InvalidInput(ErrorCode::parse, where() + "column " + std::to_string(column) + ": '" + shown(token) +
+                                               "' is beyond the range of a double (magnitudes from 4.9e-324 to 1.8e308)");
+    if (parsed != Parsed::number)
       throw InvalidInput(ErrorCode::parse, where() + "column " + std::to_string(column) + ": '" + shown(token) +
                                                "' is not a number" +
                                                (token.find(byte_order_mark) != std::string_view::npos
@@ -170,11 +217,43 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   return series;
 }
 
+namespace {
+
+std::ifstream open_file(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    throw InvalidInput(ErrorCode::io, path + ": is a directory, not a series file");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InvalidInput(ErrorCode::io, path + ": cannot open file (missing or unreadable)");
+  return file;
+}
+
+}  // namespace
+
 Series read_series(const std::string& path, const ReadOptions& options) {
   if (path == "-") return read_series(std::cin, "<stdin>", options);
-  std::ifstream file(path);
-  if (!file) throw InvalidInput(ErrorCode::io, path + ": cannot open file (missing or unreadable)");
+  std::ifstream file = open_file(path);
   return read_series(file, path, options);
+}
+
+std::string read_text(const std::string& path) {
+  std::ostringstream text;
+  if (path == "-") {
+    text << std::cin.rdbuf();
+  } else {
+    std::ifstream file = open_file(path);
+    text << file.rdbuf();
+  }
+  return text.str();
+}
+
+std::size_t count_columns(std::istream& in) {
+  std::string line;
+  for (std::size_t number = 1; read_line(in, line); ++number) {
+    if (number == 1 && std::string_view(line).substr(0, 3) == byte_order_mark) line.erase(0, 3);
+    if (const auto tokens = tokenize(line); !tokens.empty()) return tokens.size();
+  }
+  return 0;
 }
 
 void require_finite(std::span<const double> x, const std::string& what) {

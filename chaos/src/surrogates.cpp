@@ -316,6 +316,8 @@ struct SurrogateGenerator::Impl {
       fft.backward.execute();
       sorter.order(fft.real.get(), n, order, previous);
       ++out.iterations;
+      if (options.progress)
+        options.progress(static_cast<double>(out.iterations) / static_cast<double>(options.max_iterations));
       if (have_previous && order == previous) {
         // Ranking (2) would rebuild out.values exactly: a fixed point of the iteration.
         out.status = SurrogateStatus::fixed_point;
@@ -354,16 +356,29 @@ Surrogate SurrogateGenerator::generate(std::uint64_t seed) {
 std::size_t SurrogateGenerator::size() const noexcept { return impl_->n; }
 const SurrogateOptions& SurrogateGenerator::options() const noexcept { return impl_->options; }
 
+SurrogateOptions with_progress_over(const SurrogateOptions& options, const std::size_t& done, std::size_t count) {
+  SurrogateOptions each = options;
+  if (options.progress)
+    each.progress = [&options, &done, count](double fraction) {
+      options.progress((static_cast<double>(done) + fraction) / static_cast<double>(count));
+    };
+  return each;
+}
+
 std::vector<Surrogate> surrogates(std::span<const double> x, std::size_t count, std::uint64_t seed,
                                   const SurrogateOptions& options) {
   if (count > max_surrogates)
     throw InvalidInput(ErrorCode::invalid_parameter, "surrogates: at most " + std::to_string(max_surrogates) +
                                                          " surrogates (got " + std::to_string(count) + ")");
-  SurrogateGenerator generator(x, options);
+  std::size_t k = 0;
+  SurrogateGenerator generator(x, with_progress_over(options, k, count));
   Random seeds(seed);
   std::vector<Surrogate> out;
   out.reserve(count);
-  for (std::size_t k = 0; k < count; ++k) out.push_back(generator.generate(seeds.next()));
+  for (; k < count; ++k) {
+    out.push_back(generator.generate(seeds.next()));
+    if (options.progress) options.progress(static_cast<double>(k + 1) / static_cast<double>(count));
+  }
   return out;
 }
 

@@ -52,6 +52,62 @@ inline double slider_face_stiffness_kernel(double sigma_sum, double slider_lengt
   return std::sqrt(area) / sigma_sum / shape;
 }
 
+// integral_0^1 d(t)_+^p dt and integral_0^1 t d(t)_+^p dt for d(t) = a + (b - a) t (line_contact.hpp).
+inline void linear_power_moments(double p, double a, double b, double& i0, double& i1) {
+  if (a <= 0.0 && b <= 0.0) {
+    i0 = i1 = 0.0;
+    return;
+  }
+  if (a > 0.0 && b > 0.0) {
+    // About the mean c: d = c (1 + r tau), tau = 2t - 1 in [-1, 1], |r| < 1;
+    //   j0 = (1/2) integral (1 + r tau)^p dtau,  j1 = (1/2) integral tau (1 + r tau)^p dtau,
+    //   i0 = c^p j0,  i1 = c^p (j0 + j1) / 2.
+    const double c = 0.5 * (a + b), r = 0.5 * (b - a) / c;
+    double j0 = 0.0, j1 = 0.0;
+    if (std::fabs(r) < 0.05) {
+      // Binomial series: j0 = sum over even k of C(p, k) r^k / (k + 1), j1 = sum over odd k of
+      // C(p, k) r^k / (k + 2); the first omitted term is below r^14 = 6e-19.
+      double coefficient = 1.0, rk = 1.0;
+      for (int k = 0; k <= 13; ++k) {
+        if (k % 2 == 0) j0 += coefficient * rk / (k + 1);
+        else j1 += coefficient * rk / (k + 2);
+        coefficient *= (p - k) / (k + 1);
+        rk *= r;
+      }
+    } else {
+      // v = 1 + r tau: the closed forms lose at most log10(1 / r^2) < 3 digits here.
+      const double up = 1.0 + r, um = 1.0 - r;
+      const double d1 = std::pow(up, p + 1.0) - std::pow(um, p + 1.0);
+      const double d2 = std::pow(up, p + 2.0) - std::pow(um, p + 2.0);
+      j0 = d1 / (2.0 * r * (p + 1.0));
+      j1 = (d2 / (p + 2.0) - d1 / (p + 1.0)) / (2.0 * r * r);
+    }
+    const double cp = std::pow(c, p);
+    i0 = cp * j0;
+    i1 = cp * 0.5 * (j0 + j1);
+    return;
+  }
+  if (a > 0.0) {
+    // Only the left part [0, t0] penetrates, d = a (1 - t / t0); a - b >= a > 0.
+    const double t0 = a / (a - b), ap = std::pow(a, p);
+    i0 = ap * t0 / (p + 1.0);
+    i1 = ap * t0 * t0 / ((p + 1.0) * (p + 2.0));
+    return;
+  }
+  // Only the right part [1 - l, 1] penetrates (or a NaN, which propagates).
+  const double l = b / (b - a), bp = std::pow(b, p);
+  i0 = bp * l / (p + 1.0);
+  i1 = bp * ((1.0 - l) * l / (p + 1.0) + l * l / (p + 2.0));
+}
+
+// Corner loads of the line contact (line_contact.hpp): F_a = K (i0 - i1), F_b = K i1 with p = n.
+inline void line_contact_kernel(double stiffness, double exponent, double a, double b, double& left, double& right) {
+  double i0, i1;
+  linear_power_moments(exponent, a, b, i0, i1);
+  left = stiffness * (i0 - i1);
+  right = stiffness * i1;
+}
+
 // exp(-a) for a >= 0 (or NaN). Beyond a = 746 the result rounds to 0 (exp(-745.13...) is the
 // smallest subnormal's rounding boundary), so 0 is returned without the call: at the slider's
 // 30 m/s with v_s = 1 mm/s the Stribeck argument is about 1e9, and libm's underflow path (errno)

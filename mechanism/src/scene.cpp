@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -67,7 +68,7 @@ struct EnumNames<JointKind> {
 };
 template <>
 struct EnumNames<SliderContactModel> {
-  static constexpr std::string_view names[] = {"face", "corners"};
+  static constexpr std::string_view names[] = {"face", "corners", "line"};
 };
 template <>
 struct EnumNames<SliderStiffness> {
@@ -181,12 +182,16 @@ void visit_fields(Visitor& v, Scene& s) {
   visit_material(v, "slider.", s.slider.material);
   v.number("driver.speed_rpm", s.driver.speed_rpm, Rule::positive, "constant crank speed, rpm");
   v.number("driver.initial_angle", s.driver.initial_angle, Rule::finite, "crank angle at t = 0, rad");
+  v.number("initial.slider_angle", s.initial.slider_angle, Rule::finite,
+           "rad, the slider's angle at t = 0 (the seed's Eq. 29 starts it level: 0)");
+  v.number("initial.slider_rate", s.initial.slider_rate, Rule::finite, "rad/s, the slider's angular rate at t = 0");
   const std::string t = "joint.slider.";
   v.choice(t + "type", s.slider_guide.kind, "ideal (slider on the guide line) or clearance");
   v.number(t + "clearance", s.slider_guide.clearance, Rule::positive,
            "m, gap per side: guide height = slider height + 2 clearance");
   v.choice(t + "model", s.slider_guide.model,
-           "face (seed Eq. 18-19: one force per surface at the contact centroid) or corners (Flores 2008)");
+           "face (seed Eq. 18-19: one force per surface at the contact centroid), corners (Flores 2008) or line "
+           "(a pressure along each face: conserves energy at any tilt)");
   v.choice(t + "stiffness_model", s.slider_guide.stiffness_model,
            "contact_length (seed Eq. 11-12), flat_face (Eq. 11 at L_c = L_s) or given");
   v.number(t + "stiffness", s.slider_guide.stiffness, Rule::positive,
@@ -253,6 +258,11 @@ struct Reader {
       throw InvalidParameter(key, node_text(*n), "must be a number");
     }
     if (!satisfies(rule, v)) throw InvalidParameter(key, node_text(*n), rule_text(rule));
+    // A subnormal size or modulus passed "> 0" and overflowed what is computed from it: a Young's
+    // modulus of 1e-320 gave "sigma_slider = inf", an inertia of 1e-320 a non-finite state (issue
+    // 16, corrupt-file tier).
+    if (rule == Rule::positive && v < std::numeric_limits<double>::min())
+      throw InvalidParameter(key, node_text(*n), "must be at least 2.2e-308 (the smallest normal double)");
     out = v;
   }
   void flag(const std::string& key, bool& out, std::string_view) {
@@ -318,12 +328,16 @@ struct Writer {
       d += " (";
       bool first = true;
       for (auto n : EnumNames<E>::names) {
-        d += (first ? "" : " | ") + std::string(n);
+        if (!first) d += " | ";
+        d += n;
         first = false;
       }
       d += ")";
     }
-    line(key, "\"" + std::string(EnumNames<E>::names[static_cast<std::size_t>(v)]) + "\"", d);
+    std::string value = "\"";
+    value += EnumNames<E>::names[static_cast<std::size_t>(v)];
+    value += '"';
+    line(key, value, d);
   }
 };
 
@@ -375,18 +389,59 @@ void apply_override(toml::table& table, const std::string& assignment) {
   }
 }
 
+// The laws' own rules (a friction law's mu_s > 0 for LuGre, ...), refused under the scene key that
+// holds the value ("joint.slider.friction.static_coefficient", not "static_coefficient").
+void validate_laws(const std::string& joint, const ContactLawParameters& contact, const FrictionLawParameters& friction) {
+  try {
+    contact.validate();
+  } catch (const InvalidParameter& e) {
+    throw InvalidParameter(joint + ".contact." + e.key(), e.value(), e.rule());
+  }
+  try {
+    friction.validate();
+  } catch (const InvalidParameter& e) {
+    throw InvalidParameter(joint + ".friction." + e.key(), e.value(), e.rule());
+  }
+}
+
 void check_consistency(const Scene& s) {
   // The conrod must reach the guide line from every crank position (and the clearances only add
   // to the offset), so that the ideal-joint initial conditions and the ideal slider exist.
+  // The message names every key in the sum: the one a user set wrong may be any of them.
   double reach = s.crank.length;
-  for (const RevoluteJoint* j : {&s.crank_ground, &s.crank_conrod, &s.conrod_slider}) {
-    if (j->kind == JointKind::clearance) reach += j->clearance;
+  std::string keys = "crank.length";
+  for (auto [name, j] : {std::pair{"joint.crank_ground", &s.crank_ground}, std::pair{"joint.crank_conrod", &s.crank_conrod},
+                         std::pair{"joint.conrod_slider", &s.conrod_slider}}) {
+    if (j->kind != JointKind::clearance) continue;
+    reach += j->clearance;
+    keys += std::string(" + ") + name + ".clearance";
   }
-  if (s.slider_guide.kind == JointKind::clearance) reach += s.slider_guide.clearance;
+  if (s.slider_guide.kind == JointKind::clearance) {
+    reach += s.slider_guide.clearance;
+    keys += " + joint.slider.clearance";
+  }
   if (!(s.conrod.length > reach)) {
     throw InvalidParameter("conrod.length", format_number(s.conrod.length),
-                           "must exceed the crank length plus the clearances (" + format_number(reach) +
+                           "must exceed " + keys + " (" + format_number(reach) +
                                " m), or the slider cannot stay on the guide");
+  }
+  // A tilted start: the slider needs its angle coordinate (a clearance guide) and must fit in the
+  // guide at t = 0, its corners inside the clearance (a start in deep penetration is a collision,
+  // not an initial state).
+  if (s.initial.slider_angle != 0.0 || s.initial.slider_rate != 0.0) {
+    if (s.slider_guide.kind != JointKind::clearance)
+      throw InvalidParameter(s.initial.slider_angle != 0.0 ? "initial.slider_angle" : "initial.slider_rate",
+                             format_number(s.initial.slider_angle != 0.0 ? s.initial.slider_angle
+                                                                         : s.initial.slider_rate),
+                             "needs joint.slider.type = \"clearance\": on an ideal guide the slider cannot turn");
+    const double a = s.initial.slider_angle;
+    const double half_extent = 0.5 * s.slider.length * std::abs(std::sin(a)) + 0.5 * s.slider.height * std::abs(std::cos(a));
+    const double guide_half = 0.5 * s.slider.height + s.slider_guide.clearance;
+    if (!(std::abs(a) < 1.0) || half_extent > guide_half)
+      throw InvalidParameter("initial.slider_angle", format_number(a),
+                             "must leave the tilted slider inside the guide at t = 0 (its corners reach " +
+                                 format_number(half_extent) + " m from the guide's centre line, the guide surfaces are at " +
+                                 format_number(guide_half) + " m)");
   }
   for (auto [name, j] : {std::pair{"joint.crank_ground", &s.crank_ground},
                          std::pair{"joint.crank_conrod", &s.crank_conrod},
@@ -396,15 +451,10 @@ void check_consistency(const Scene& s) {
                              "must be smaller than bearing_radius (" + format_number(j->bearing_radius) +
                                  " m): the journal radius would be <= 0");
     }
-    if (j->kind == JointKind::clearance) {
-      j->contact.validate();
-      j->friction.validate();
-    }
+    if (j->kind == JointKind::clearance) validate_laws(std::string(name), j->contact, j->friction);
   }
-  if (s.slider_guide.kind == JointKind::clearance) {
-    s.slider_guide.contact.validate();
-    s.slider_guide.friction.validate();
-  }
+  if (s.slider_guide.kind == JointKind::clearance)
+    validate_laws("joint.slider", s.slider_guide.contact, s.slider_guide.friction);
   if (s.run.output_interval > 0.0 && s.run.output_interval > s.run.duration) {
     throw InvalidParameter("run.output_interval", format_number(s.run.output_interval),
                            "must not exceed run.duration (" + format_number(s.run.duration) + " s)");
@@ -431,7 +481,8 @@ void check_consistency(const Scene& s) {
   }
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),
-                           "must not exceed the crank period (" + format_number(s.driver.period()) + " s)");
+                           "must not exceed the crank period, 60 / driver.speed_rpm = " +
+                               format_number(s.driver.period()) + " s");
   }
   check_run_size(s);
 }
@@ -449,11 +500,16 @@ void check_run_size(const Scene& s) {
   const double longest = rk4 ? s.driver.period() / std::ceil(s.driver.period() / s.integrator.step - 1e-9)
                              : s.integrator.max_step;
   const double steps = simulated / longest;
+  // A step of 1e-320 s made this "needs inf RK4 steps of 0.0 s" without naming the step (issue 16,
+  // corrupt-file tier): the step's key and value are named, and an overflowing count is said so.
   if (!(steps <= max_run_steps))
     throw InvalidParameter("run.duration", format_number(s.run.duration),
-                           "with run.transient " + format_number(s.run.transient) + " s needs " + format_number(steps) +
-                               (rk4 ? " RK4 steps of " : " dopri5 steps of at most ") + format_number(longest) +
-                               " s, more than the limit of " + format_number(max_run_steps) + " steps");
+                           "with run.transient " + format_number(s.run.transient) + " s and " +
+                               (rk4 ? "integrator.step = " + format_number(s.integrator.step) + " s needs "
+                                    : "integrator.max_step = " + format_number(s.integrator.max_step) + " s needs ") +
+                               (std::isfinite(steps) ? format_number(steps) : std::string("more than 1e308")) +
+                               (rk4 ? " RK4 steps" : " dopri5 steps") + ", more than the limit of " +
+                               format_number(max_run_steps) + " steps");
   if (s.run.output_interval > 0.0) {
     const double rows = s.run.duration / s.run.output_interval;
     if (!(rows <= max_output_rows))

@@ -66,7 +66,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
         t.stiffness_model == SliderStiffness::given
             ? t.stiffness
             : slider_face_stiffness(slider_compliance_, guide_compliance_, s.slider.length, s.slider.width, s.slider.length);
-    if (t.model == SliderContactModel::face) {
+    if (t.model != SliderContactModel::corners) {  // face and line: one site per guide surface
       sites_.push_back({SiteKind::slider_face_upper, -1, -1});
       sites_.push_back({SiteKind::slider_face_lower, -1, -1});
     } else {
@@ -100,7 +100,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
   }
   memory_.assign(sites_.size(), ContactMemory{});
-  slider_sites_ = slider_clearance_ ? (scene_.slider_guide.model == SliderContactModel::face ? 2 : 4) : 0;
+  slider_sites_ = slider_clearance_ ? (scene_.slider_guide.model == SliderContactModel::corners ? 4 : 2) : 0;
   seed_topology_ = slider_clearance_ && idx_crank_pivot_ < 0 && idx_conrod_pin_ < 0 && idx_slider_x_ < 0;
   // Jets need n coordinate columns and the crank's; the narrowest width that fits is cheapest.
   jet_columns_ = n_ + 1 <= 3 ? 3 : (n_ + 1 <= 5 ? 5 : max_jet_columns);
@@ -161,7 +161,7 @@ State SliderCrank::initial_state() const {
         -l2 * omega_ * std::sin(th2) - l3 * th3_rate * std::sin(th3));
   }
   if (idx_slider_y_ >= 0) set(idx_slider_y_, 0.0, 0.0);
-  if (idx_slider_angle_ >= 0) set(idx_slider_angle_, 0.0, 0.0);
+  if (idx_slider_angle_ >= 0) set(idx_slider_angle_, s.initial.slider_angle, s.initial.slider_rate);
   return x;
 }
 
@@ -240,6 +240,7 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
     const bool upper = site.kind == SiteKind::slider_face_upper ||
                        (site.kind == SiteKind::slider_corner && site.corner < 2);
     double wx_body, depth, depth_rate;
+    double line_force = -1.0;  // the line model's normal force (set when it applies)
     if (site.kind == SiteKind::slider_corner) {
       depth = corner_pen[site.corner];
       depth_rate = corner_rate[site.corner];
@@ -252,7 +253,22 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
       const int deep = da >= db ? a : b;
       depth = corner_pen[deep];
       depth_rate = corner_rate[deep];
-      if (depth > 0.0) {
+      if (depth > 0.0 && tj.model == SliderContactModel::line) {
+        // The pressure along the face as two corner loads (line_contact.hpp), their resultant at
+        // the load-weighted point of the face: the same force and moment about any point.
+        se.contact_length = detail::contact_length_kernel(s.slider.length, da, db);
+        se.stiffness = slider_flat_stiffness_;
+        double fa, fb;
+        detail::line_contact_kernel(se.stiffness, tj.contact.exponent, da, db, fa, fb);
+        const double elastic = fa + fb;
+        wx_body = elastic > 0.0 ? -hl + s.slider.length * (fb / elastic) : (da >= db ? -hl : hl);
+        // Damping: the law's factor (1 + chi d_rate / v_impact), with the penetration rate of that
+        // point (the loads' weighted corner rates). chi = 0 at e = 1: purely elastic.
+        const double rate_w = elastic > 0.0 ? (fa * corner_rate[a] + fb * corner_rate[b]) / elastic : depth_rate;
+        const double impact_w = mem.touching ? mem.impact_velocity : rate_w;
+        line_force = elastic * detail::normal_force_kernel(site.chi, 1.0, tj.contact.velocity_floor, 1.0, 1.0, rate_w,
+                                                           impact_w);
+      } else if (depth > 0.0) {
         se.contact_length = detail::contact_length_kernel(s.slider.length, da, db);
         se.stiffness = tj.stiffness_model == SliderStiffness::contact_length
                            ? detail::slider_face_stiffness_kernel(slider_compliance_ + guide_compliance_,
@@ -280,8 +296,10 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
     // Velocity of the slider's material point at W.
     const double vx = rate[0] - rate[2] * (wyw - py);
     const double impact = mem.touching ? mem.impact_velocity : depth_rate;
-    se.normal_force = detail::normal_force_kernel(site.chi, tj.contact.exponent, tj.contact.velocity_floor,
-                                                  se.stiffness, depth, depth_rate, impact);
+    se.normal_force = line_force >= 0.0 ? line_force
+                                        : detail::normal_force_kernel(site.chi, tj.contact.exponent,
+                                                                      tj.contact.velocity_floor, se.stiffness, depth,
+                                                                      depth_rate, impact);
     se.sliding_velocity = vx;
     se.deflection = site.state >= 0 ? x[site.state] : 0.0;
     const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);

@@ -194,8 +194,15 @@ int main(int argc, char** argv) {
       }
       return out;
     };
-    std::size_t failed = 0;
-    for (const std::string& s : statuses("points.tsv")) failed += s != "completed";
+    std::size_t failed = 0, point = 0, first_failed = 0;
+    std::string first_status;
+    for (const std::string& s : statuses("points.tsv")) {
+      if (s != "completed" && failed++ == 0) {
+        first_failed = point;
+        first_status = s;
+      }
+      ++point;
+    }
     // An analysis failed where the estimators refused the series or the options ("stopped at",
     // "series too short"); a constant series or one without a mutual-information minimum is an
     // answer about the data, and a point not analysed is counted among the failed simulations.
@@ -223,6 +230,10 @@ int main(int argc, char** argv) {
     // Every analysis failing says the options do not fit the series (issue 16: exit 0 with no
     // analysis at all); some failing is a per-point answer that analysis.tsv gives.
     const bool no_analysis = analysed > 0 && analysis_failed == analysed;
+    // Exit 5 says why, also under -q (a corrupt-file run of the tier exited 5 with no word).
+    if (failed)
+      std::cerr << "study: " << failed << " of " << spec.grid.size() << " points did not complete (the first: point "
+                << first_failed << ", " << first_status << "); points.tsv's status and message columns say why\n";
     if (no_analysis)
       std::cerr << "study: the analysis failed at all " << analysed << " analysed points (the first: " << first_failure
                 << "); --max-delay, --max-dimension and the analysed series (--analysis-periods, "

@@ -33,15 +33,27 @@ struct Table {
   }
 };
 
+// Strict: a row cut short or with a field too many, or a number column holding something that is
+// neither a finite number nor '-', is refused naming the file and line. A truncated samples.tsv
+// was plotted with its last row read past its end, a garbled value drawn as NaN (issue 16,
+// corrupt-file tier). The text columns are status, d2_status and message.
 Table read_table(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw StudyError("study plot", path, "cannot be read (run `study sweep` into this directory first)");
+  const auto damaged = [&](std::size_t line, const std::string& why) {
+    return StudyError("study plot", path + ":" + std::to_string(line),
+                      why + "; the table is damaged (`study sweep ... --resume` with the sweep's options assembles it "
+                            "again from the point files)");
+  };
   Table t;
+  std::size_t number = 0;
   for (std::string line; std::getline(in, line);) {
+    ++number;
     if (line.empty()) continue;
     std::vector<std::string> f;
     std::stringstream s(line[0] == '#' ? line.substr(1) : line);
     for (std::string x; std::getline(s, x, '\t');) f.push_back(x);
+    if (line.back() == '\t') f.emplace_back();
     if (line[0] == '#') {
       if (line.rfind("# point", 0) == 0) {
         f[0] = "point";
@@ -49,11 +61,20 @@ Table read_table(const std::string& path) {
       }
       continue;
     }
+    if (t.names.empty()) throw damaged(number, "a data row before the '# point' header line");
+    if (f.size() != t.names.size())
+      throw damaged(number, "has " + std::to_string(f.size()) + " fields where the header names " +
+                                std::to_string(t.names.size()));
     std::vector<double> row;
-    for (const auto& x : f) {
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      const std::string& x = f[k];
+      const bool text = t.names[k] == "status" || t.names[k] == "d2_status" || t.names[k] == "message";
       char* end = nullptr;
       const double v = std::strtod(x.c_str(), &end);
-      row.push_back(end != x.c_str() && *end == '\0' ? v : std::nan(""));
+      const bool ok = !x.empty() && *end == '\0' && std::isfinite(v);
+      if (!text && !ok && x != "-")
+        throw damaged(number, "column " + t.names[k] + ": '" + x.substr(0, 40) + "' is not a finite number");
+      row.push_back(ok ? v : std::nan(""));
     }
     t.rows.push_back(std::move(row));
     t.text.push_back(std::move(f));

@@ -1,6 +1,7 @@
 #include "study/result_store.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -29,6 +30,8 @@ std::string number(double v) {
 std::string optional_number(const std::optional<double>& v) { return v ? number(*v) : "-"; }
 
 std::string read_file(const fs::path& path) {
+  std::error_code error;
+  if (fs::is_directory(path, error)) throw StudyError("file", path.string(), "is a directory, not a file of the sweep");
   std::ifstream in(path);
   if (!in) throw StudyError("file", path.string(), "cannot be read");
   std::stringstream s;
@@ -193,10 +196,16 @@ std::string ResultStore::check_point_file(std::size_t point, const std::string& 
     if (line.empty() || line[0] == '#') continue;
     auto f = split_tabs(line);
     if (f[0] == "sample") ++samples;
-    else fields[f[0]] = std::move(f);
+    else if (f[0] != "check") fields[f[0]] = std::move(f);
   }
   if (!fields.count("spec") || fields["spec"].size() < 2 || fields["spec"][1] != spec_hash_)
     return "was computed for another spec (its hash is not " + spec_hash_ + ")";
+  // The check line holds the hash of everything above it: a file edited or garbled in place
+  // (a field changed, a byte flipped) was assembled as it was (issue 16, corrupt-file tier).
+  const std::size_t check_at = text.rfind("\ncheck\t");
+  if (check_at == std::string::npos) return "has no check line (damaged, or written before point files had one)";
+  if (text.compare(check_at + 1, std::string::npos, "check\t" + text_hash(text.substr(0, check_at + 1)) + "\nend\n") != 0)
+    return "is damaged (its contents do not match its check line)";
   for (const char* key : {"coordinates", "status", "counters", "wall_seconds", "final_state"})
     if (!fields.count(key)) return std::string("has no ") + key + " line";
   if (spec_.analyse && !fields.count("analysis")) return "has no analysis line";
@@ -247,8 +256,9 @@ void ResultStore::write(const PointResult& r) const {
     for (std::size_t k = 1; k < row.size(); ++k) o << "\t" << number(row[k]);
     o << "\n";
   }
-  o << "end\n";  // the last line: a file without it was cut short
-  write_atomically(point_path(r.point), o.str());
+  std::string text = o.str();
+  text += "check\t" + text_hash(text) + "\nend\n";  // the last line: a file without it was cut short
+  write_atomically(point_path(r.point), text);
 }
 
 std::optional<std::vector<double>> ResultStore::final_state(std::size_t point) const {
@@ -260,7 +270,16 @@ std::optional<std::vector<double>> ResultStore::final_state(std::size_t point) c
       return std::nullopt;
     if (f[0] != "final_state") continue;
     std::vector<double> x;
-    for (std::size_t i = 1; i < f.size(); ++i) x.push_back(std::stod(f[i]));
+    for (std::size_t i = 1; i < f.size(); ++i) {
+      // std::stod threw std::invalid_argument on a garbled file: an internal error (issue 16).
+      char* end = nullptr;
+      const double v = std::strtod(f[i].c_str(), &end);
+      if (f[i].empty() || *end != '\0' || !std::isfinite(v))
+        throw StudyError("point file", point_path(point).string(),
+                         "has a final_state value '" + f[i].substr(0, 40) + "' that is not a finite number; run the sweep "
+                         "again with --resume to recompute it");
+      x.push_back(v);
+    }
     return x;
   }
   return std::nullopt;
@@ -306,7 +325,7 @@ void ResultStore::assemble() const {
       auto f = split_tabs(line);
       if (f[0] == "sample") {
         samples += prefix + "\t" + join_from(f, 1) + "\n";
-      } else if (f[0] != "end") {
+      } else if (f[0] != "end" && f[0] != "check") {
         fields[f[0]] = f;
       }
     }

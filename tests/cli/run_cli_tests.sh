@@ -377,6 +377,23 @@ if command -v script >/dev/null; then
   tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 2 -o /dev/null" /dev/null | tr '\r' '\n')
   grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
 fi
+# Issue 16, item 8: the other long commands (lyapunov, cao, fnn, surrogates, nonlinearity,
+# analyze) share d2's progress line and hint (common.hpp: Progress); -q silences both. Each run is
+# cut after 1 s (the hint comes before the work), two draw on a terminal for 3.5 s.
+for cmd in lyapunov cao fnn surrogates nonlinearity analyze; do
+  err=$(timeout 1 "$CHAOS" "$cmd" "$work/long.dat" -o /dev/null 2>&1 >/dev/null)
+  [[ $err == "chaos $cmd: N = 250000 samples: "*"(-q silences this)"* ]] && pass || fail "$cmd on 250000 points gave no hint: ${err:0:300}"
+  err=$(timeout 1 "$CHAOS" "$cmd" "$work/long.dat" -q -o /dev/null 2>&1 >/dev/null)
+  [[ -z $err ]] && pass || fail "$cmd -q still writes to stderr: ${err:0:300}"
+done
+if command -v script >/dev/null; then
+  for run in "cao:Cao's method" "analyze:Cao's method"; do
+    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' ${run%%:*} '$work/long.dat' -o /dev/null" /dev/null | tr '\r' '\n')
+    grep -q "^\[#* *\] ${run#*:} .* s left" <<<"$tty_err" && pass || fail "${run%%:*} drew no progress line on a terminal: ${tty_err:0:300}"
+    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' ${run%%:*} '$work/long.dat' -q -o /dev/null" /dev/null | tr '\r' '\n')
+    [[ -z ${tty_err//$'\n'/} ]] && pass || fail "${run%%:*} -q drew on a terminal: ${tty_err:0:300}"
+  done
+fi
 
 # Issue 16, item 7: the README's order, options first and the file last, read the file as another
 # value of a list option (d2 --radius-list a,b FILE, section -c 1 FILE). Each list option takes

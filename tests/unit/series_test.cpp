@@ -93,7 +93,35 @@ TEST(ReadSeries, RefusedTokensAreShownShortAndVisible) {
   }
   expect_refusal([] { read("1\n\xEF\xBB\xBF" "2\n"); }, ErrorCode::parse, {"'<BOM>2' is not a number", "byte-order mark"});
   expect_refusal([] { read("1\n2\x01\n"); }, ErrorCode::parse, {"'2\\x01' is not a number"});
+  // Binary garbage is shown as \xHH too (it reached the terminal raw), UTF-8 text as it is.
+  expect_refusal([] { read("1\n2\xE9\xFF\n"); }, ErrorCode::parse, {"'2\\xE9\\xFF' is not a number"});
+  expect_refusal([] { read("1\n2\xC3\xA9\n"); }, ErrorCode::parse, {"'2\xC3\xA9' is not a number"});
   expect_refusal([] { read("nan\n1\n"); }, ErrorCode::non_finite, {"input.dat:1"});  // not a header
+}
+
+// Issue 16, corrupt-file tier: a file with lone CR line ends (or CR, LF and CR LF mixed) was read
+// as one line of many columns, so column 1 gave a one-sample series (or silently fewer samples);
+// 1e400 was "not a number"; a line of NUL bytes passed for a header; a directory was "read error".
+TEST(ReadSeries, LineEndsRangeAndBinary) {
+  EXPECT_EQ(read("1\r2\r3\r").values, (std::vector<double>{1, 2, 3}));
+  EXPECT_EQ(read("1\r\n2\r3\n4").values, (std::vector<double>{1, 2, 3, 4}));
+  ReadOptions second;
+  second.column = 2;
+  EXPECT_EQ(read("t,x\r0,5\r1,6\r", second).values, (std::vector<double>{5, 6}));
+  expect_refusal([] { read("1\n1e400\n"); }, ErrorCode::parse, {"input.dat:2", "'1e400' is beyond the range of a double"});
+  expect_refusal([] { read("1\n-1e-400\n"); }, ErrorCode::parse, {"input.dat:2", "beyond the range"});
+  expect_refusal([] { read(std::string("\0\0\0\n1\n", 6)); }, ErrorCode::parse, {"input.dat:1", "'\\x00\\x00\\x00' is not a number"});
+  expect_refusal([] { chaos::read_series("/tmp"); }, ErrorCode::io, {"/tmp: is a directory"});
+}
+
+// `chaos section` counted the columns with a splitter of its own that knew no lone CR line end
+// ("no data columns" for a CR file); it shares the reader's now.
+TEST(ReadSeries, CountColumns) {
+  std::istringstream cr("# c\r\r1 2 3\r4 5 6\r"), bom("\xEF\xBB\xBFt,x,y\n1,2,3\n"), none("# c\n \n");
+  EXPECT_EQ(chaos::count_columns(cr), 3u);
+  EXPECT_EQ(chaos::count_columns(bom), 3u);
+  EXPECT_EQ(chaos::count_columns(none), 0u);
+  expect_refusal([] { chaos::read_text("/tmp"); }, ErrorCode::io, {"/tmp: is a directory"});
 }
 
 TEST(ReadSeries, DtTravelsWithTheSeries) {

@@ -18,6 +18,7 @@
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -41,6 +42,9 @@ struct AutomaticAnalysisOptions {
   bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
   bool rosenstein = true, kantz = true;
   std::size_t threads = 1;           // results identical for any number
+  // Called with the step running ("Cao's method", "correlation sums", ...) and its fraction done,
+  // for a progress display; the analysis does not depend on it.
+  std::function<void(const std::string& step, double fraction)> progress = nullptr;
 };
 
 struct AutomaticAnalysis {

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <functional>
 #include <vector>
 
 #include "chaos/norm.hpp"
@@ -33,6 +34,8 @@ struct CaoOptions {
   // Stochastic series (Cao 1997): E2(m) = 1 for every m. Judged against E2's own sampling error:
   // stochastic when every |E2(m) - 1| <= stochastic_sigmas standard errors.
   double stochastic_sigmas = 4.0;
+  // Called with the fraction done (0 to 1), for a progress display; the result does not depend on it.
+  std::function<void(double)> progress = nullptr;
   void validate() const;
 };
 

@@ -6,6 +6,7 @@
 // Distances are Euclidean by default, as in Kennel et al.; ties at distance 0 are skipped as in Cao.
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -24,6 +25,8 @@ struct FnnOptions {
   Norm norm = Norm::euclidean;
   // The embedding dimension is the smallest m whose false fraction is at most this.
   double threshold = 0.01;
+  // Called with the fraction done (0 to 1), for a progress display; the result does not depend on it.
+  std::function<void(double)> progress = nullptr;
   void validate() const;
 };
 

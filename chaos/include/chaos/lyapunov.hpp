@@ -38,6 +38,7 @@
 //     blocks of reference points and added in block order).
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -70,6 +71,8 @@ struct LyapunovOptions {
   // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
   std::size_t reference_points = 0;
   std::size_t threads = 1;     // results are identical for any thread count
+  // Called with the fraction done (0 to 1), for a progress display; the result does not depend on it.
+  std::function<void(double)> progress = nullptr;
   void validate() const;
 };
 

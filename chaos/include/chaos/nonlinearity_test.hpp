@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -68,6 +69,8 @@ struct NonlinearityTestOptions {
   SurrogateOptions surrogate;   // method (IAAFT by default) and its iteration limits
   std::size_t time_reversal_delay = 1;
   PredictionErrorOptions prediction;
+  // Called with the fraction of surrogates done, for a progress display; the test does not depend on it.
+  std::function<void(double)> progress = nullptr;
   void validate() const;
 };
 

@@ -37,6 +37,12 @@ struct ReadOptions {
 // bytes and a byte-order mark made visible.
 Series read_series(const std::string& path, const ReadOptions& options = {});
 Series read_series(std::istream& in, const std::string& source_name, const ReadOptions& options = {});
+// The whole of a file ("-": standard input) as text, for a reader that takes several columns from
+// it; a missing file or a directory is refused as read_series refuses it.
+std::string read_text(const std::string& path);
+// The columns of the first line that is not blank or a comment (a header row counts), split and
+// ended as read_series splits and ends lines; 0 when there is none.
+std::size_t count_columns(std::istream& in);
 
 // Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
 void require_finite(std::span<const double> x, const std::string& what);

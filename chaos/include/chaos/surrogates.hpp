@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -40,6 +41,9 @@ struct SurrogateOptions {
   // test), or `max_iterations` rounds.
   std::size_t max_iterations = 1000;
   double tolerance = 0.0;
+  // IAAFT only: called after each iteration with iterations / max_iterations, for a progress
+  // display; the surrogate does not depend on it.
+  std::function<void(double)> progress = nullptr;
   void validate() const;
 };
 
@@ -84,6 +88,11 @@ class SurrogateGenerator {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// `options` for the k-th of `count` surrogates made by one generator: its progress (when set) is
+// options.progress of the fraction of all of them, (done + fraction) / count, with `done` read at
+// each report (surrogates() and nonlinearity_test() count with it).
+SurrogateOptions with_progress_over(const SurrogateOptions& options, const std::size_t& done, std::size_t count);
 
 // A rank test with K surrogates resolves p down to 1/(K+1): beyond 10^4 more surrogates add
 // nothing but time, and each holds a copy of the series. Larger counts are refused.

@@ -59,7 +59,14 @@ enum class JointKind { ideal, clearance };
 //   corners: Flores et al. 2008: each penetrating corner is its own point contact with the
 //            stiffness of `stiffness_model`, halved so that a flat, uniformly penetrating slider
 //            feels the same total force as in the face model.
-enum class SliderContactModel { face, corners };
+//   line:    each face is a line contact: a pressure k' d(s)^n on every point s of the face that
+//            penetrates (d linear along the straight face), k' = K / L_s with K the flat-face
+//            stiffness, so that a flat, uniformly penetrating slider feels K d^n as in the other
+//            two. The elastic part derives from the potential k' integral d(s)^(n+1) / (n+1) ds,
+//            so with restitution 1 and no friction it conserves energy from any tilt; the face
+//            model's one force at the centroid with the deepest corner's penetration does not
+//            (docs/mechanism/model.md, "Energy from a tilted start").
+enum class SliderContactModel { face, corners, line };
 
 // The stiffness of the slider-guide contact.
 //   contact_length: seed Eq. 11 with S = L_c W and L_c from Eq. 12 (changes during contact);
@@ -139,11 +146,21 @@ struct RunSettings {
   bool stroboscopic = false;      // also sample once per crank revolution (at the initial angle)
 };
 
+// The state at t = 0 beyond the seed's Eq. 29 (which starts every coordinate on the ideal
+// mechanism, at rest relative to it): the slider's angle and angular rate. A tilted, spinning start
+// exercises the slider's rotation against the guide, e.g. to check that a contact model conserves
+// energy from a generic state and not only from the symmetric one.
+struct InitialState {
+  double slider_angle = 0.0;  // rad
+  double slider_rate = 0.0;   // rad/s
+};
+
 struct Scene {
   Link crank{0.05, 0.3, 1e-4, 0.5};
   Link conrod{0.12, 0.21, 2.5e-4, 0.5};
   Slider slider;
   Driver driver;
+  InitialState initial;
   double gravity = 9.81;  // m/s^2 along -y
   TranslationalJoint slider_guide;
   RevoluteJoint crank_ground;

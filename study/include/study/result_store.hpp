@@ -52,7 +52,8 @@ class ResultStore {
 
  private:
   std::filesystem::path point_path(std::size_t point) const;
-  // Empty when the file of `point` is whole and belongs to this spec, else why not.
+  // Empty when the file of `point` is whole (it ends with `end`, its check line holds the hash of
+  // what is above it) and belongs to this spec, else why not.
   std::string check_point_file(std::size_t point, const std::string& text) const;
   std::filesystem::path dir_;
   const SweepSpec& spec_;

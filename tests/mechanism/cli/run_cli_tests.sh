@@ -78,7 +78,7 @@ expect 5 "above the limit 0.03" -- simulate -q --json --set joint.slider.clearan
 # step count to 0 and "completed"; an output interval of 1e-300 s wrote rows until the disk was
 # full. Both are refused before the run (exit 3, README.md) with the numbers and the limit
 # (mechanism/scene.hpp: 1e12 steps, 1e8 rows).
-expect 3 "run.duration = 1.9e+13: with run.transient 0.0 s needs 1.9e+19 RK4 steps of 1e-06 s, more than the limit of 1e+12 steps" \
+expect 3 "run.duration = 1.9e+13: with run.transient 0.0 s and integrator.step = 1e-06 s needs 1.9e+19 RK4 steps, more than the limit of 1e+12 steps" \
   -- simulate -q --set run.duration=1.9e13 --set run.output_interval=0
 expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06 s, more than the limit of 1e+08 rows" \
   -- simulate -q --set run.output_interval=1e-300

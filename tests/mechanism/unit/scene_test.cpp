@@ -77,7 +77,17 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"crank.mass=-0.3"}).find("crank.mass = -0.3: must be a finite number > 0"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.clearance=0"}).find("joint.slider.clearance"), std::string::npos);
   EXPECT_NE(refusal("", {"integrator.step=0"}).find("integrator.step"), std::string::npos);
-  EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed the crank length"), std::string::npos);
+  EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed crank.length + joint.slider.clearance"), std::string::npos);
+  // Issue 16, corrupt-file tier: a huge clearance was refused naming only conrod.length and "the
+  // clearances"; a step of 1e-320 s as "needs inf RK4 steps of 0.0 s". The keys are named, and a
+  // subnormal size, modulus or step is refused as such.
+  EXPECT_NE(refusal("", {"joint.crank_ground.type=\"clearance\"", "joint.crank_ground.clearance=1.0"})
+                .find("crank.length + joint.crank_ground.clearance + joint.slider.clearance (1.05"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"slider.young_modulus=1e-320"}).find("slider.young_modulus = 1e-320: must be at least 2.2e-308"),
+            std::string::npos);
+  const std::string tiny_step = refusal("", {"integrator.step=1e-300"});
+  EXPECT_NE(tiny_step.find("and integrator.step = 1e-300 s needs 6"), std::string::npos) << tiny_step;
   EXPECT_NE(refusal("", {"joint.slider.contact.restitution=1.5"}).find("(0, 1]"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.model=\"wedge\""}).find("must be one of"), std::string::npos);
   EXPECT_NE(refusal("", {"joint.slider.type=true"}).find("joint.slider.type"), std::string::npos);
@@ -88,6 +98,34 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
             std::string::npos);
   EXPECT_NE(refusal("", {"slider.poisson_ratio=0.5"}).find("[0, 0.5)"), std::string::npos);
   EXPECT_NE(refusal("", {"driver.speed_rpm=nan"}).find("driver.speed_rpm"), std::string::npos);
+  // A law's own rule is refused under the scene key that holds the value (found by the corrupt-file
+  // tier: LuGre's mu_s = 0 was refused as plain "static_coefficient").
+  EXPECT_NE(refusal("", {"joint.slider.friction.static_coefficient=0"})
+                .find("joint.slider.friction.static_coefficient = 0: must be finite and > 0"),
+            std::string::npos);
+}
+
+TEST(Scene, TiltedStartIsReadAndChecked) {
+  // The default starts level and at rest relative to the ideal mechanism (seed Eq. 29).
+  const Scene level = read_scene("");
+  EXPECT_EQ(level.initial.slider_angle, 0.0);
+  EXPECT_EQ(level.initial.slider_rate, 0.0);
+  const Scene tilted = read_scene("", {"initial.slider_angle=0.01", "initial.slider_rate=-20"});
+  EXPECT_EQ(tilted.initial.slider_angle, 0.01);
+  EXPECT_EQ(tilted.initial.slider_rate, -20.0);
+  EXPECT_EQ(read_scene(to_toml(tilted)).initial.slider_angle, 0.01);  // printed and read back
+  // The slider must fit in the guide at t = 0: its corners reach 0.025 sin(a) + 0.025 cos(a) from
+  // the centre line, the guide surfaces are at 0.025 + 0.5e-3 (the default clearance): a = 0.02 fits
+  // (0.025495), a = 0.021 does not (0.025519).
+  EXPECT_EQ(refusal("", {"initial.slider_angle=0.02"}), "(accepted)");
+  EXPECT_NE(refusal("", {"initial.slider_angle=0.021"}).find("initial.slider_angle = 0.021: must leave the tilted slider"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"initial.slider_angle=0.01", "joint.slider.clearance=1e-6"}).find("inside the guide"),
+            std::string::npos);
+  // On an ideal guide the slider has no angle coordinate.
+  EXPECT_NE(refusal("", {"joint.slider.type=ideal", "initial.slider_rate=5"}).find("needs joint.slider.type"),
+            std::string::npos);
+  EXPECT_NE(refusal("", {"initial.slider_rate=inf"}).find("initial.slider_rate"), std::string::npos);
 }
 
 TEST(Scene, AcceptsEveryLawByItsOwnName) {

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "mechanism/contact_stiffness.hpp"
+#include "mechanism/line_contact.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/slider_crank.hpp"
 
@@ -75,7 +77,7 @@ TEST(SliderCrank, SeedClosedFormMatchesTheJets) {
   // The seed's topology is evaluated in closed form; the kinematic jets are the general reference.
   // Poses in free flight, on one face, on both (jammed), with and without friction and for both
   // slider models, at several crank angles and rates; both paths see the same memory.
-  for (const char* model : {"face", "corners"}) {
+  for (const char* model : {"face", "corners", "line"}) {
     for (const char* law : {"lugre_absolute", "coulomb", "none"}) {
       const SliderCrank sys(read_scene("", {std::string("joint.slider.model=") + model,
                                             std::string("joint.slider.friction.law=") + law}));
@@ -143,25 +145,62 @@ TEST(SliderCrank, TheFourSliderConfigurations) {
   EXPECT_GT(jammed.sites[1].normal_force, 0.0);
 }
 
-TEST(SliderCrank, FaceAndCornerModelsAgreeForAFlatUniformPenetration) {
+TEST(SliderCrank, FaceCornerAndLineModelsAgreeForAFlatUniformPenetration) {
   // A level slider pressed uniformly into the lower surface: the face model (one force at the
-  // centroid, stiffness of the full contact length) and the corner model (two corners, half the
-  // flat-face stiffness each) give the same total force and no moment (seed-notes' requirement).
+  // centroid, stiffness of the full contact length), the corner model (two corners, half the
+  // flat-face stiffness each) and the line model (a uniform pressure K d^n / L_s) give the same
+  // total force and no moment (seed-notes' requirement).
   for (const char* stiffness : {"flat_face", "contact_length"}) {
     const Scene face = read_scene("", {"joint.slider.friction.law=none", std::string("joint.slider.stiffness_model=") + stiffness});
-    const Scene corners = read_scene("", {"joint.slider.friction.law=none", "joint.slider.model=corners",
-                                          std::string("joint.slider.stiffness_model=") + stiffness});
     const double y = -(face.slider_guide.clearance + 2e-5);
-    const Evaluation a = place_slider(face, y, 0.0), b = place_slider(corners, y, 0.0);
-    double fa = 0, fb = 0;
+    const Evaluation a = place_slider(face, y, 0.0);
+    double fa = 0;
     for (const auto& site : a.sites) fa += site.normal_force;
-    for (const auto& site : b.sites) fb += site.normal_force;
     EXPECT_GT(fa, 0.0);
-    EXPECT_NEAR(fa, fb, 1e-9 * fa) << stiffness;
-    // Same resulting slider acceleration (force and zero moment).
     EXPECT_NEAR(a.slider_acceleration[2], 0.0, 1e-6);
-    EXPECT_NEAR(b.slider_acceleration[2], 0.0, 1e-6);
-    EXPECT_NEAR(a.q_ddot[0], b.q_ddot[0], 1e-9 * std::abs(a.q_ddot[0]));
+    for (const char* model : {"corners", "line"}) {
+      const Scene other = read_scene("", {"joint.slider.friction.law=none", std::string("joint.slider.model=") + model,
+                                          std::string("joint.slider.stiffness_model=") + stiffness});
+      const Evaluation b = place_slider(other, y, 0.0);
+      double fb = 0;
+      for (const auto& site : b.sites) fb += site.normal_force;
+      EXPECT_NEAR(fa, fb, 1e-9 * fa) << stiffness << ", " << model;
+      // Same resulting slider acceleration (force and zero moment).
+      EXPECT_NEAR(b.slider_acceleration[2], 0.0, 1e-6) << model;
+      EXPECT_NEAR(a.q_ddot[0], b.q_ddot[0], 1e-9 * std::abs(a.q_ddot[0])) << model;
+    }
+  }
+}
+
+TEST(SliderCrank, LineModelLoadsATiltedFaceWithItsPressure) {
+  // A slider tilted so that only part of its lower face penetrates. The line model's normal force
+  // on that face is the pressure's resultant from the corner penetrations computed here by hand
+  // (line_contact.hpp), and the slider's angular acceleration is the moment of the two corner loads
+  // about its centre over its inertia (the other contributions vanish: no friction, and the pin at
+  // the centre carries no moment).
+  const Scene s = read_scene("", {"joint.slider.friction.law=none", "joint.slider.model=line", "gravity=0",
+                                  "joint.slider.contact.restitution=1"});  // no damping: the elastic loads alone
+  const double c = s.slider_guide.clearance, hl = 0.5 * s.slider.length, hh = 0.5 * s.slider.height;
+  for (const double tilt : {1.3 * c / hl, -1.1 * c / hl}) {
+    const double y = -0.3 * c;
+    const Evaluation ev = place_slider(s, y, tilt);
+    // Lower-face corners (body (-hl, -hh) and (hl, -hh)): penetration below the lower surface.
+    const double guide_half = hh + c;
+    const auto corner_y = [&](double sx) { return y + std::sin(tilt) * sx - std::cos(tilt) * hh; };
+    const double pa = -guide_half - corner_y(-hl), pb = -guide_half - corner_y(hl);
+    ASSERT_TRUE((pa > 0) != (pb > 0)) << "one corner in: " << pa << ", " << pb;
+    const double k = slider_face_stiffness(material_compliance(s.slider.material.young_modulus, s.slider.material.poisson_ratio),
+                                           material_compliance(s.slider_guide.guide.young_modulus,
+                                                               s.slider_guide.guide.poisson_ratio),
+                                           s.slider.length, s.slider.width, s.slider.length);
+    const LineContactLoads f = line_contact_loads(k, s.slider_guide.contact.exponent, pa, pb);
+    EXPECT_NEAR(ev.sites[1].normal_force, f.left + f.right, 1e-9 * (f.left + f.right)) << tilt;
+    EXPECT_EQ(ev.sites[0].normal_force, 0.0);  // the upper face is clear
+    // Moment about the centre of upward forces at the corners' world x offsets.
+    // (body (sx, -hh) turned by the tilt: x offset cos(a) sx + sin(a) hh)
+    const double xa = std::cos(tilt) * -hl + std::sin(tilt) * hh, xb = std::cos(tilt) * hl + std::sin(tilt) * hh;
+    const double moment = xa * f.left + xb * f.right;
+    EXPECT_NEAR(ev.q_ddot[1], moment / s.slider.inertia, 1e-9 * std::abs(moment / s.slider.inertia)) << tilt;
   }
 }
 

@@ -71,6 +71,7 @@ expect_message "point 0's run is too large" "periods beyond any run"
 expect_code 5 "energy defect" "$STUDY" sweep -q --threads 1 --set joint.slider.clearance=1e-6 --axis driver.speed_rpm=50,5000 \
   --periods 1 --keep 1 -o "$work/energy"
 [[ $(jq -r .failed "$work/out") == 1 ]] || fail "energy defect: the summary counts $(jq -r .failed "$work/out") failed points, expected 1"
+expect_message "1 of 2 points did not complete (the first: point 0, energy_defect)" "energy defect"
 statuses=$(grep -v '^#' "$work/energy/points.tsv" | cut -f3 | tr '\n' ' ')
 [[ $statuses == "energy_defect completed " ]] || fail "energy defect: points.tsv statuses are '$statuses'"
 

@@ -202,13 +202,24 @@ TEST(Sweep, ResumeRecomputesADamagedPointFile) {
     store.assemble();
   }
   EXPECT_EQ(slurp(dir / "samples.tsv"), before);
-  // A sample row dropped from a file that still ends properly is caught by the count.
+  // A sample row dropped from a file that still ends properly, and (issue 16, corrupt-file tier) a
+  // field edited in place, which was assembled as it stood (a final_state of "x" made a resumed
+  // continuation chain exit with an internal error), are caught by the check line.
   const std::string again = slurp(dir / "points" / "000000.tsv");
   const auto row = again.find("\nsample\t") + 1;
   rewrite("000000.tsv", again.substr(0, row) + again.substr(again.find('\n', row) + 1));
-  study::ResultStore store(dir, spec, true);
-  ASSERT_EQ(store.discarded().size(), 1u);
-  EXPECT_NE(store.discarded()[0].find("2 sample rows where its counters say 3"), std::string::npos) << store.discarded()[0];
+  std::string edited = slurp(dir / "points" / "000001.tsv");
+  edited.replace(edited.find("final_state\t") + 12, 1, "x");
+  rewrite("000001.tsv", edited);
+  {
+    study::ResultStore store(dir, spec, true);
+    ASSERT_EQ(store.discarded().size(), 2u);
+    for (const auto& why : store.discarded())
+      EXPECT_NE(why.find("is damaged (its contents do not match its check line)"), std::string::npos) << why;
+    study::run_sweep(spec, store, {});
+    store.assemble();
+  }
+  EXPECT_EQ(slurp(dir / "samples.tsv"), before);
   fs::remove_all(dir);
 }
 
