@@ -163,7 +163,7 @@ void run(AnalyzeArgs& args) {
   AnalyzeParams params = args.params;
   params.mutual_curve = !args.plot.empty();
   AnalyzeRun run = run_analyze({x, builtin ? std::string(builtin_series_name) : args.input.file, series.column, series.dt},
-                               params, args.output);
+                               params, mode_of(args.output));
   const AutomaticAnalysis& a = run.analysis;
   const TimeScales& scales = a.scales;
   const std::string& theiler_source = run.theiler_source;
@@ -174,6 +174,7 @@ void run(AnalyzeArgs& args) {
   const std::optional<NonlinearityTestResult>& nonlinear = run.nonlinear;
   const std::optional<EndMatch>& segment = run.segment;
   if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold), args.plot);
+  run.report.open(args.output);
   Report& report = run.report;
   std::ostream& out = report.stream();
   const bool per_time = series.dt.has_value();

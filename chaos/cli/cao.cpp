@@ -46,8 +46,9 @@ std::string plot_script(const CaoResult& result) {
 
 void run(CaoArgs& args) {
   const Series series = load_series(args.input);
-  auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+  auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);

@@ -85,8 +85,9 @@ void run(D2Args& args) {
   cli_support::ProgressBar bar(!args.quiet && isatty(fileno(stderr)));
   D2Params params = args.params;
   params.sums.progress = [&bar](double fraction) { bar.update(fraction, "correlation sums"); };
-  auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), args.output);
+  auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);

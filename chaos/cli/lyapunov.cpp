@@ -81,8 +81,9 @@ std::string plot_script(const LyapunovResult& r) {
 
 void run(LyapunovArgs& args) {
   const Series series = load_series(args.input);
-  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
+  report.open(args.output);
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
