@@ -132,7 +132,7 @@ void run(AnalyzeArgs& args) {
                 "-l 100000 analyses the first 10^5 samples");
   params.progress = progress.steps();
   AnalyzeRun run = run_analyze({x, builtin ? std::string(builtin_series_name) : args.input.file, series.column, series.dt},
-                               params, args.output);
+                               params, mode_of(args.output));
   const AutomaticAnalysis& a = run.analysis;
   const TimeScales& scales = a.scales;
   const std::string& theiler_source = run.theiler_source;
@@ -143,6 +143,7 @@ void run(AnalyzeArgs& args) {
   const std::optional<NonlinearityTestResult>& nonlinear = run.nonlinear;
   const std::optional<EndMatch>& segment = run.segment;
   if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold), args.plot);
+  run.report.open(args.output);
   Report& report = run.report;
   std::ostream& out = report.stream();
   const bool per_time = series.dt.has_value();

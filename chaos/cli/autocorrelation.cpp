@@ -59,8 +59,9 @@ std::string plot_script(const AutocorrelationResult& result, const std::optional
 void run(const AutocorrelationArgs& args) {
   const Series series = load_series(args.input);
   auto [result, zero, decay, report] =
-      run_autocorrelation({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+      run_autocorrelation({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, decay, zero, series.dt), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);

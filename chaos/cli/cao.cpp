@@ -38,8 +38,9 @@ void run(CaoArgs& args) {
                 "a nearest-neighbour search from every point in each dimension may take long; -l 100000 uses "
                 "the first 10^5 samples, a smaller -M fewer dimensions");
   args.params.options.progress = progress.callback("Cao's method");
-  auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+  auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);

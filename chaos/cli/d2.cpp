@@ -28,7 +28,6 @@ struct D2Args {
   bool quiet = false;
 };
 
-
 std::string interval_text(const std::optional<Interval>& i) {
   return i ? "[" + number(i->low) + ", " + number(i->high) + "]" : std::string("none");
 }
@@ -69,8 +68,9 @@ void run(D2Args& args) {
                       "reference points in a fraction of the time");
   D2Params params = args.params;
   params.sums.progress = progress.callback("correlation sums");
-  auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), args.output);
+  auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);

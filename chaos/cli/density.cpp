@@ -9,6 +9,7 @@
 
 #include "chaos/bifurcation.hpp"
 #include "chaos/error.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
 
@@ -19,11 +20,7 @@ namespace {
 struct DensityArgs {
   InputOptions input;  // -c is the parameter column here
   std::size_t value_column = 2;
-  std::optional<std::size_t> bins;
-  std::size_t max_bins = 200;
-  bool kde = false;
-  std::optional<double> bandwidth, low, high;
-  double padding = 0.05;
+  DensityParams params;
   std::string plot;
   OutputOptions output;
 };
@@ -54,9 +51,7 @@ void run(DensityArgs& a) {
     throw InvalidInput(ErrorCode::invalid_parameter, "the value column (" + std::to_string(a.value_column) +
                                                          ") must differ from the parameter column (-c " + std::to_string(a.input.column) + ")");
   }
-  if (a.max_bins == 0) throw InvalidInput(ErrorCode::invalid_parameter, "density map: bins must be >= 1 (got --max-bins 0)");
-  if (a.bandwidth && !a.kde) throw InvalidInput(ErrorCode::invalid_parameter, "--bandwidth applies to the kernel estimate: add --kde");
-  if (a.low.has_value() != a.high.has_value()) throw InvalidInput(ErrorCode::invalid_parameter, "density map: give both --low and --high or neither");
+  check_density_params(a.params);
   // The input is read twice (parameter and value columns): standard input is kept in memory.
   std::string stdin_text;
   auto read = [&](std::size_t column) {
@@ -77,50 +72,14 @@ void run(DensityArgs& a) {
   }
   const std::vector<double> parameter = read(a.input.column), value = read(a.value_column);
 
-  std::map<double, std::vector<double>> groups;  // ascending parameter values
-  for (std::size_t i = 0; i < parameter.size(); ++i) groups[parameter[i]].push_back(value[i]);
-  std::vector<double> parameters;
-  std::vector<std::vector<double>> samples;
-  for (auto& [p, v] : groups) {
-    parameters.push_back(p);
-    samples.push_back(std::move(v));
-  }
-
-  DensityMapOptions o;
-  o.estimator = a.kde ? DensityEstimator::kernel : DensityEstimator::histogram;
-  o.bin_rule = a.bins ? BinRule::fixed : BinRule::freedman_diaconis;
-  o.bins = a.bins ? *a.bins : a.max_bins;
-  o.low = a.low;
-  o.high = a.high;
-  o.padding = a.padding;
-  o.bandwidth = a.bandwidth;
-  const DensityMap m = density_map(parameters, samples, o);
-  const std::string method = a.kde ? "gaussian kernel, averaged over each bin" : "histogram";
-  std::string rule;
-  if (a.bins) rule = "fixed: " + std::to_string(*a.bins) + " bins (--bins)";
-  else if (m.rule_bins) rule = "freedman-diaconis: width 2 IQR n^(-1/3) on the pooled values gives " + std::to_string(*m.rule_bins) + " bins" +
-                               (*m.rule_bins > a.max_bins ? ", capped at --max-bins " + std::to_string(a.max_bins) : std::string());
-  else rule = "freedman-diaconis: the pooled IQR is 0, so --max-bins " + std::to_string(a.max_bins);
-  if (!a.plot.empty()) render_plot(plot_script(m, method), a.plot);
-
-  Report report("density", a.output);
-  report.parameter("file", a.input.file).parameter("parameter_column", a.input.column).parameter("value_column", a.value_column)
-      .parameter("N", parameter.size()).parameter("parameters", parameters.size()).parameter("method", method)
-      .parameter("bin_rule", rule).parameter("bins", m.centres.size()).parameter("low", m.edges.front()).parameter("high", m.edges.back())
-      .parameter("range", std::string(a.low ? "given (--low, --high)" : "pooled min/max padded by " + number(a.padding) + " of the span on each side"));
-  if (a.kde) report.parameter("bandwidth", std::string(a.bandwidth ? "given (--bandwidth)" : "Silverman: 0.9 min(s, IQR/1.34) n^(-1/5) per parameter value"));
+  auto run = run_density(parameter, value, a.input.file, a.input.column, a.value_column, a.params, mode_of(a.output));
+  const DensityMap& m = run.map;
+  const auto& samples = run.samples;
+  if (!a.plot.empty()) render_plot(plot_script(m, run.method), a.plot);
+  run.report.open(a.output);
+  Report& report = run.report;
   std::ostream& out = report.stream();
   if (report.json_mode()) {
-    auto& j = report.json();
-    j["parameter"] = m.parameters;
-    j["bin_centre"] = m.centres;
-    j["edges"] = m.edges;
-    j["density"] = m.density;
-    j["in_range"] = m.in_range;
-    if (a.kde) {
-      j["bandwidth"] = m.bandwidths;
-      j["kernel_mass"] = m.kernel_mass;
-    }
     report.write_json(out);
     return;
   }
@@ -128,7 +87,7 @@ void run(DensityArgs& a) {
   out << "# parameter\tbin_centre\tdensity\n";
   for (std::size_t p = 0; p < m.parameters.size(); ++p) {
     out << "# parameter = " << number(m.parameters[p]) << ": " << samples[p].size() << " values, " << m.in_range[p] << " in range";
-    if (a.kde) out << ", bandwidth " << number(m.bandwidths[p]) << ", kernel mass in range " << number(m.kernel_mass[p]);
+    if (a.params.kde) out << ", bandwidth " << number(m.bandwidths[p]) << ", kernel mass in range " << number(m.kernel_mass[p]);
     out << "\n";
     for (std::size_t b = 0; b < m.centres.size(); ++b) out << number(m.parameters[p]) << "\t" << number(m.centres[b]) << "\t" << number(m.density[p][b]) << "\n";
     out << "\n";  // blank line between parameter values (gnuplot's scans)
@@ -146,13 +105,13 @@ void register_density(CLI::App& app) {
   command->add_option("-v,--value-column", a->value_column, "the value column (1-based)")->capture_default_str();
   command->add_option("-x,--skip", a->input.skip, "data rows to skip at the start")->capture_default_str();
   command->add_option("-l,--length", a->input.length, "data rows to use after the skip (default: all)");
-  command->add_option("-b,--bins", a->bins, "a fixed number of bins (default: the Freedman-Diaconis rule, at most --max-bins)");
-  command->add_option("--max-bins", a->max_bins, "the cap on the Freedman-Diaconis count")->capture_default_str();
-  command->add_flag("--kde", a->kde, "Gaussian kernel estimate (Silverman's bandwidth) averaged over each bin, instead of the histogram");
-  command->add_option("--bandwidth", a->bandwidth, "kde: one bandwidth for every parameter value");
-  command->add_option("--low", a->low, "lower end of the common range (with --high)");
-  command->add_option("--high", a->high, "upper end of the common range (with --low)");
-  command->add_option("--padding", a->padding, "without a range: fraction of the pooled span added on each side")->capture_default_str();
+  command->add_option("-b,--bins", a->params.bins, "a fixed number of bins (default: the Freedman-Diaconis rule, at most --max-bins)");
+  command->add_option("--max-bins", a->params.max_bins, "the cap on the Freedman-Diaconis count")->capture_default_str();
+  command->add_flag("--kde", a->params.kde, "Gaussian kernel estimate (Silverman's bandwidth) averaged over each bin, instead of the histogram");
+  command->add_option("--bandwidth", a->params.bandwidth, "kde: one bandwidth for every parameter value");
+  command->add_option("--low", a->params.low, "lower end of the common range (with --high)");
+  command->add_option("--high", a->params.high, "upper end of the common range (with --low)");
+  command->add_option("--padding", a->params.padding, "without a range: fraction of the pooled span added on each side")->capture_default_str();
   add_plot_option(*command, a->plot, "draw the map as a colour map to FILE.png or FILE.svg");
   add_output_options(*command, a->output);
   command->callback([a] { run(*a); });

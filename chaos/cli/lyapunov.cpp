@@ -88,8 +88,9 @@ void run(LyapunovArgs& args) {
                   "the divergence curve follows the neighbours of every one of the points and may take long; "
                   "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
-  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
+  report.open(args.output);
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;

@@ -38,8 +38,9 @@ std::string plot_script(const MutualInformationResult& result, const std::option
 void run(MutualArgs& args) {
   const Series series = load_series(args.input);
   auto [result, minimum, report] =
-      run_mutual({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
+      run_mutual({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, minimum, series.dt), args.plot);
+  report.open(args.output);
   std::ostream& out = report.stream();
   const double dt = series.dt.value_or(1.0);
   if (report.json_mode()) {

@@ -16,6 +16,7 @@
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/autocorrelation.hpp"
+#include "chaos/bifurcation.hpp"
 #include "chaos/cao.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
@@ -210,5 +211,26 @@ struct SpectrumRun {
   Report report;
 };
 SpectrumRun run_spectrum(const SpectrumParams& params, const OutputOptions& output = {});
+
+// chaos density: rows of (parameter, value) -> the density of the values per parameter value
+struct DensityParams {
+  std::optional<std::size_t> bins;
+  std::size_t max_bins = 200;
+  bool kde = false;
+  std::optional<double> bandwidth, low, high;
+  double padding = 0.05;
+};
+struct DensityRun {
+  std::vector<double> parameters;             // the distinct parameter values, ascending
+  std::vector<std::vector<double>> samples;   // the values of each
+  DensityMap map;
+  std::string method;
+  Report report;
+};
+// The option checks (before any input is read).
+void check_density_params(const DensityParams& params);
+DensityRun run_density(std::span<const double> parameter, std::span<const double> value, const std::string& file,
+                       std::size_t parameter_column, std::size_t value_column, const DensityParams& params,
+                       const OutputOptions& output = {});
 
 }  // namespace chaos::cli

@@ -16,9 +16,15 @@ std::string number(double value) {
   return buffer;
 }
 
-Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)), output_(output) {
+Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)) {
   json_["command"] = command_;
   json_["parameters"] = nlohmann::ordered_json::object();
+  open(output);
+}
+
+void Report::open(const OutputOptions& output) {
+  output_ = output;
+  file_.reset();
   if (!output_.path.empty()) {
     auto file = std::make_unique<std::ofstream>(output_.path);
     if (!*file) throw InvalidInput(ErrorCode::io, output_.path + ": cannot open for writing");

@@ -27,6 +27,10 @@ struct OutputOptions {
   std::string path;  // -o; empty: standard output
 };
 
+// The output mode without the file: what a command's shared computation is given when the command
+// line opens the file itself afterwards (Report::open).
+inline OutputOptions mode_of(const OutputOptions& output) { return {output.json, std::string()}; }
+
 // Formats a double with enough digits to round-trip the estimate's meaningful precision.
 std::string number(double value);
 
@@ -43,6 +47,9 @@ class Report {
   }
   Report& parameter(const std::string& name, const std::optional<double>& value);
   Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
+  // Sends the output to output.path from now on (the command line opens it after drawing its plot,
+  // so a plot that fails leaves an existing -o file untouched).
+  void open(const OutputOptions& output);
   nlohmann::ordered_json& json() { return json_; }
   const nlohmann::ordered_json& json() const { return json_; }
   bool json_mode() const { return output_.json; }

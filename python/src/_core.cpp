@@ -307,6 +307,24 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 
+py::object density(const Array& parameter, const Array& value, const std::string& file, std::size_t parameter_column,
+                   std::size_t value_column, const py::dict& p) {
+  DensityParams params;
+  get(p, "bins", params.bins);
+  get(p, "max_bins", params.max_bins);
+  get(p, "kde", params.kde);
+  get(p, "bandwidth", params.bandwidth);
+  get(p, "low", params.low);
+  get(p, "high", params.high);
+  get(p, "padding", params.padding);
+  check_density_params(params);
+  const SeriesInput x = series(parameter, file, parameter_column, std::nullopt);
+  const SeriesInput y = series(value, file, value_column, std::nullopt);
+  return call([&] {
+    return run_density(x.values, y.values, file, parameter_column, value_column, params).report.json();
+  });
+}
+
 // -p name=value, repeatable: a dict {name: value}.
 void get_settings(const py::dict& p, std::map<std::string, double>& target) {
   if (!has(p, "parameter")) return;
@@ -509,6 +527,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("surrogates", &surrogates);
   m.def("generate", &generate);
   m.def("spectrum", &spectrum);
+  m.def("density", &density);
   m.def("nonlinearity", &nonlinearity);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());

@@ -211,3 +211,41 @@ def test_spectrum(cli_args, kwargs):
 def test_spectrum_refuses_as_the_command(system, kwargs):
     with pytest.raises(ValueError):
         chaos.spectrum(system, **kwargs)
+
+
+@pytest.fixture(scope="session")
+def diagram_file(data_dir):
+    """A bifurcation diagram of the logistic map: rows of (r, x) for 6 values of r, 300 samples each."""
+    rows = []
+    for r in np.linspace(3.5, 4.0, 6):
+        x = cli_json("generate", "logistic", "-l", 300, "-p", f"r={r!r}")["components"]["x"]
+        rows += [(r, v) for v in x]
+    path = data_dir / "diagram.txt"
+    np.savetxt(path, rows, fmt="%.17g")
+    return path
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    ([], {}),
+    (["-b", 30, "--low", 0, "--high", 1], dict(bins=30, low=0.0, high=1.0)),
+    (["--kde", "--max-bins", 50, "--padding", 0.1], dict(kde=True, max_bins=50, padding=0.1)),
+    (["--kde", "--bandwidth", 0.02, "-b", 40], dict(kde=True, bandwidth=0.02, bins=40)),
+])
+def test_density(diagram_file, cli_args, kwargs):
+    expected = cli_json("density", diagram_file, *cli_args)
+    assert chaos.density(diagram_file, **kwargs).to_dict() == expected
+    rows = np.loadtxt(diagram_file)
+    got = chaos.density(rows[:, 0], rows[:, 1], **kwargs)
+    assert got.to_dict() == as_array_run(expected)
+    assert got.density.shape == (6, len(got.bin_centre))
+
+
+@pytest.mark.parametrize("kwargs", [dict(max_bins=0), dict(bandwidth=0.1), dict(low=0.0), dict(bins=0)])
+def test_density_refuses(diagram_file, kwargs):
+    with pytest.raises(ValueError):
+        chaos.density(diagram_file, **kwargs)
+
+
+def test_density_needs_equal_lengths():
+    with pytest.raises(ValueError):
+        chaos.density([1.0, 2.0, 3.0], [1.0, 2.0])

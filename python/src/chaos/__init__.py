@@ -29,7 +29,7 @@ from . import _core
 from ._results import Result, make as _make
 
 __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
-           "nonlinearity", "embed",
+           "nonlinearity", "density", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
 
@@ -324,6 +324,39 @@ def spectrum(system, *, parameter=None, time=None, step=None, interval=None, tra
                                              transient=transient, iterations=iterations, map_interval=map_interval,
                                              map_transient=map_transient, identity=identity, exponents=exponents,
                                              seed=seed)))
+
+
+def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwidth=None, low=None, high=None,
+            padding=0.05, column=1, value_column=2, skip=0, length=None):
+    """The density map of a bifurcation diagram (``chaos density``): the values observed at each
+    parameter value (rows of (parameter, value), e.g. the stroboscopic samples of a sweep) as a
+    density on common bins: a histogram with a fixed number of ``bins`` or the Freedman-Diaconis rule
+    (width 2 IQR n^(-1/3) on the pooled values, at most ``max_bins``), or with ``kde=True`` a Gaussian
+    kernel estimate (Silverman's bandwidth 0.9 min(s, IQR/1.34) n^(-1/5), or ``bandwidth``) averaged
+    over each bin. The range is ``low``..``high`` or the pooled min/max widened by ``padding`` of the
+    span on each side. docs/poincare.md.
+
+    ``parameter`` and ``value``: two 1-D arrays of the same length; or ``parameter`` the path of a file
+    whose ``column`` holds the parameter and ``value_column`` the value (``-c``, ``-v``, ``-x``, ``-l``).
+
+    Result keys: parameter, bin_centre, edges, density (parameters x bins), in_range (and bandwidth,
+    kernel_mass with ``kde``).
+    """
+    params = dict(bins=bins, max_bins=max_bins, kde=kde, bandwidth=bandwidth, low=low, high=high, padding=padding)
+    if isinstance(parameter, (str, os.PathLike)):
+        if value is not None:
+            raise TypeError("density: give a file, or the parameter and value arrays")
+        path = os.fspath(parameter)
+        if value_column == column:
+            raise ValueError(f"the value column ({value_column}) must differ from the parameter column (-c {column})")
+        p_values, column, _ = _core.read(path, column, skip, length, None)
+        v_values, value_column, _ = _core.read(path, value_column, skip, length, None)
+        return _make(_core.density(p_values, v_values, path, column, value_column, params))
+    if value is None:
+        raise TypeError("density: the value array is missing")
+    p_values, file, _, _ = _series(parameter, None)
+    v_values, _, _, _ = _series(value, None)
+    return _make(_core.density(p_values, v_values, file, 1, 2, params))
 
 
 def embed(x, dimension, delay=1):
