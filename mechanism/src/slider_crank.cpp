@@ -240,7 +240,8 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
     const bool upper = site.kind == SiteKind::slider_face_upper ||
                        (site.kind == SiteKind::slider_corner && site.corner < 2);
     double wx_body, depth, depth_rate;
-    double line_force = -1.0;  // the line model's normal force (set when it applies)
+    bool line_model = false;  // the line model's normal force is line_force (a NaN stays NaN)
+    double line_force = 0.0;
     if (site.kind == SiteKind::slider_corner) {
       depth = corner_pen[site.corner];
       depth_rate = corner_rate[site.corner];
@@ -266,6 +267,7 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
         // point (the loads' weighted corner rates). chi = 0 at e = 1: purely elastic.
         const double rate_w = elastic > 0.0 ? (fa * corner_rate[a] + fb * corner_rate[b]) / elastic : depth_rate;
         const double impact_w = mem.touching ? mem.impact_velocity : rate_w;
+        line_model = true;
         line_force = elastic * detail::normal_force_kernel(site.chi, 1.0, tj.contact.velocity_floor, 1.0, 1.0, rate_w,
                                                            impact_w);
       } else if (depth > 0.0) {
@@ -296,10 +298,9 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
     // Velocity of the slider's material point at W.
     const double vx = rate[0] - rate[2] * (wyw - py);
     const double impact = mem.touching ? mem.impact_velocity : depth_rate;
-    se.normal_force = line_force >= 0.0 ? line_force
-                                        : detail::normal_force_kernel(site.chi, tj.contact.exponent,
-                                                                      tj.contact.velocity_floor, se.stiffness, depth,
-                                                                      depth_rate, impact);
+    se.normal_force = line_model ? line_force
+                                 : detail::normal_force_kernel(site.chi, tj.contact.exponent, tj.contact.velocity_floor,
+                                                               se.stiffness, depth, depth_rate, impact);
     se.sliding_velocity = vx;
     se.deflection = site.state >= 0 ? x[site.state] : 0.0;
     const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);
