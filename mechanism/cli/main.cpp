@@ -1,6 +1,7 @@
 // The `mechanism` command: the slider-crank simulator from a scene file.
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
+//   mechanism lyapunov [scene.toml] [--set key=value]... [--periods N] [--exponents K] [-o FILE] [--json] [--plot FILE]
 // Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file,
 // 5 the integration could not continue, or reached the end with its energy balance too far off to
 // trust (status energy_defect; the summary says when and why).
@@ -27,6 +28,7 @@
 #include "progress_bar.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
+#include "mechanism/scene_lyapunov.hpp"
 #include "mechanism/signals.hpp"
 #include "summary_json.hpp"
 #include "mechanism/simulate.hpp"
@@ -138,6 +140,58 @@ void plot_trajectories(const PlotData& d, const mechanism::Scene& scene, const s
   }
 }
 
+
+// JSON has no infinity: a collapsed exponent (-inf) is written as null, and the status says why.
+nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); }
+
+nlohmann::ordered_json lyapunov_json(const mechanism::SceneLyapunov& r) {
+  nlohmann::ordered_json j;
+  j["status"] = r.status;
+  if (!r.message.empty()) j["message"] = r.message;
+  j["exponents"] = nlohmann::ordered_json::array();
+  for (double v : r.exponents) j["exponents"].push_back(finite_or_null(v));
+  j["standard_error"] = nlohmann::ordered_json::array();
+  for (double v : r.standard_error) j["standard_error"].push_back(finite_or_null(v));
+  j["exponents_per_period"] = nlohmann::ordered_json::array();
+  for (double v : r.exponents_per_period) j["exponents_per_period"].push_back(finite_or_null(v));
+  j["kaplan_yorke"] = finite_or_null(r.kaplan_yorke);
+  j["kaplan_yorke_section"] = finite_or_null(r.kaplan_yorke_section);
+  j["collapsed"] = r.collapsed;
+  j["coordinates"] = r.coordinates;
+  j["scale"] = r.scale;
+  j["period"] = r.period;
+  j["periods"] = r.periods;
+  j["perturbation"] = r.perturbation;
+  j["largest_separation"] = r.largest_separation;
+  j["wall_seconds"] = r.wall_seconds;
+  return j;
+}
+
+// The running means against the periods averaged: how the estimate converged.
+void plot_convergence(const mechanism::SceneLyapunov& r, const std::string& path) {
+  const std::size_t k = r.exponents.size();
+  std::ostringstream g;
+  g << "$run << EOD\n";
+  for (std::size_t p = 0; p < r.periods; ++p) {
+    g << p + 1;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double v = r.running[p * k + j];
+      g << ' ' << (std::isfinite(v) ? number(v) : std::string("NaN"));
+    }
+    g << '\n';
+  }
+  g << "EOD\nset grid\nset key outside right\nset title 'Lyapunov exponents: running means'\n"
+    << "set xlabel 'crank periods averaged'\nset ylabel 'lambda (1/s)'\nplot ";
+  for (std::size_t j = 0; j < k; ++j)
+    g << (j ? ", " : "") << "$run using 1:" << j + 2 << " with lines title 'lambda_" << j + 1 << "'";
+  g << "\n";
+  try {
+    cli_support::render(g.str(), path);
+  } catch (const cli_support::PlotError& e) {
+    throw mechanism::InvalidParameter("--plot", path, e.what());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -165,6 +219,30 @@ int main(int argc, char** argv) {
   check_output(sim->add_option("--plot", plot_path,
                                "draw the slider's trajectory (seed Fig. 3) and each journal's path in its bearing (Fig. 13) to FILE.png or FILE.svg"),
                "--plot", sim->get_option("scene"), true);
+  SceneOptions lyap_opts;
+  mechanism::SceneLyapunovOptions lyap;
+  bool lyap_json = false;
+  std::string lyap_out, lyap_plot;
+  auto* lyap_cmd = app.add_subcommand(
+      "lyapunov", "Lyapunov exponents from the equations of motion (finite-difference Benettin on the crank-period map)");
+  add_scene_options(*lyap_cmd, lyap_opts);
+  lyap_cmd->add_option("--periods", lyap.periods, "crank periods averaged (>= 10)")->default_val(lyap.periods);
+  lyap_cmd->add_option("--transient-periods", lyap.transient_periods,
+                       "periods that align the directions before averaging (after run.transient)")
+      ->default_val(lyap.transient_periods);
+  lyap_cmd->add_option("--intervals-per-period", lyap.intervals_per_period,
+                       "renormalisations per crank period (the separations must stay small in between)")
+      ->default_val(lyap.intervals_per_period);
+  lyap_cmd->add_option("-k,--exponents", lyap.exponents, "leading exponents to compute (0: all)")->default_val(lyap.exponents);
+  lyap_cmd->add_option("--perturbation", lyap.perturbation, "separation relative to each coordinate's scale")
+      ->default_val(lyap.perturbation);
+  lyap_cmd->add_option("--seed", lyap.seed, "seed of the initial directions")->default_val(lyap.seed);
+  check_output(lyap_cmd->add_option("-o,--output", lyap_out, "write the convergence table to FILE (default: standard output)"),
+               "-o", lyap_cmd->get_option("scene"), false);
+  lyap_cmd->add_flag("--json", lyap_json, "write the result as JSON to standard output (the table then goes only to -o FILE)");
+  lyap_cmd->add_flag("-q,--quiet", lyap_opts.quiet, "no progress bar and no warnings about the scene");
+  check_output(lyap_cmd->add_option("--plot", lyap_plot, "draw the running means to FILE.png or FILE.svg"), "--plot",
+               lyap_cmd->get_option("scene"), true);
   cli_support::check_numeric_options(app);
   cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
@@ -180,6 +258,48 @@ int main(int argc, char** argv) {
       } else {
         std::cout << mechanism::to_toml(load_scene(scene_opts));
       }
+      return ok;
+    }
+    if (lyap_cmd->parsed()) {
+      const mechanism::Scene scene = load_scene(lyap_opts);
+      cli_support::ProgressBar bar(!lyap_opts.quiet && isatty(fileno(stderr)));
+      lyap.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
+      std::unique_ptr<std::ofstream> file;
+      if (!lyap_out.empty()) {
+        file = std::make_unique<std::ofstream>(lyap_out);
+        if (!*file) throw mechanism::InvalidParameter("-o", lyap_out, "cannot be written");
+      }
+      const mechanism::SceneLyapunov r = mechanism::scene_lyapunov(scene, lyap);
+      bar.update(1.0, "done");
+      std::ostream* out = file ? file.get() : (lyap_json ? nullptr : &std::cout);
+      if (out) {
+        *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/mechanism/lyapunov.md)\n"
+             << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
+             << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
+             << number(r.perturbation) << ", largest separation " << number(r.largest_separation) << "\n";
+        for (std::size_t j = 0; j < r.exponents.size(); ++j)
+          *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
+               << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";
+        *out << "# Kaplan-Yorke dimension: " << number(r.kaplan_yorke) << " (section " << number(r.kaplan_yorke_section)
+             << ")\n# resolved scene:\n";
+        write_scene_header(*out, scene);
+        *out << "# period";
+        for (std::size_t j = 0; j < r.exponents.size(); ++j) *out << "\tlambda_" << j + 1 << " [1/s]";
+        *out << "\n";
+        const std::size_t k = r.exponents.size();
+        for (std::size_t p = 0; p < r.periods; ++p) {
+          *out << p + 1;
+          for (std::size_t j = 0; j < k; ++j) *out << "\t" << number(r.running[p * k + j]);
+          *out << "\n";
+        }
+      }
+      if (lyap_json) std::cout << lyapunov_json(r).dump(2) << "\n";
+      if (!lyap_plot.empty() && r.periods > 0) plot_convergence(r, lyap_plot);
+      if (r.status == "trajectory_failed") {
+        std::cerr << "mechanism: the exponents could not be computed: " << r.message << "\n";
+        return integration_failed;
+      }
+      if (r.status != "completed" && !lyap_opts.quiet) std::cerr << "mechanism: warning: " << r.message << "\n";
       return ok;
     }
     // simulate

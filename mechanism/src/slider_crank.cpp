@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "law_kernels.hpp"
 #include "mechanism/contact_law.hpp"
 #include "mechanism/contact_stiffness.hpp"
+#include "mechanism/error.hpp"
 #include "mechanism/kinematic_jet.hpp"
 
 namespace mechanism {
@@ -85,15 +87,15 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
                                         material_compliance(j.journal.young_modulus, j.journal.poisson_ratio),
                                         j.bearing_radius, j.bearing_radius - j.clearance);
     sites_.push_back({SiteKind::journal, static_cast<int>(journals_.size()), -1});
-    journals_.push_back({&j, w, k});
+    journals_.push_back({w, k});
     journal_names_.emplace_back(joint_names[w]);
   }
   // LuGre sites carry their bristle deflection in the state, after the work accumulators. The
   // laws are checked here once; the right-hand side then calls their unchecked kernels.
   for (Site& site : sites_) {
     const bool journal = site.kind == SiteKind::journal;
-    const FrictionLawParameters& f = journal ? journals_[site.joint].joint->friction : s.slider_guide.friction;
-    const ContactLawParameters& c = journal ? journals_[site.joint].joint->contact : s.slider_guide.contact;
+    const FrictionLawParameters& f = journal ? revolute(journals_[site.joint]).friction : s.slider_guide.friction;
+    const ContactLawParameters& c = journal ? revolute(journals_[site.joint]).contact : s.slider_guide.contact;
     f.validate();
     c.validate();
     site.chi = hysteresis_factor(c.law, c.restitution);
@@ -466,7 +468,7 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
     }
     const double ex = jc->x.value - bc->x.value, ey = jc->y.value - bc->y.value;
     const double e = std::hypot(ex, ey);
-    se.penetration = e - jr.joint->clearance;
+    se.penetration = e - revolute(jr).clearance;
     if (!(se.penetration > 0.0)) {
       se.penetration_rate = e > 0.0 ? ((jc->x.rate - bc->x.rate) * ex + (jc->y.rate - bc->y.rate) * ey) / e : 0.0;
       continue;
@@ -474,7 +476,7 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
     const double nx = ex / e, ny = ey / e;
     se.penetration_rate = (jc->x.rate - bc->x.rate) * nx + (jc->y.rate - bc->y.rate) * ny;
     // The contact point on the bearing surface.
-    const double qx = bc->x.value + jr.joint->bearing_radius * nx, qy = bc->y.value + jr.joint->bearing_radius * ny;
+    const double qx = bc->x.value + revolute(jr).bearing_radius * nx, qy = bc->y.value + revolute(jr).bearing_radius * ny;
     double vjx, vjy, vbx, vby;
     point_velocity(jb, qx, qy, vjx, vjy);
     point_velocity(bb, qx, qy, vbx, vby);
@@ -482,12 +484,12 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
     const double vt = (vjx - vbx) * tx + (vjy - vby) * ty;
     se.stiffness = jr.stiffness;
     const double impact = mem.touching ? mem.impact_velocity : se.penetration_rate;
-    se.normal_force = detail::normal_force_kernel(site.chi, jr.joint->contact.exponent, jr.joint->contact.velocity_floor,
+    se.normal_force = detail::normal_force_kernel(site.chi, revolute(jr).contact.exponent, revolute(jr).contact.velocity_floor,
                                                   jr.stiffness, se.penetration, se.penetration_rate, impact);
     se.sliding_velocity = vt;
     se.deflection = site.state >= 0 ? x[site.state] : 0.0;
     const FrictionResult f =
-        site_friction(jr.joint->friction, jr.joint->bristle_time_floor, se.normal_force, vt, se.deflection);
+        site_friction(revolute(jr).friction, revolute(jr).bristle_time_floor, se.normal_force, vt, se.deflection);
     se.friction_force = f.force;
     se.deflection_rate = f.z_rate;
     // On the journal: pushed back toward the bearing centre, friction along the tangent.
@@ -655,6 +657,13 @@ void SliderCrank::error_weights(double t, const State& x, State& weights) const 
   compute(t, x, r);
   for (std::size_t i = 0; i < sites_.size(); ++i)
     if (sites_[i].state >= 0 && !(r.sites[i].penetration > 0.0)) weights[sites_[i].state] = 0.0;
+}
+
+void SliderCrank::set_memory(const std::vector<ContactMemory>& memory) {
+  if (memory.size() != memory_.size())
+    throw InvalidParameter("memory", std::to_string(memory.size()) + " sites",
+                           "must have one entry per contact site (" + std::to_string(memory_.size()) + ")");
+  memory_ = memory;
 }
 
 bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {

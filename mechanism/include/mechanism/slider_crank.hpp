@@ -130,6 +130,9 @@ class SliderCrank {
   bool commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x);
 
   const std::vector<ContactMemory>& memory() const { return memory_; }
+  // Replaces the memory (one entry per site, as memory() returns): how a trajectory that is
+  // continued by another SliderCrank of the same joints (a later crank phase) keeps its contacts.
+  void set_memory(const std::vector<ContactMemory>& memory);
   double omega() const { return omega_; }
 
  private:
@@ -158,11 +161,15 @@ class SliderCrank {
   // centre to load, and returns the corner penetrations (TL, TR, BL, BR).
   void slider_contacts(const double pose[3], const double rate[3], const State& x, Result& r, double load[3],
                        double corner_pen[4]) const;
+  // A revolute clearance joint, named by position rather than by pointer so that a copy of the
+  // system (a companion trajectory, finite_difference_lyapunov.hpp) reads its own scene.
   struct Journal {
-    const RevoluteJoint* joint;
     int which;  // 0 crank_ground, 1 crank_conrod, 2 conrod_slider
     double stiffness;
   };
+  const RevoluteJoint& revolute(const Journal& j) const {
+    return j.which == 0 ? scene_.crank_ground : (j.which == 1 ? scene_.crank_conrod : scene_.conrod_slider);
+  }
 
   Scene scene_;
   int n_ = 0;

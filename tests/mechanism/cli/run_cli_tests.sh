@@ -111,6 +111,34 @@ expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
 
+# mechanism lyapunov: the exponents from the equations (docs/mechanism/lyapunov.md). A short run of
+# the tilted, dissipative audit scene: JSON keys, one exponent per phase coordinate (conrod and
+# slider angles and their rates), the table's rows (one per period averaged), and refusals.
+tilted=(--set joint.slider.model=line --set joint.slider.friction.law=none --set joint.slider.contact.restitution=0.5
+  --set initial.slider_angle=0.01 --set initial.slider_rate=20)
+"$m" lyapunov -q "${tilted[@]}" --periods 10 --transient-periods 2 --json > "$work/lyap.json" 2> "$work/err" ||
+  fail "lyapunov --json: $(head -c 300 "$work/err")"
+for key in status exponents standard_error exponents_per_period kaplan_yorke kaplan_yorke_section collapsed coordinates \
+  scale period periods perturbation largest_separation wall_seconds; do
+  grep -q "\"$key\":" "$work/lyap.json" || fail "lyapunov --json lacks $key"
+done
+grep -q '"status": "completed"' "$work/lyap.json" || fail "lyapunov: the tilted scene did not complete: $(head -c 300 "$work/lyap.json")"
+n_exp=$(awk '/"exponents": \[/ { on = 1; next } on && /\]/ { print n; exit } on { n++ }' "$work/lyap.json")
+[[ $n_exp -eq 4 ]] || fail "lyapunov: expected 4 exponents, got $n_exp"
+"$m" lyapunov -q "${tilted[@]}" --periods 10 --transient-periods 2 -k 1 -o "$work/lyap.tsv" > "$work/out" 2> "$work/err" ||
+  fail "lyapunov -o: $(head -c 300 "$work/err")"
+rows=$(grep -vc '^#' "$work/lyap.tsv")
+[[ $rows -eq 10 ]] || fail "lyapunov: expected 10 rows (one per period), got $rows"
+grep -q '^# lambda_1 = ' "$work/lyap.tsv" || fail "lyapunov: the table's header lacks lambda_1"
+grep -q '^# lambda_2' "$work/lyap.tsv" && fail "lyapunov -k 1 wrote a second exponent"
+expect 3 "periods = 5: must be >= 10" -- lyapunov -q --periods 5
+expect 3 "perturbation = 0: must be in (0, 1)" -- lyapunov -q --perturbation 0
+expect 3 "rigid" -- lyapunov -q --set joint.slider.type=ideal
+expect 3 "exponents = 9: must be between 1 and the phase-space dimension" -- lyapunov -q --periods 10 -k 9
+"$m" lyapunov -q --periods -1 > /dev/null 2> "$work/err"
+code=$?
+[[ $code -eq 2 || $code -eq 3 ]] || fail "lyapunov --periods -1 exited $code: $(head -c 300 "$work/err")"
+
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2
   exit 1

@@ -1,0 +1,218 @@
+#pragma once
+// Lyapunov exponents of a map by finite differences: Benettin et al.'s renormalisation (Meccanica
+// 15, 9 (1980)) carried by k + 1 trajectories instead of variational equations. A reference
+// trajectory and k companions, each started delta away along one of k orthonormal directions, are
+// advanced through one iteration of the map; the companions' separations from the reference,
+// divided by delta, are orthonormalised (modified Gram-Schmidt, i.e. a QR factorisation), and
+// lambda_j is the mean of ln R_jj over the iterations. The companions then restart delta away from
+// the reference along the new directions, so a separation never grows beyond delta times one
+// iteration's stretch.
+//
+// Why finite differences: a non-smooth system (contact onsets and releases, latched impact
+// velocities, bristles reset at release) has no variational equation without saltation matrices
+// at every event. The companions go through the same events as the reference, so the jumps are in
+// the difference quotients wherever the separation stays smaller than the scale on which the events
+// move; `largest_growth` says how far each separation grew in one iteration, which is how a caller
+// checks that.
+//
+// The trajectory type carries its discrete memory with it (a copy is a companion with the
+// reference's memory) and exposes its continuous state as a phase point:
+//   T(const T&)                      copy: the companion starts with the reference's memory
+//   Eigen::VectorXd phase_point()    the coordinates the exponents are about
+//   void set_phase_point(v)          move the trajectory there (memory unchanged)
+//   bool advance()                   one iteration of the map; false when it cannot continue
+// Coordinates of different units are compared through `scale`: a separation dx counts as
+// dx ./ scale, so delta is relative to each coordinate's typical size.
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <concepts>
+#include <cstdio>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "mechanism/error.hpp"
+
+namespace mechanism {
+
+template <class T>
+concept PerturbableTrajectory = std::copy_constructible<T> && std::is_copy_assignable_v<T> &&
+                                requires(T& t, const T& ct, const Eigen::VectorXd& v) {
+                                  { ct.phase_point() } -> std::convertible_to<Eigen::VectorXd>;
+                                  t.set_phase_point(v);
+                                  { t.advance() } -> std::same_as<bool>;
+                                };
+
+struct FiniteDifferenceOptions {
+  int exponents = 1;                   // k: the k leading exponents (1 <= k <= dimension)
+  double perturbation = 1e-8;          // delta, in scaled coordinates
+  std::size_t transient = 20;          // iterations that align the directions, not averaged
+  std::size_t iterations = 1000;       // iterations averaged
+  std::size_t blocks = 10;             // the average is also split into this many blocks (error)
+  std::uint64_t seed = 1;              // the initial directions (random, then orthonormalised)
+  Eigen::VectorXd scale;               // per coordinate; empty: all 1
+  std::function<void(double fraction)> progress;  // optional, about every percent
+  void validate(Eigen::Index dimension) const;    // throws InvalidParameter naming the option
+};
+
+struct FiniteDifferenceLyapunov {
+  enum class Status { completed, trajectory_failed };
+  Status status = Status::completed;
+  std::string message;                 // why a run stopped early
+  std::vector<double> exponents;       // per iteration, in QR order (descending for a long run)
+  // The standard error of each mean from its block means (their standard deviation / sqrt(blocks)).
+  std::vector<double> standard_error;
+  // The running means after each averaged iteration (iterations x k, row-major).
+  std::vector<double> running;
+  std::size_t iterations = 0;          // iterations averaged
+  double largest_growth = 0.0;         // max over iterations and companions of |separation| / delta
+  // Per exponent: iterations in which its direction collapsed to zero (a non-invertible step such
+  // as a reset state); its mean is then -inf.
+  std::vector<std::size_t> collapsed;
+};
+
+namespace detail {
+[[noreturn]] inline void throw_invalid_option(const char* key, double value, const std::string& rule) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  throw InvalidParameter(key, buf, rule);
+}
+}  // namespace detail
+
+inline void FiniteDifferenceOptions::validate(Eigen::Index dimension) const {
+  if (exponents < 1 || exponents > dimension)
+    detail::throw_invalid_option("exponents", exponents,
+                                 "must be between 1 and the phase-space dimension " + std::to_string(dimension));
+  if (!(perturbation > 0.0 && perturbation < 1.0))
+    detail::throw_invalid_option("perturbation", perturbation, "must be in (0, 1) (scaled coordinates)");
+  if (iterations < 1) detail::throw_invalid_option("iterations", 0.0, "must be >= 1");
+  if (blocks < 1 || blocks > iterations)
+    detail::throw_invalid_option("blocks", static_cast<double>(blocks), "must be between 1 and the iterations");
+  if (scale.size() != 0) {
+    if (scale.size() != dimension)
+      detail::throw_invalid_option("scale", static_cast<double>(scale.size()),
+                                   "must have one entry per coordinate (" + std::to_string(dimension) + ")");
+    for (Eigen::Index i = 0; i < scale.size(); ++i)
+      if (!(scale[i] > 0.0 && std::isfinite(scale[i])))
+        detail::throw_invalid_option("scale", scale[i], "every entry must be finite and > 0");
+  }
+}
+
+// Runs the method from `reference` (advanced in place: it ends where the run ended).
+template <PerturbableTrajectory T>
+FiniteDifferenceLyapunov finite_difference_lyapunov(T& reference, const FiniteDifferenceOptions& options) {
+  const Eigen::VectorXd start = reference.phase_point();
+  const Eigen::Index d = start.size();
+  options.validate(d);
+  const int k = options.exponents;
+  const Eigen::VectorXd scale = options.scale.size() ? options.scale : Eigen::VectorXd::Ones(d);
+  const double delta = options.perturbation;
+
+  // Initial directions: seeded Gaussian vectors, orthonormalised (no coordinate is singled out).
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd q(d, k);
+  for (Eigen::Index i = 0; i < q.size(); ++i) q.data()[i] = normal(rng);
+  auto orthonormalise = [&](Eigen::MatrixXd& y, Eigen::VectorXd& r_diag, std::vector<bool>& dead) {
+    for (int j = 0; j < k; ++j) {
+      for (int i = 0; i < j; ++i) y.col(j) -= y.col(i).dot(y.col(j)) * y.col(i);
+      r_diag[j] = y.col(j).norm();
+      dead[j] = !(r_diag[j] > 0.0);
+      if (dead[j]) {
+        // A collapsed direction restarts along a fresh random one, orthogonal to those before it.
+        for (Eigen::Index i = 0; i < d; ++i) y(i, j) = normal(rng);
+        for (int i = 0; i < j; ++i) y.col(j) -= y.col(i).dot(y.col(j)) * y.col(i);
+      }
+      y.col(j) /= y.col(j).norm();
+    }
+  };
+  Eigen::VectorXd r_diag(k);
+  std::vector<bool> dead(static_cast<std::size_t>(k));
+  orthonormalise(q, r_diag, dead);
+
+  FiniteDifferenceLyapunov out;
+  out.exponents.assign(static_cast<std::size_t>(k), 0.0);
+  out.collapsed.assign(static_cast<std::size_t>(k), 0);
+  const std::size_t total = options.transient + options.iterations;
+  const std::size_t block_length = options.iterations / options.blocks;
+  std::vector<double> sums(static_cast<std::size_t>(k), 0.0), block_sums(static_cast<std::size_t>(k), 0.0);
+  std::vector<std::vector<double>> block_means(static_cast<std::size_t>(k));
+  out.running.reserve(options.iterations * static_cast<std::size_t>(k));
+
+  std::vector<T> companions(static_cast<std::size_t>(k), reference);
+  Eigen::MatrixXd y(d, k);
+  double last_progress = -1.0;
+  for (std::size_t it = 0; it < total; ++it) {
+    const Eigen::VectorXd x0 = reference.phase_point();
+    for (int j = 0; j < k; ++j) {
+      T& c = companions[static_cast<std::size_t>(j)];
+      c = reference;  // the reference's memory
+      c.set_phase_point(x0 + delta * scale.cwiseProduct(q.col(j)));
+    }
+    auto fail = [&](const std::string& who) {
+      out.status = FiniteDifferenceLyapunov::Status::trajectory_failed;
+      out.message = "the " + who + " could not be advanced at iteration " + std::to_string(it);
+    };
+    if (!reference.advance()) {
+      fail("reference trajectory");
+      break;
+    }
+    bool ok = true;
+    for (int j = 0; j < k && ok; ++j) ok = companions[static_cast<std::size_t>(j)].advance();
+    if (!ok) {
+      fail("companion trajectory");
+      break;
+    }
+    const Eigen::VectorXd x1 = reference.phase_point();
+    for (int j = 0; j < k; ++j)
+      y.col(j) = (companions[static_cast<std::size_t>(j)].phase_point() - x1).cwiseQuotient(scale) / delta;
+    for (int j = 0; j < k; ++j) out.largest_growth = std::max(out.largest_growth, y.col(j).norm());
+    orthonormalise(y, r_diag, dead);
+    q = y;
+    if (it < options.transient) continue;
+    const std::size_t n = it - options.transient + 1;
+    for (int j = 0; j < k; ++j) {
+      const auto js = static_cast<std::size_t>(j);
+      const double log_r = dead[js] ? -std::numeric_limits<double>::infinity() : std::log(r_diag[j]);
+      if (dead[js]) ++out.collapsed[js];
+      sums[js] += log_r;
+      block_sums[js] += log_r;
+      out.running.push_back(sums[js] / static_cast<double>(n));
+      if (n % block_length == 0 && block_means[js].size() < options.blocks) {
+        block_means[js].push_back(block_sums[js] / static_cast<double>(block_length));
+        block_sums[js] = 0.0;
+      }
+    }
+    out.iterations = n;
+    if (options.progress) {
+      const double f = static_cast<double>(it + 1) / static_cast<double>(total);
+      if (f - last_progress >= 0.01 || it + 1 == total) {
+        options.progress(f);
+        last_progress = f;
+      }
+    }
+  }
+  out.standard_error.assign(static_cast<std::size_t>(k), std::numeric_limits<double>::quiet_NaN());
+  for (int j = 0; j < k; ++j) {
+    const auto js = static_cast<std::size_t>(j);
+    out.exponents[js] = out.iterations ? sums[js] / static_cast<double>(out.iterations)
+                                       : std::numeric_limits<double>::quiet_NaN();
+    const auto& b = block_means[js];
+    if (b.size() >= 2) {
+      double mean = 0.0, ss = 0.0;
+      for (double v : b) mean += v;
+      mean /= static_cast<double>(b.size());
+      for (double v : b) ss += (v - mean) * (v - mean);
+      out.standard_error[js] = std::sqrt(ss / static_cast<double>(b.size() - 1) / static_cast<double>(b.size()));
+    }
+  }
+  return out;
+}
+
+}  // namespace mechanism

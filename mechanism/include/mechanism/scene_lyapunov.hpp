@@ -1,0 +1,82 @@
+#pragma once
+// The Lyapunov exponents of a scene from its equations of motion, not from a measured series.
+//
+// The crank turns at constant speed, so the equations are periodic in t with the crank period T:
+// one period of simulate() is one iteration of an autonomous map of the phase point (the
+// stroboscopic map), the composition of m maps over the intervals T/m between renormalisations. finite_difference_lyapunov.hpp runs Benettin's renormalisation on that map with
+// k + 1 copies of the system, each carrying its own contact memory, so contact onsets, releases,
+// latched impact velocities and bristle resets are all inside the map; no saltation matrix is
+// needed. The phase point is (q, q_dot, z): the generalised coordinates, their rates and the LuGre
+// bristle deflections; the work accumulators are bookkeeping, not dynamics, and are left out.
+//
+// The period map's exponents mu_j are the flow's exponents times T; the flow in the extended
+// phase space (with the crank phase) has one more exponent, 0, along the time direction. So
+// lambda_j = mu_j / T (1/s), the section's Kaplan-Yorke dimension is that of the mu_j, and the
+// attractor's is one more.
+//
+// Coordinates of different units are compared through a scale: the standard deviation of each
+// coordinate over one period sampled 200 times after the transient (its mean magnitude where it
+// does not move, 1 where it is identically 0). The perturbation is relative to that scale.
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mechanism/scene.hpp"
+
+namespace mechanism {
+
+struct SceneLyapunovOptions {
+  int exponents = 0;                 // k leading exponents; 0: all of them (the phase-space dimension)
+  double perturbation = 1e-8;        // delta, relative to each coordinate's scale
+  std::size_t transient_periods = 20;  // periods that align the directions (after run.transient)
+  std::size_t periods = 200;         // periods averaged
+  // Renormalisations per crank period: the separations must stay small within one interval, and
+  // contacts stretch them fast (the seed scene: about e^20 per period).
+  int intervals_per_period = 50;
+  std::uint64_t seed = 1;            // the initial directions
+  std::function<void(double fraction)> progress;
+  void validate() const;             // throws InvalidParameter naming the option
+};
+
+// A separation that grows beyond this (in scaled coordinates) within one interval has left the
+// linear range of most contacts: the result's status is then `nonlinear`.
+inline constexpr double max_linear_separation = 1e-3;
+
+struct SceneLyapunov {
+  // completed; nonlinear (see max_linear_separation: repeat with a smaller perturbation);
+  // collapsed (a direction was annihilated, e.g. bristles reset at release: that exponent is -inf);
+  // invariant_subspace (a coordinate did not move: the orbit is confined to a subspace, such as a
+  // level slider without friction, and the exponents are those of that set and of the growth
+  // transverse to it); trajectory_failed (a period could not be integrated: message says why).
+  std::string status = "completed";
+  std::string message;
+  std::vector<std::string> coordinates;  // the phase-space coordinates, in the state's order
+  std::vector<double> scale;             // their scales
+  double period = 0.0;                   // s, one crank period (one iteration)
+  std::size_t periods = 0;               // periods averaged
+  double perturbation = 0.0;
+  double largest_separation = 0.0;       // delta times the largest growth within one interval
+  std::vector<double> exponents;         // 1/s, lambda_j = mu_j / T, in QR order
+  std::vector<double> standard_error;    // 1/s, from 10 block means
+  std::vector<double> exponents_per_period;  // mu_j
+  std::vector<std::size_t> collapsed;    // per exponent: periods in which its direction collapsed
+  // Kaplan-Yorke of the section (from the mu_j) and of the attractor (one more); NaN when the
+  // k exponents computed do not reach a negative partial sum (the dimension is then at least k).
+  double kaplan_yorke_section = std::numeric_limits<double>::quiet_NaN();
+  double kaplan_yorke = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> running;           // 1/s: periods x k running means, row-major
+  double wall_seconds = 0.0;
+};
+
+// Kaplan & Yorke (1979): j + (x_1 + ... + x_j) / |x_(j+1)| with j the largest index whose partial
+// sum of the descending exponents is >= 0; 0 when x_1 < 0; NaN when every partial sum is >= 0 (the
+// exponents given do not bound the dimension) or an exponent is NaN.
+double kaplan_yorke_dimension(std::vector<double> exponents);
+
+SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& options = {});
+
+}  // namespace mechanism

@@ -1,0 +1,220 @@
+#include "mechanism/scene_lyapunov.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include "mechanism/error.hpp"
+#include "mechanism/finite_difference_lyapunov.hpp"
+#include "mechanism/simulate.hpp"
+#include "mechanism/slider_crank.hpp"
+
+namespace mechanism {
+
+namespace {
+
+// One interval (a whole fraction 1/m of the crank period) of simulate() as a map of the phase
+// point (q, q_dot, z). Interval j of a period runs on a SliderCrank whose crank starts at phase j/m;
+// the m systems are shared by every trajectory, and each trajectory carries its own contact memory
+// into the system it runs on. A copy is therefore a companion with the reference's memory, and
+// copying costs a state and a memory, not m systems.
+class SceneTrajectory {
+ public:
+  SceneTrajectory(const Scene& scene, int intervals) : systems_(std::make_shared<std::vector<SliderCrank>>()) {
+    const double period = scene.driver.period();
+    for (int j = 0; j < intervals; ++j) {
+      Scene part = scene;
+      part.run.transient = 0.0;
+      part.run.duration = period / intervals;
+      part.run.output_interval = period / intervals / 200.0;  // rows only when an observer asks
+      part.run.stroboscopic = false;
+      part.driver.initial_angle = scene.driver.initial_angle + 2.0 * M_PI * j / intervals;
+      systems_->emplace_back(part);
+    }
+    x_ = systems_->front().initial_state();
+    memory_ = systems_->front().memory();
+  }
+
+  Eigen::VectorXd phase_point() const {
+    const int n = system().coordinate_count();
+    const Eigen::Index z = x_.size() - 2 * n - 2;
+    Eigen::VectorXd p(2 * n + z);
+    p.head(2 * n) = x_.head(2 * n);
+    p.tail(z) = x_.tail(z);
+    return p;
+  }
+  void set_phase_point(const Eigen::VectorXd& p) {
+    const int n = system().coordinate_count();
+    const Eigen::Index z = x_.size() - 2 * n - 2;
+    x_.head(2 * n) = p.head(2 * n);
+    x_.tail(z) = p.tail(z);
+  }
+  bool advance() { return advance({}); }
+  bool advance(const SimulationObserver& observer) {
+    SliderCrank& sys = (*systems_)[phase_];
+    sys.set_memory(memory_);
+    const SimulationSummary s = simulate(sys, x_, observer);
+    if (s.status != SimulationStatus::completed) {
+      failure_ = std::string(to_string(s.status)) + ": " + s.message;
+      return false;
+    }
+    x_ = s.final_state;
+    memory_ = sys.memory();
+    phase_ = (phase_ + 1) % systems_->size();
+    return true;
+  }
+  const SliderCrank& system() const { return systems_->front(); }
+  const std::string& failure() const { return failure_; }
+
+ private:
+  std::shared_ptr<std::vector<SliderCrank>> systems_;
+  std::size_t phase_ = 0;  // the interval of the period the next advance() runs
+  State x_;
+  std::vector<ContactMemory> memory_;
+  std::string failure_;
+};
+static_assert(PerturbableTrajectory<SceneTrajectory>);
+
+std::vector<std::string> phase_names(const SliderCrank& system) {
+  std::vector<std::string> names = system.coordinate_names();
+  for (const std::string& c : system.coordinate_names()) names.push_back(c + "_rate");
+  for (std::size_t i = 0; i < system.site_count(); ++i)
+    if (system.bristle_index(i) >= 0) names.push_back("bristle_" + std::to_string(i));
+  return names;
+}
+
+}  // namespace
+
+void SceneLyapunovOptions::validate() const {
+  if (exponents < 0) detail::throw_invalid_option("exponents", exponents, "must be >= 0 (0: all)");
+  if (!(perturbation > 0.0 && perturbation < 1.0))
+    detail::throw_invalid_option("perturbation", perturbation, "must be in (0, 1) (relative to each coordinate's scale)");
+  if (intervals_per_period < 1 || intervals_per_period > 10000)
+    detail::throw_invalid_option("intervals_per_period", intervals_per_period, "must be between 1 and 10000");
+  if (periods < 10)
+    detail::throw_invalid_option("periods", static_cast<double>(periods),
+                                 "must be >= 10 (the standard error comes from 10 block means)");
+}
+
+double kaplan_yorke_dimension(std::vector<double> exponents) {
+  for (double v : exponents)
+    if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(exponents.begin(), exponents.end(), std::greater<>());
+  if (exponents.empty() || exponents.front() < 0.0) return 0.0;
+  double sum = 0.0;
+  for (std::size_t j = 0; j < exponents.size(); ++j) {
+    const double next = sum + exponents[j];
+    if (next < 0.0) return static_cast<double>(j) + sum / std::abs(exponents[j]);
+    sum = next;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& options) {
+  options.validate();
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double period = scene.driver.period();
+  const int m = options.intervals_per_period;
+  const double interval = period / m;
+  SceneTrajectory reference(scene, m);
+
+  SceneLyapunov out;
+  out.period = period;
+  out.perturbation = options.perturbation;
+  out.coordinates = phase_names(reference.system());
+  const auto d = static_cast<Eigen::Index>(out.coordinates.size());
+  if (d == 0)
+    throw InvalidParameter("scene", "every joint ideal",
+                           "has no phase space: the mechanism is rigid (give a joint clearance)");
+
+  // The scene's transient, in whole periods so that the first iteration starts at the initial
+  // crank angle.
+  const auto transient = static_cast<std::size_t>(std::ceil(scene.run.transient / period - 1e-9)) * m;
+  for (std::size_t i = 0; i < transient; ++i) {
+    if (!reference.advance()) {
+      out.status = "trajectory_failed";
+      out.message = "the transient could not be integrated: " + reference.failure();
+      return out;
+    }
+  }
+  // Scales: one period sampled 200 times (mechanism::simulate's time-series rows).
+  std::vector<Eigen::VectorXd> samples;
+  SimulationObserver sampler;
+  SceneTrajectory probe = reference;
+  sampler.sample = [&](double, const State& x, const Evaluation&) {
+    const int nq = reference.system().coordinate_count();
+    Eigen::VectorXd p(d);
+    p.head(2 * nq) = x.head(2 * nq);
+    p.tail(d - 2 * nq) = x.tail(d - 2 * nq);
+    samples.push_back(std::move(p));
+  };
+  for (int j = 0; j < m; ++j) {
+    if (!probe.advance(sampler)) {
+      out.status = "trajectory_failed";
+      out.message = "the scale period could not be integrated: " + probe.failure();
+      return out;
+    }
+  }
+  Eigen::VectorXd scale(d);
+  std::string still;  // mechanical coordinates that did not move over the sampled period
+  const int n = reference.system().coordinate_count();
+  for (Eigen::Index i = 0; i < d; ++i) {
+    double mean = 0.0, ss = 0.0;
+    for (const auto& p : samples) mean += p[i];
+    mean /= static_cast<double>(samples.size());
+    for (const auto& p : samples) ss += (p[i] - mean) * (p[i] - mean);
+    const double spread = std::sqrt(ss / static_cast<double>(samples.size()));
+    scale[i] = spread > 0.0 ? spread : (mean != 0.0 ? std::abs(mean) : 1.0);
+    if (!(spread > 0.0) && i < 2 * n) still += (still.empty() ? "" : ", ") + out.coordinates[static_cast<std::size_t>(i)];
+  }
+  out.scale.assign(scale.data(), scale.data() + d);
+
+  FiniteDifferenceOptions fd;
+  fd.exponents = options.exponents == 0 ? static_cast<int>(d) : options.exponents;
+  fd.perturbation = options.perturbation;
+  fd.transient = options.transient_periods * static_cast<std::size_t>(m);
+  fd.iterations = options.periods * static_cast<std::size_t>(m);
+  fd.blocks = 10;
+  fd.seed = options.seed;
+  fd.scale = scale;
+  fd.progress = options.progress;
+  const FiniteDifferenceLyapunov r = finite_difference_lyapunov(reference, fd);
+
+  const std::size_t k = r.exponents.size();
+  out.periods = r.iterations / static_cast<std::size_t>(m);
+  out.largest_separation = options.perturbation * r.largest_growth;
+  out.collapsed = r.collapsed;
+  for (double mu : r.exponents) out.exponents.push_back(mu / interval);
+  for (double mu : r.exponents) out.exponents_per_period.push_back(mu * m);
+  for (double se : r.standard_error) out.standard_error.push_back(se / interval);
+  out.running.reserve(out.periods * k);
+  for (std::size_t p = 1; p <= out.periods; ++p)
+    for (std::size_t j = 0; j < k; ++j) out.running.push_back(r.running[(p * m - 1) * k + j] / interval);
+  out.kaplan_yorke_section = kaplan_yorke_dimension(out.exponents_per_period);
+  out.kaplan_yorke = out.kaplan_yorke_section + 1.0;
+  if (r.status != FiniteDifferenceLyapunov::Status::completed) {
+    out.status = "trajectory_failed";
+    out.message = r.message;
+  } else if (std::any_of(r.collapsed.begin(), r.collapsed.end(), [](std::size_t c) { return c > 0; })) {
+    out.status = "collapsed";
+    out.message = "a direction was annihilated within a period (a bristle reset at release, for example): its "
+                  "exponent is -inf";
+  } else if (!still.empty()) {
+    out.status = "invariant_subspace";
+    out.message = still + " did not move over the sampled period: the orbit lies in an invariant subspace (a level "
+                          "slider without friction stays level), and the exponents describe that subspace, with the "
+                          "growth transverse to it, not an attractor off it; start it off the subspace (e.g. "
+                          "initial.slider_angle) to study that";
+  } else if (out.largest_separation > max_linear_separation) {
+    out.status = "nonlinear";
+    out.message = "a separation grew to " + std::to_string(out.largest_separation) +
+                  " of its coordinate's scale within one interval: repeat with a smaller perturbation or more "
+                  "intervals per period";
+  }
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+}  // namespace mechanism
