@@ -154,6 +154,7 @@ nlohmann::ordered_json lyapunov_json(const mechanism::SceneLyapunov& r) {
   for (double v : r.standard_error) j["standard_error"].push_back(finite_or_null(v));
   j["exponents_per_period"] = nlohmann::ordered_json::array();
   for (double v : r.exponents_per_period) j["exponents_per_period"].push_back(finite_or_null(v));
+  j["resolution_limit"] = r.resolution_limit;
   j["kaplan_yorke"] = finite_or_null(r.kaplan_yorke);
   j["kaplan_yorke_section"] = finite_or_null(r.kaplan_yorke_section);
   j["collapsed"] = r.collapsed;
@@ -280,6 +281,8 @@ int main(int argc, char** argv) {
         for (std::size_t j = 0; j < r.exponents.size(); ++j)
           *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";
+        *out << "# exponents near or below " << number(r.resolution_limit)
+             << " 1/s contract past double precision within one interval: bounds, not values\n";
         *out << "# Kaplan-Yorke dimension: " << number(r.kaplan_yorke) << " (section " << number(r.kaplan_yorke_section)
              << ")\n# resolved scene:\n";
         write_scene_header(*out, scene);

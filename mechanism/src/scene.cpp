@@ -71,6 +71,10 @@ struct EnumNames<SliderContactModel> {
   static constexpr std::string_view names[] = {"face", "corners", "line"};
 };
 template <>
+struct EnumNames<SliderRotation> {
+  static constexpr std::string_view names[] = {"free", "locked"};
+};
+template <>
 struct EnumNames<SliderStiffness> {
   static constexpr std::string_view names[] = {"contact_length", "flat_face", "given"};
 };
@@ -192,6 +196,9 @@ void visit_fields(Visitor& v, Scene& s) {
   v.choice(t + "model", s.slider_guide.model,
            "face (seed Eq. 18-19: one force per surface at the contact centroid), corners (Flores 2008) or line "
            "(a pressure along each face: conserves energy at any tilt)");
+  v.choice(t + "rotation", s.slider_guide.rotation,
+           "free (the seed: the slider's angle is a coordinate) or locked (an ideal anti-rotation constraint keeps it "
+           "level: one coordinate fewer)");
   v.choice(t + "stiffness_model", s.slider_guide.stiffness_model,
            "contact_length (seed Eq. 11-12), flat_face (Eq. 11 at L_c = L_s) or given");
   v.number(t + "stiffness", s.slider_guide.stiffness, Rule::positive,
@@ -434,6 +441,11 @@ void check_consistency(const Scene& s) {
                              format_number(s.initial.slider_angle != 0.0 ? s.initial.slider_angle
                                                                          : s.initial.slider_rate),
                              "needs joint.slider.type = \"clearance\": on an ideal guide the slider cannot turn");
+    if (s.slider_guide.rotation == SliderRotation::locked)
+      throw InvalidParameter(s.initial.slider_angle != 0.0 ? "initial.slider_angle" : "initial.slider_rate",
+                             format_number(s.initial.slider_angle != 0.0 ? s.initial.slider_angle
+                                                                         : s.initial.slider_rate),
+                             "needs joint.slider.rotation = \"free\": a locked slider stays level");
     const double a = s.initial.slider_angle;
     const double half_extent = 0.5 * s.slider.length * std::abs(std::sin(a)) + 0.5 * s.slider.height * std::abs(std::cos(a));
     const double guide_half = 0.5 * s.slider.height + s.slider_guide.clearance;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -184,6 +185,7 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
 
   const std::size_t k = r.exponents.size();
   out.periods = r.iterations / static_cast<std::size_t>(m);
+  out.resolution_limit = std::log(std::numeric_limits<double>::epsilon()) / interval;
   out.largest_separation = options.perturbation * r.largest_growth;
   out.collapsed = r.collapsed;
   for (double mu : r.exponents) out.exponents.push_back(mu / interval);
@@ -197,21 +199,21 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   if (r.status != FiniteDifferenceLyapunov::Status::completed) {
     out.status = "trajectory_failed";
     out.message = r.message;
-  } else if (std::any_of(r.collapsed.begin(), r.collapsed.end(), [](std::size_t c) { return c > 0; })) {
-    out.status = "collapsed";
-    out.message = "a direction was annihilated within a period (a bristle reset at release, for example): its "
-                  "exponent is -inf";
+  } else if (out.largest_separation > max_linear_separation) {
+    out.status = "nonlinear";
+    out.message = "a separation grew to " + std::to_string(out.largest_separation) +
+                  " of its coordinate's scale within one interval: repeat with a smaller perturbation or more "
+                  "intervals per period";
   } else if (!still.empty()) {
     out.status = "invariant_subspace";
     out.message = still + " did not move over the sampled period: the orbit lies in an invariant subspace (a level "
                           "slider without friction stays level), and the exponents describe that subspace, with the "
                           "growth transverse to it, not an attractor off it; start it off the subspace (e.g. "
                           "initial.slider_angle) to study that";
-  } else if (out.largest_separation > max_linear_separation) {
-    out.status = "nonlinear";
-    out.message = "a separation grew to " + std::to_string(out.largest_separation) +
-                  " of its coordinate's scale within one interval: repeat with a smaller perturbation or more "
-                  "intervals per period";
+  } else if (std::any_of(r.collapsed.begin(), r.collapsed.end(), [](std::size_t c) { return c > 0; })) {
+    // Not a failure: the map is not invertible there, and those exponents are -inf.
+    out.message = "some directions were annihilated within an interval (bristle deflections reset when their "
+                  "contact opens): their exponents are -inf";
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

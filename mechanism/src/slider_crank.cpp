@@ -58,7 +58,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     idx_slider_x_ = add("slider_x");
     if (slider_clearance_) idx_slider_y_ = add("slider_y");
   }
-  if (slider_clearance_) idx_slider_angle_ = add("slider_angle");
+  if (slider_clearance_ && s.slider_guide.rotation == SliderRotation::free) idx_slider_angle_ = add("slider_angle");
 
   if (slider_clearance_) {
     const TranslationalJoint& t = s.slider_guide;
@@ -325,7 +325,9 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
 void SliderCrank::compute_seed(double t, const State& x, Result& out) const {
   const Scene& s = scene_;
   const double w2 = omega_, th2 = s.driver.initial_angle + w2 * t;
-  const double th3 = x[0], th4 = x[1], w3 = x[2], w4 = x[3];
+  // Coordinates: theta_3 and, unless the slider's rotation is locked (then level: 0), theta_4.
+  const bool turns = idx_slider_angle_ >= 0;
+  const double th3 = x[0], th4 = turns ? x[1] : 0.0, w3 = x[n_], w4 = turns ? x[n_ + 1] : 0.0;
   const double c2 = std::cos(th2), s2 = std::sin(th2), c3 = std::cos(th3), s3 = std::sin(th3);
   const double l2 = s.crank.length, a2 = s.crank.mass_centre * l2;
   const double l3 = s.conrod.length, a3 = s.conrod.mass_centre * l3;
@@ -356,10 +358,10 @@ void SliderCrank::compute_seed(double t, const State& x, Result& out) const {
   const double fx3 = -m3 * conrod_bx, fy3 = -m3 * g - m3 * conrod_by;
   const double fx4 = load[0] - m4 * slider_bx, fy4 = load[1] - m4 * g - m4 * slider_by;
   const double q0 = a3 * (c3 * fy3 - s3 * fx3) + l3 * (c3 * fy4 - s3 * fx4);
-  const double q1 = load[2];
-  const double qdd0 = q0 / (m3 * a3 * a3 + i3 + m4 * l3 * l3), qdd1 = q1 / i4;
+  // A locked slider: the constraint takes the contact moment load[2] (and does no work, w4 = 0).
+  const double qdd0 = q0 / (m3 * a3 * a3 + i3 + m4 * l3 * l3), qdd1 = turns ? load[2] / i4 : 0.0;
   out.q_ddot[0] = qdd0;
-  out.q_ddot[1] = qdd1;
+  if (turns) out.q_ddot[1] = qdd1;
 
   // Accelerations, then the driving torque J_theta2^T (m a - F) with J_theta2 = (-y, x, 1) of the
   // crank-fixed point each body hangs from.

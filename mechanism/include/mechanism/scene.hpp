@@ -68,6 +68,14 @@ enum class JointKind { ideal, clearance };
 //            (docs/mechanism/model.md, "Energy from a tilted start").
 enum class SliderContactModel { face, corners, line };
 
+// Whether the slider may turn in the guide.
+//   free:   the seed's model (Eq. 19 and 27): the slider's angle is a coordinate;
+//   locked: an ideal anti-rotation constraint keeps it level. It is modelled as what it is, one
+//           coordinate fewer, not as a huge inertia; the constraint's moment does no work. The
+//           contacts are those of a level slider (docs/mechanism/lyapunov.md uses this to ask how
+//           much of the dynamics the slider's rotation makes).
+enum class SliderRotation { free, locked };
+
 // The stiffness of the slider-guide contact.
 //   contact_length: seed Eq. 11 with S = L_c W and L_c from Eq. 12 (changes during contact);
 //   flat_face:      Eq. 11 evaluated once at L_c = L_s (a constant);
@@ -78,6 +86,7 @@ struct TranslationalJoint {
   JointKind kind = JointKind::clearance;
   double clearance = 0.5e-3;  // gap per side: guide height = slider height + 2 clearance
   SliderContactModel model = SliderContactModel::face;
+  SliderRotation rotation = SliderRotation::free;
   SliderStiffness stiffness_model = SliderStiffness::contact_length;
   double stiffness = 1e10;  // used only when stiffness_model = given
   Material guide;

@@ -47,9 +47,9 @@ struct SceneLyapunovOptions {
 inline constexpr double max_linear_separation = 1e-3;
 
 struct SceneLyapunov {
-  // completed; nonlinear (see max_linear_separation: repeat with a smaller perturbation);
-  // collapsed (a direction was annihilated, e.g. bristles reset at release: that exponent is -inf);
-  // invariant_subspace (a coordinate did not move: the orbit is confined to a subspace, such as a
+  // completed (message notes directions that collapsed: bristles reset at release make the map
+  // non-invertible, and those exponents are -inf); nonlinear (see max_linear_separation: repeat with
+  // a smaller perturbation); invariant_subspace (a coordinate did not move: the orbit is confined to a subspace, such as a
   // level slider without friction, and the exponents are those of that set and of the growth
   // transverse to it); trajectory_failed (a period could not be integrated: message says why).
   std::string status = "completed";
@@ -61,6 +61,10 @@ struct SceneLyapunov {
   double perturbation = 0.0;
   double largest_separation = 0.0;       // delta times the largest growth within one interval
   std::vector<double> exponents;         // 1/s, lambda_j = mu_j / T, in QR order
+  // 1/s: a direction that contracts faster than this loses all its digits within one interval
+  // (ln of double's epsilon per interval), so exponents near or below it are bounds, not values
+  // (the LuGre bristles' relaxation, for instance).
+  double resolution_limit = 0.0;
   std::vector<double> standard_error;    // 1/s, from 10 block means
   std::vector<double> exponents_per_period;  // mu_j
   std::vector<std::size_t> collapsed;    // per exponent: periods in which its direction collapsed

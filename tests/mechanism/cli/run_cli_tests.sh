@@ -118,7 +118,7 @@ tilted=(--set joint.slider.model=line --set joint.slider.friction.law=none --set
   --set initial.slider_angle=0.01 --set initial.slider_rate=20)
 "$m" lyapunov -q "${tilted[@]}" --periods 10 --transient-periods 2 --json > "$work/lyap.json" 2> "$work/err" ||
   fail "lyapunov --json: $(head -c 300 "$work/err")"
-for key in status exponents standard_error exponents_per_period kaplan_yorke kaplan_yorke_section collapsed coordinates \
+for key in status exponents standard_error exponents_per_period resolution_limit kaplan_yorke kaplan_yorke_section collapsed coordinates \
   scale period periods perturbation largest_separation wall_seconds; do
   grep -q "\"$key\":" "$work/lyap.json" || fail "lyapunov --json lacks $key"
 done

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "mechanism/contact_stiffness.hpp"
+#include "mechanism/error.hpp"
 #include "mechanism/line_contact.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/slider_crank.hpp"
@@ -123,6 +124,45 @@ TEST(SliderCrank, SeedClosedFormMatchesTheJets) {
       EXPECT_GT(cases, 10) << "the poses must put the slider in contact";
     }
   }
+}
+
+TEST(SliderCrank, LockedRotationIsOneCoordinateFewerAndMatchesTheJets) {
+  // joint.slider.rotation = "locked": the slider stays level, theta_4 is not a coordinate. The
+  // closed form and the jets agree as for the free slider, and at a level pose the conrod's
+  // acceleration equals the free slider's (the contact moment that would turn the free slider goes
+  // into the constraint, not into theta_3).
+  for (const char* model : {"face", "corners", "line"}) {
+    const std::vector<std::string> common = {std::string("joint.slider.model=") + model, "joint.slider.friction.law=coulomb"};
+    std::vector<std::string> locked_set = common;
+    locked_set.push_back("joint.slider.rotation=locked");
+    const SliderCrank locked(read_scene("", locked_set)), free_slider(read_scene("", common));
+    ASSERT_EQ(locked.coordinate_count(), 1);
+    EXPECT_EQ(locked.coordinate_names(), std::vector<std::string>{"conrod_angle"});
+    State x = locked.initial_state(), xf = free_slider.initial_state();
+    Evaluation a, b, f;
+    int cases = 0;
+    for (double t : {0.0, 1.3e-3, 4.1e-3, 7.7e-3}) {
+      for (double slider_y : {0.0, -0.52e-3, 0.55e-3}) {
+        x[0] = xf[0] = std::asin((slider_y - 0.05 * std::sin(523.6 * t)) / 0.12);
+        x[1] = xf[2] = 3.0 - 1e3 * slider_y;  // conrod rate
+        xf[1] = xf[3] = 0.0;                  // the free slider level and not turning
+        locked.evaluate(t, x, a);
+        locked.evaluate_with_jets(t, x, b);
+        free_slider.evaluate(t, xf, f);
+        const double acc = std::max(1.0, std::abs(b.q_ddot[0]));
+        EXPECT_NEAR(a.q_ddot[0], b.q_ddot[0], 1e-12 * acc);
+        EXPECT_NEAR(a.q_ddot[0], f.q_ddot[0], 1e-12 * acc);
+        EXPECT_NEAR(a.driving_torque, b.driving_torque, 1e-12 * std::max(1.0, std::abs(b.driving_torque)));
+        EXPECT_NEAR(a.contact_power, b.contact_power, 1e-12 * std::max(1.0, std::abs(b.contact_power)));
+        EXPECT_EQ(a.slider_pose[2], 0.0);
+        EXPECT_EQ(a.slider_velocity[2], 0.0);
+        for (std::size_t i = 0; i < a.sites.size(); ++i) cases += a.sites[i].normal_force > 0.0;
+      }
+    }
+    EXPECT_GT(cases, 4) << model << ": the poses must put the slider in contact";
+  }
+  // A tilted start needs a slider that can turn.
+  EXPECT_THROW(read_scene("", {"joint.slider.rotation=locked", "initial.slider_angle=0.01"}), InvalidParameter);
 }
 
 TEST(SliderCrank, TheFourSliderConfigurations) {
