@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <cmath>
 #include <exception>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -172,8 +175,12 @@ struct Problem {
 // Runs f(task, worker) for every task on min(threads, tasks) workers that take tasks from a shared
 // counter. Which worker runs a task varies; the callers only add integers per worker, so the sums
 // do not depend on it.
-// With `progress`, the calling thread reports the fraction of tasks taken, each time it grows by
-// a thousandth (the other workers only count).
+// With `progress` and more than one worker, the calling thread does not compute: it reports the
+// fraction of tasks done as tasks end and at least every 10 ms while the workers run. The progress hook is where a caller
+// cancels (the Python package checks for Ctrl-C there, which only the calling thread may do), so
+// it must run on the calling thread and often, not only when that thread finishes a task: on a
+// loaded machine a task can take a second. A hook that throws stops the workers after their
+// current task, and the exception is rethrown.
 template <class F>
 void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f,
                     const std::function<void(double)>* progress = nullptr) {
@@ -190,13 +197,17 @@ void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f,
     }
     return;
   }
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, done{0};
   std::vector<std::exception_ptr> errors(workers);
+  std::mutex mutex;
+  std::condition_variable finished;
+  std::size_t running = progress ? workers : workers - 1;  // threads started below, guarded by mutex
   const auto body = [&](std::size_t worker) {
     try {
       for (std::size_t t; (t = next.fetch_add(1, std::memory_order_relaxed)) < tasks;) {
         f(t, worker);
-        if (worker == 0) report(t + 1);
+        done.fetch_add(1, std::memory_order_relaxed);
+        if (progress) finished.notify_one();  // the monitor reports as tasks end (and every 10 ms)
       }
     } catch (...) {
       errors[worker] = std::current_exception();
@@ -204,10 +215,44 @@ void parallel_tasks(std::size_t threads, std::size_t tasks, F&& f,
     }
   };
   std::vector<std::thread> pool;
-  pool.reserve(workers - 1);
-  for (std::size_t k = 1; k < workers; ++k) pool.emplace_back(body, k);
-  body(0);
+  pool.reserve(workers);
+  const std::size_t first = progress ? 0 : 1;  // without progress, the caller is worker 0
+  for (std::size_t k = first; k < workers; ++k)
+    pool.emplace_back([&, k] {
+      body(k);
+      std::lock_guard<std::mutex> lock(mutex);
+      if (--running == 0) finished.notify_one();
+    });
+  std::exception_ptr hook_error;
+  if (progress) {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (running > 0) {
+      finished.wait_for(lock, std::chrono::milliseconds(10));
+      if (running == 0 || hook_error) continue;
+      lock.unlock();
+      try {
+        report(done.load(std::memory_order_relaxed));
+      } catch (...) {
+        hook_error = std::current_exception();
+        next.store(tasks);
+      }
+      lock.lock();
+    }
+    // A run faster than the monitor still reports once (as the old worker-0 reports did): the
+    // last fraction below 1 that was reached.
+    if (!hook_error) {
+      lock.unlock();
+      try {
+        report(tasks - 1);
+      } catch (...) {
+        hook_error = std::current_exception();
+      }
+    }
+  } else {
+    body(0);
+  }
   for (auto& t : pool) t.join();
+  if (hook_error) std::rethrow_exception(hook_error);
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 }
