@@ -67,6 +67,14 @@ class SceneTrajectory {
     return true;
   }
   const SliderCrank& system() const { return systems_->front(); }
+  void set_state(const std::vector<double>& x) {
+    if (static_cast<Eigen::Index>(x.size()) != x_.size())
+      throw InvalidParameter("start", std::to_string(x.size()) + " values",
+                             "must have the system's state size " + std::to_string(x_.size()));
+    for (double v : x)
+      if (!std::isfinite(v)) throw InvalidParameter("start", "non-finite values", "every value must be finite");
+    x_ = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+  }
   const std::string& failure() const { return failure_; }
 
  private:
@@ -120,6 +128,7 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   const int m = options.intervals_per_period;
   const double interval = period / m;
   SceneTrajectory reference(scene, m);
+  if (!options.start.empty()) reference.set_state(options.start);
 
   SceneLyapunov out;
   out.period = period;

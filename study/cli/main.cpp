@@ -76,6 +76,13 @@ int main(int argc, char** argv) {
                     "sample the analysed series this many times per crank revolution instead of every --analysis-interval");
   sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay searched, samples");
   sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
+  sweep->add_flag("--lyapunov", spec.lyapunov,
+                  "also compute each point's Lyapunov exponents from the equations, from its final state (mechanism lyapunov)");
+  sweep->add_option("--lyapunov-periods", spec.lyapunov_options.periods, "crank periods averaged (>= 10)");
+  sweep->add_option("--lyapunov-exponents", spec.lyapunov_options.exponents, "leading exponents per point");
+  sweep->add_option("--lyapunov-perturbation", spec.lyapunov_options.perturbation,
+                    "separation relative to each coordinate's scale");
+  sweep->add_option("--lyapunov-intervals", spec.lyapunov_options.intervals_per_period, "renormalisations per crank period");
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
   sweep->add_option("-o,--output", out_dir, "result directory (docs/study.md lists its files)")->required();
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
@@ -217,12 +224,18 @@ int main(int argc, char** argv) {
           if (first_failure.empty()) first_failure = s;
         }
       }
+    // A Lyapunov run failed where a period could not be integrated; not_computed follows a failed
+    // simulation, already counted. nonlinear and invariant_subspace are answers with a warning.
+    std::size_t lyapunov_failed = 0;
+    if (spec.lyapunov)
+      for (const std::string& s : statuses("lyapunov.tsv")) lyapunov_failed += s == "trajectory_failed";
     nlohmann::json summary = {{"directory", store->dir().string()},
                               {"points", spec.grid.size()},
                               {"computed", computed},
                               {"resumed_from_disk", resumed},
                               {"failed", failed},
                               {"analysis_failed", analysis_failed},
+                              {"lyapunov_failed", lyapunov_failed},
                               {"threads", exec.threads},
                               {"ranks", mpi.size()},
                               {"wall_seconds", wall}};

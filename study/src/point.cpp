@@ -56,6 +56,27 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
       r.analysis = a;
     }
   }
+  if (spec.lyapunov) {
+    mechanism::SceneLyapunov l;
+    if (r.summary.status == mechanism::SimulationStatus::completed) {
+      const LyapunovSpec& ls = spec.lyapunov_options;
+      mechanism::Scene from_end = point_scene(spec, point);
+      from_end.run.transient = 0.0;  // the point's own run was the transient
+      mechanism::SceneLyapunovOptions o;
+      o.periods = ls.periods;
+      o.transient_periods = ls.transient_periods;
+      o.perturbation = ls.perturbation;
+      o.intervals_per_period = ls.intervals_per_period;
+      const auto dimension = static_cast<int>(system.state_size()) - 2;  // q, q_dot, z: less the work
+      o.exponents = std::min(ls.exponents, dimension);
+      o.start.assign(r.summary.final_state.data(), r.summary.final_state.data() + r.summary.final_state.size());
+      l = mechanism::scene_lyapunov(from_end, o);
+    } else {
+      l.status = "not_computed";
+      l.message = std::string("the simulation ended with ") + mechanism::to_string(r.summary.status);
+    }
+    r.lyapunov = std::move(l);
+  }
   return r;
 }
 

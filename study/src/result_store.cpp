@@ -209,6 +209,7 @@ std::string ResultStore::check_point_file(std::size_t point, const std::string& 
   for (const char* key : {"coordinates", "status", "counters", "wall_seconds", "final_state"})
     if (!fields.count(key)) return std::string("has no ") + key + " line";
   if (spec_.analyse && !fields.count("analysis")) return "has no analysis line";
+  if (spec_.lyapunov && !fields.count("lyapunov")) return "has no lyapunov line";
   const auto& counters = fields["counters"];
   if (counters.size() < 8) return "has a short counters line";
   if (counters[7] != std::to_string(samples))
@@ -250,6 +251,21 @@ void ResultStore::write(const PointResult& r) const {
     for (std::size_t k = 0; k < m; ++k)
       o << "\t" << (k < a.d2_by_dimension.size() ? optional_number(a.d2_by_dimension[k]) : "-");
     o << "\n";
+  }
+  if (r.lyapunov) {
+    // status, periods, then K exponents, K standard errors ('-' past the phase space or -inf), D_KY
+    // of the attractor and of the section, the largest separation, the message.
+    const mechanism::SceneLyapunov& l = *r.lyapunov;
+    const auto k = static_cast<std::size_t>(spec_.lyapunov_options.exponents);
+    auto at = [](const std::vector<double>& v, std::size_t i) {
+      return i < v.size() && std::isfinite(v[i]) ? number(v[i]) : std::string("-");
+    };
+    o << "lyapunov\t" << l.status << "\t" << l.periods;
+    for (std::size_t i = 0; i < k; ++i) o << "\t" << at(l.exponents, i);
+    for (std::size_t i = 0; i < k; ++i) o << "\t" << at(l.standard_error, i);
+    o << "\t" << (std::isfinite(l.kaplan_yorke) ? number(l.kaplan_yorke) : "-") << "\t"
+      << (std::isfinite(l.kaplan_yorke_section) ? number(l.kaplan_yorke_section) : "-") << "\t"
+      << number(l.largest_separation) << "\t" << one_line(l.message) << "\n";
   }
   for (const auto& row : r.samples) {
     o << "sample\t" << static_cast<std::size_t>(row[0]);
@@ -307,6 +323,15 @@ void ResultStore::assemble() const {
       analysis += std::to_string(k);
     }
   analysis += "\n";
+  std::string lyapunov = head + "# Lyapunov exponents from the equations (docs/mechanism/lyapunov.md), 1/s; '-': none\n# point" +
+                         axes_header + "\tstatus\tperiods";
+  for (const char* name : {"lambda_", "se_"})
+    for (int k = 1; k <= spec_.lyapunov_options.exponents; ++k) {
+      lyapunov += '\t';  // appended piece by piece: "\t" + name + ... trips GCC 12's -Wrestrict
+      lyapunov += name;
+      lyapunov += std::to_string(k);
+    }
+  lyapunov += "\tkaplan_yorke\tkaplan_yorke_section\tlargest_separation\tmessage\n";
   std::string timing = "# wall seconds per point (the only output that differs between runs)\n# point\twall_seconds\n";
   for (std::size_t p = 0; p < grid.size(); ++p) {
     if (!finished(p)) throw StudyError("assemble", "point " + std::to_string(p), "is not finished");
@@ -334,11 +359,13 @@ void ResultStore::assemble() const {
     if (st.size() < 2 || cnt.size() < 8) throw StudyError("point file", point_path(p).string(), "is damaged");
     points += prefix + "\t" + st[1] + "\t" + join_from(cnt, 1) + "\t" + (st.size() > 2 ? st[2] : "") + "\n";
     if (spec_.analyse && fields.count("analysis")) analysis += prefix + "\t" + join_from(fields["analysis"], 1) + "\n";
+    if (spec_.lyapunov && fields.count("lyapunov")) lyapunov += prefix + "\t" + join_from(fields["lyapunov"], 1) + "\n";
     if (fields.count("wall_seconds")) timing += std::to_string(p) + "\t" + fields["wall_seconds"][1] + "\n";
   }
   write_atomically(dir_ / "samples.tsv", samples);
   write_atomically(dir_ / "points.tsv", points);
   if (spec_.analyse) write_atomically(dir_ / "analysis.tsv", analysis);
+  if (spec_.lyapunov) write_atomically(dir_ / "lyapunov.tsv", lyapunov);
   write_atomically(dir_ / "timing.tsv", timing);
 }
 

@@ -75,6 +75,16 @@ void SweepSpec::validate() const {
                        "must be 1 .. --periods (" + std::to_string(periods) + ")");
     validate_analysis(analysis);
   }
+  if (lyapunov) {
+    const LyapunovSpec& l = lyapunov_options;
+    if (l.periods < 10)
+      throw StudyError("--lyapunov-periods", std::to_string(l.periods), "must be >= 10 (10 block means give the error)");
+    if (l.exponents < 1) throw StudyError("--lyapunov-exponents", std::to_string(l.exponents), "must be >= 1");
+    if (!(l.perturbation > 0.0 && l.perturbation < 1.0))
+      throw StudyError("--lyapunov-perturbation", exact(l.perturbation), "must be in (0, 1)");
+    if (l.intervals_per_period < 1 || l.intervals_per_period > 10000)
+      throw StudyError("--lyapunov-intervals", std::to_string(l.intervals_per_period), "must be 1 .. 10000");
+  }
   if (signals.empty()) throw StudyError("--signals", "(none)", "name at least one signal");
   // Every point's scene must be valid (an axis may run into a refused value, e.g. clearance 0) and
   // have the signals asked for (the table is the same for every point of a sweep over numbers).
@@ -117,6 +127,14 @@ std::string SweepSpec::describe() const {
       << "analysis.given_delay = " << analysis.given_delay << "\n";
   } else {
     d << "analysis = off\n";
+  }
+  if (lyapunov) {
+    const LyapunovSpec& l = lyapunov_options;
+    d << "lyapunov.periods = " << l.periods << "\n"
+      << "lyapunov.transient_periods = " << l.transient_periods << "\n"
+      << "lyapunov.exponents = " << l.exponents << "\n"
+      << "lyapunov.perturbation = " << exact(l.perturbation) << "\n"
+      << "lyapunov.intervals_per_period = " << l.intervals_per_period << "\n";
   }
   d << "base scene (resolved, before the axis values):\n"
     << mechanism::to_toml(mechanism::read_scene(scene_text, overrides, scene_source));

@@ -38,6 +38,10 @@ struct SceneLyapunovOptions {
   // contacts stretch them fast (the seed scene: about e^20 per period).
   int intervals_per_period = 50;
   std::uint64_t seed = 1;            // the initial directions
+  // The state to start from (SliderCrank::state_size() values, e.g. a run's final_state: a sweep
+  // point's attractor); empty: the seed's Eq. 29. run.transient is run from it either way. Contact
+  // memory starts empty: a site already penetrating latches its current rate (as simulate() does).
+  std::vector<double> start;
   std::function<void(double fraction)> progress;
   void validate() const;             // throws InvalidParameter naming the option
 };

@@ -10,6 +10,7 @@
 //   DIR/samples.tsv       assembled in point order: one row per point and kept revolution
 //   DIR/points.tsv        one row per point: the simulation's status and counters
 //   DIR/analysis.tsv      one row per point when the analysis was asked for
+//   DIR/lyapunov.tsv      one row per point when the Lyapunov exponents were asked for (1/s)
 //   DIR/timing.tsv        wall seconds per point: the only file that differs between runs
 // The assembled files depend only on the point files, never on the order in which points
 // finished, so 1 thread, N threads and M MPI ranks write identical files (docs/study.md).

@@ -10,7 +10,8 @@
 //     revolutions are kept: the seed keeps 1000 periods, plots the last 50 and builds the PDF from
 //     the last 500;
 //   - optionally the chaos analysis of the slider's vertical displacement over the last
-//     analysis.periods revolutions, sampled every analysis.interval (series_analysis.hpp).
+//     analysis.periods revolutions, sampled every analysis.interval (series_analysis.hpp);
+//   - optionally the Lyapunov exponents from the equations, from the point's final state.
 // The spec's canonical text (`describe`) heads every output file and identifies a result directory
 // on resume.
 
@@ -25,6 +26,17 @@
 namespace study {
 
 enum class InitialConditions { fresh, continuation };
+
+// The Lyapunov exponents of each point from its equations (mechanism/scene_lyapunov.hpp), started
+// from the point's final state (its attractor): the `exponents` leading ones (fewer where the phase
+// space is smaller), the standard errors and the Kaplan-Yorke dimensions.
+struct LyapunovSpec {
+  std::size_t periods = 100;            // crank periods averaged
+  std::size_t transient_periods = 20;   // periods that align the directions
+  int exponents = 4;
+  double perturbation = 1e-8;
+  int intervals_per_period = 50;
+};
 const char* to_string(InitialConditions ic) noexcept;
 
 struct SweepSpec {
@@ -38,6 +50,8 @@ struct SweepSpec {
   std::vector<std::string> signals{"slider_y", "slider_vy"};  // sampled at each kept revolution
   bool analyse = false;
   AnalysisOptions analysis;
+  bool lyapunov = false;
+  LyapunovSpec lyapunov_options;
 
   // Refuses keep = 0, keep > periods, analysis periods > periods, analysis options outside their
   // ranges (validate_analysis), an empty signal

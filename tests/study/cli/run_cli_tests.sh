@@ -56,6 +56,16 @@ expect_code 5 "every analysis failed" "$STUDY" sweep -q "${fast[@]}" --axis join
   --analysis --analysis-periods 1 --analysis-samples-per-period 2 -o "$work/no_analysis"
 expect_message "the analysis failed at all 2 analysed points (the first: series too short: 3 samples)" "every analysis failed"
 [[ $(jq -r .analysis_failed "$work/out") == 2 ]] || fail "every analysis failed: the summary's analysis_failed is $(jq -r .analysis_failed "$work/out"), expected 2"
+# --lyapunov: lyapunov.tsv, one row per point, K = 2 exponent columns and their errors; the spec
+# records the settings; --lyapunov-periods below 10 is refused before the run.
+expect_code 0 "sweep --lyapunov" "$STUDY" sweep -q "${fast[@]}" --axis joint.slider.clearance=3e-4,5e-4 --periods 4 --keep 1 \
+  --lyapunov --lyapunov-periods 10 --lyapunov-exponents 2 --lyapunov-intervals 10 -o "$work/lyap"
+[[ $(grep -vc '^#' "$work/lyap/lyapunov.tsv") == 2 ]] || fail "sweep --lyapunov: lyapunov.tsv lacks its 2 rows"
+grep -q $'\tlambda_1\tlambda_2\tse_1\tse_2\tkaplan_yorke' "$work/lyap/lyapunov.tsv" || fail "sweep --lyapunov: lyapunov.tsv header"
+grep -q '^lyapunov.periods = 10$' "$work/lyap/spec.txt" || fail "sweep --lyapunov: spec.txt lacks lyapunov.periods"
+[[ $(jq -r .lyapunov_failed "$work/out") == 0 ]] || fail "sweep --lyapunov: lyapunov_failed is not 0"
+expect_code 3 "lyapunov periods 5" "$STUDY" sweep --lyapunov --lyapunov-periods 5 -o "$work/x"
+expect_message "lyapunov-periods = 5: must be >= 10" "lyapunov periods 5"
 # Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mechanism/error.hpp"
+#include "mechanism/scene_lyapunov.hpp"
 #include "mechanism/simulate.hpp"
 #include "study/error.hpp"
 #include "study/point.hpp"
@@ -100,6 +101,53 @@ TEST(Sweep, SameFilesOnOneAndTwoThreads) {
   for (const char* f : {"samples.tsv", "points.tsv", "spec.txt"}) EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
   fs::remove_all(a);
   fs::remove_all(b);
+}
+
+TEST(Sweep, LyapunovExponentsFromThePointsFinalState) {
+  // --lyapunov: each point's exponents are mechanism::scene_lyapunov of its scene started from its
+  // final state (the same numbers, bit for bit), written to lyapunov.tsv, the same on 1 and 2
+  // threads, and the spec (hence a resume) records the Lyapunov settings.
+  study::SweepSpec spec = short_spec();
+  spec.lyapunov = true;
+  spec.lyapunov_options.periods = 10;
+  spec.lyapunov_options.transient_periods = 2;
+  spec.lyapunov_options.exponents = 3;
+  spec.lyapunov_options.intervals_per_period = 10;
+  const study::PointResult r = study::run_point(spec, 1);
+  ASSERT_TRUE(r.lyapunov);
+  mechanism::Scene scene = study::point_scene(spec, 1);
+  scene.run.transient = 0.0;
+  mechanism::SceneLyapunovOptions o;
+  o.periods = 10;
+  o.transient_periods = 2;
+  o.exponents = 3;
+  o.intervals_per_period = 10;
+  o.start.assign(r.summary.final_state.data(), r.summary.final_state.data() + r.summary.final_state.size());
+  const mechanism::SceneLyapunov direct = mechanism::scene_lyapunov(scene, o);
+  ASSERT_EQ(r.lyapunov->exponents.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(r.lyapunov->exponents[k], direct.exponents[k]);
+  EXPECT_EQ(r.lyapunov->status, direct.status);
+
+  const fs::path a = scratch("lyap1"), b = scratch("lyap2");
+  for (auto [dir, threads] : {std::pair{a, 1}, std::pair{b, 2}}) {
+    study::ResultStore store(dir, spec, false);
+    study::SweepExecution exec;
+    exec.threads = static_cast<std::size_t>(threads);
+    EXPECT_EQ(study::run_sweep(spec, store, exec).done, 3u);
+    store.assemble();
+  }
+  const std::string table = slurp(a / "lyapunov.tsv");
+  EXPECT_EQ(table, slurp(b / "lyapunov.tsv"));
+  EXPECT_NE(table.find("\tlambda_1\tlambda_2\tlambda_3\tse_1"), std::string::npos);
+  std::size_t rows = 0;
+  std::istringstream in(table);
+  for (std::string line; std::getline(in, line);) rows += !line.empty() && line[0] != '#';
+  EXPECT_EQ(rows, 3u);
+  EXPECT_NE(slurp(a / "spec.txt").find("lyapunov.periods = 10"), std::string::npos);
+  fs::remove_all(a);
+  fs::remove_all(b);
+  spec.lyapunov_options.periods = 5;
+  EXPECT_THROW(spec.validate(), study::StudyError);
 }
 
 TEST(Sweep, RanksSplitThePointsAndAgree) {
