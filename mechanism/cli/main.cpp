@@ -170,7 +170,7 @@ nlohmann::ordered_json lyapunov_json(const mechanism::SceneLyapunov& r) {
 
 // The running means against the periods averaged: how the estimate converged.
 void plot_convergence(const mechanism::SceneLyapunov& r, const std::string& path) {
-  const std::size_t k = r.exponents.size();
+  const std::size_t k = r.periods ? r.running.size() / r.periods : 0;  // also after a failed run
   std::ostringstream g;
   g << "$run << EOD\n";
   for (std::size_t p = 0; p < r.periods; ++p) {
@@ -286,10 +286,10 @@ int main(int argc, char** argv) {
         *out << "# Kaplan-Yorke dimension: " << number(r.kaplan_yorke) << " (section " << number(r.kaplan_yorke_section)
              << ")\n# resolved scene:\n";
         write_scene_header(*out, scene);
+        const std::size_t k = r.periods ? r.running.size() / r.periods : 0;  // also after a failed run
         *out << "# period";
-        for (std::size_t j = 0; j < r.exponents.size(); ++j) *out << "\tlambda_" << j + 1 << " [1/s]";
+        for (std::size_t j = 0; j < k; ++j) *out << "\tlambda_" << j + 1 << " [1/s]";
         *out << "\n";
-        const std::size_t k = r.exponents.size();
         for (std::size_t p = 0; p < r.periods; ++p) {
           *out << p + 1;
           for (std::size_t j = 0; j < k; ++j) *out << "\t" << number(r.running[p * k + j]);

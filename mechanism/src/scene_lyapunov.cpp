@@ -149,7 +149,7 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
       return out;
     }
   }
-  // Scales: one period sampled 200 times (mechanism::simulate's time-series rows).
+  // Scales: one period, 200 samples per interval (mechanism::simulate's time-series rows).
   std::vector<Eigen::VectorXd> samples;
   SimulationObserver sampler;
   SceneTrajectory probe = reference;
@@ -206,8 +206,15 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   out.kaplan_yorke_section = kaplan_yorke_dimension(out.exponents_per_period);
   out.kaplan_yorke = out.kaplan_yorke_section + 1.0;
   if (r.status != FiniteDifferenceLyapunov::Status::completed) {
+    // A run cut short gives no exponents: its partial means are not an answer (the running means
+    // up to the failure stay, for diagnosis).
     out.status = "trajectory_failed";
-    out.message = r.message;
+    out.message = r.message + " (after " + std::to_string(out.periods) + " of " + std::to_string(options.periods) +
+                  " periods averaged)";
+    out.exponents.clear();
+    out.exponents_per_period.clear();
+    out.standard_error.clear();
+    out.kaplan_yorke = out.kaplan_yorke_section = std::numeric_limits<double>::quiet_NaN();
   } else if (out.largest_separation > max_linear_separation) {
     out.status = "nonlinear";
     out.message = "a separation grew to " + std::to_string(out.largest_separation) +

@@ -21,6 +21,7 @@
 //   Eigen::VectorXd phase_point()    the coordinates the exponents are about
 //   void set_phase_point(v)          move the trajectory there (memory unchanged)
 //   bool advance()                   one iteration of the map; false when it cannot continue
+//   (optional) failure()             why the last advance() failed, quoted in the message
 // Coordinates of different units are compared through `scale`: a separation dx counts as
 // dx ./ scale, so delta is relative to each coordinate's typical size.
 
@@ -155,18 +156,21 @@ FiniteDifferenceLyapunov finite_difference_lyapunov(T& reference, const FiniteDi
       c = reference;  // the reference's memory
       c.set_phase_point(x0 + delta * scale.cwiseProduct(q.col(j)));
     }
-    auto fail = [&](const std::string& who) {
+    // A trajectory type that says why it stopped (a member failure()) has its reason quoted.
+    auto fail = [&](const std::string& who, const T& t) {
       out.status = FiniteDifferenceLyapunov::Status::trajectory_failed;
       out.message = "the " + who + " could not be advanced at iteration " + std::to_string(it);
+      if constexpr (requires { std::string(t.failure()); }) out.message += ": " + std::string(t.failure());
     };
     if (!reference.advance()) {
-      fail("reference trajectory");
+      fail("reference trajectory", reference);
       break;
     }
-    bool ok = true;
-    for (int j = 0; j < k && ok; ++j) ok = companions[static_cast<std::size_t>(j)].advance();
-    if (!ok) {
-      fail("companion trajectory");
+    int stopped = -1;
+    for (int j = 0; j < k && stopped < 0; ++j)
+      if (!companions[static_cast<std::size_t>(j)].advance()) stopped = j;
+    if (stopped >= 0) {
+      fail("companion trajectory " + std::to_string(stopped + 1), companions[static_cast<std::size_t>(stopped)]);
       break;
     }
     const Eigen::VectorXd x1 = reference.phase_point();

@@ -15,8 +15,8 @@
 // attractor's is one more.
 //
 // Coordinates of different units are compared through a scale: the standard deviation of each
-// coordinate over one period sampled 200 times after the transient (its mean magnitude where it
-// does not move, 1 where it is identically 0). The perturbation is relative to that scale.
+// coordinate over one period after the transient, sampled 200 times per interval (its mean
+// magnitude where it does not move, 1 where it is identically 0). The perturbation is relative to that scale.
 
 #include <cstddef>
 #include <cstdint>
@@ -55,7 +55,8 @@ struct SceneLyapunov {
   // non-invertible, and those exponents are -inf); nonlinear (see max_linear_separation: repeat with
   // a smaller perturbation); invariant_subspace (a coordinate did not move: the orbit is confined to a subspace, such as a
   // level slider without friction, and the exponents are those of that set and of the growth
-  // transverse to it); trajectory_failed (a period could not be integrated: message says why).
+  // transverse to it); trajectory_failed (a period could not be integrated: message says why; no
+  // exponents are reported, only the running means up to the failure).
   std::string status = "completed";
   std::string message;
   std::vector<std::string> coordinates;  // the phase-space coordinates, in the state's order
