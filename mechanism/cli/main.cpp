@@ -30,6 +30,7 @@
 #include "mechanism/scene.hpp"
 #include "mechanism/scene_lyapunov.hpp"
 #include "mechanism/signals.hpp"
+#include "lyapunov_json.hpp"
 #include "summary_json.hpp"
 #include "mechanism/simulate.hpp"
 
@@ -140,33 +141,6 @@ void plot_trajectories(const PlotData& d, const mechanism::Scene& scene, const s
   }
 }
 
-
-// JSON has no infinity: a collapsed exponent (-inf) is written as null, and the status says why.
-nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); }
-
-nlohmann::ordered_json lyapunov_json(const mechanism::SceneLyapunov& r) {
-  nlohmann::ordered_json j;
-  j["status"] = r.status;
-  if (!r.message.empty()) j["message"] = r.message;
-  j["exponents"] = nlohmann::ordered_json::array();
-  for (double v : r.exponents) j["exponents"].push_back(finite_or_null(v));
-  j["standard_error"] = nlohmann::ordered_json::array();
-  for (double v : r.standard_error) j["standard_error"].push_back(finite_or_null(v));
-  j["exponents_per_period"] = nlohmann::ordered_json::array();
-  for (double v : r.exponents_per_period) j["exponents_per_period"].push_back(finite_or_null(v));
-  j["resolution_limit"] = r.resolution_limit;
-  j["kaplan_yorke"] = finite_or_null(r.kaplan_yorke);
-  j["kaplan_yorke_section"] = finite_or_null(r.kaplan_yorke_section);
-  j["collapsed"] = r.collapsed;
-  j["coordinates"] = r.coordinates;
-  j["scale"] = r.scale;
-  j["period"] = r.period;
-  j["periods"] = r.periods;
-  j["perturbation"] = r.perturbation;
-  j["largest_separation"] = r.largest_separation;
-  j["wall_seconds"] = r.wall_seconds;
-  return j;
-}
 
 // The running means against the periods averaged: how the estimate converged.
 void plot_convergence(const mechanism::SceneLyapunov& r, const std::string& path) {
@@ -296,7 +270,7 @@ int main(int argc, char** argv) {
           *out << "\n";
         }
       }
-      if (lyap_json) std::cout << lyapunov_json(r).dump(2) << "\n";
+      if (lyap_json) std::cout << mechanism::scene_lyapunov_json(r).dump(2) << "\n";
       if (!lyap_plot.empty() && r.periods > 0) plot_convergence(r, lyap_plot);
       if (r.status == "trajectory_failed") {
         std::cerr << "mechanism: the exponents could not be computed: " << r.message << "\n";
