@@ -17,6 +17,7 @@
 #include "chaos/error.hpp"
 #include "chaos/zoo.hpp"
 #include "chaos/zoo_suite.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 
 namespace chaos::cli {
@@ -31,6 +32,7 @@ struct ZooArgs {
   std::string output;
   bool quiet = false;
   std::string series;  // write this case's series instead of running the suite
+  bool json = false;   // --series as one JSON object
 };
 
 std::string num(const std::optional<double>& v, int digits = 4) {
@@ -79,24 +81,18 @@ struct Tally {
 // The exact series a case is analysed with (the N = 10^4 rows use its first 10^4 samples), so that
 // any row of docs/zoo.md can be reproduced with chaos d2, lyapunov or analyze.
 void write_case_series(const ZooArgs& args) {
-  ZooSuiteOptions options;
-  options.fast = args.fast;
-  options.only = {args.series};
-  options.threads = args.threads;
-  const std::vector<ZooCase> cases = zoo_cases(options);
-  if (cases.empty())
-    throw InvalidInput(ErrorCode::invalid_parameter,
-                       "zoo: no case is named '" + args.series + "' (the names are the first column of docs/zoo.md)");
-  const ZooCase& c = cases.front();
-  const std::vector<double> x = c.series(c.length);
   OutputOptions output;
+  output.json = args.json;
   output.path = args.output;
-  Report report("zoo", output);
-  report.parameter("case", c.name).parameter("kind", to_string(c.kind)).parameter("description", c.description)
-      .parameter("N", x.size()).parameter("dt", c.dt);
+  ZooSeriesRun run = run_zoo_series({args.series, args.fast, args.threads}, output);
+  Report& report = run.report;
   std::ostream& out = report.stream();
+  if (report.json_mode()) {
+    report.write_json(out);
+    return;
+  }
   report.write_header(out);
-  write_columns(out, {"x"}, {std::span<const double>(x)});
+  write_columns(out, {"x"}, {std::span<const double>(run.x)});
 }
 
 void run(const ZooArgs& args) {
@@ -105,6 +101,7 @@ void run(const ZooArgs& args) {
     write_case_series(args);
     return;
   }
+  if (args.json) throw InvalidInput(ErrorCode::invalid_parameter, "zoo: --json writes a case's series: give --series NAME");
   ZooSuiteOptions options;
   options.fast = args.fast;
   options.grid = !args.no_grid;
@@ -277,6 +274,7 @@ void register_zoo(CLI::App& app) {
   command->add_flag("-q,--quiet", args->quiet, "no progress on standard error");
   command->add_option("--series", args->series,
                       "write the series of this case (full precision, one value per line) instead of running the suite");
+  command->add_flag("--json", args->json, "with --series: the series and its parameters as one JSON object");
   command->callback([args] { run(*args); });
 }
 

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/series.hpp"
 #include "chaos/surrogates.hpp"
+#include "chaos/validation.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -232,5 +234,68 @@ void check_density_params(const DensityParams& params);
 DensityRun run_density(std::span<const double> parameter, std::span<const double> value, const std::string& file,
                        std::size_t parameter_column, std::size_t value_column, const DensityParams& params,
                        const OutputOptions& output = {});
+
+// chaos section: a Poincare section of a multi-column series
+struct SectionParams {
+  std::vector<std::size_t> columns;          // the columns read, 1-based (empty: every column but the time column)
+  std::optional<std::size_t> time_column;    // the column holding the time; none: rows dt apart
+  double dt = 1.0;
+  std::optional<std::size_t> period;         // stroboscopic: every PERIOD-th row ...
+  std::size_t phase = 0;                     // ... from this row
+  std::optional<std::size_t> hyperplane;     // hyperplane: the crossings of this column ...
+  std::optional<double> level;               // ... through this level
+  std::string direction = "up";              // up, down or both
+};
+// The option checks made before any input is read (one section, a level for a hyperplane, dt > 0,
+// the direction's name).
+void check_section_params(const SectionParams& params);
+// The columns of a section's input text, read as `chaos section` reads them (-x -l): params.columns
+// (filled with every column but the time column when empty) and, with a time column, the times.
+struct SectionColumns {
+  std::vector<std::vector<double>> columns;
+  std::vector<double> times;  // empty without params.time_column
+};
+SectionColumns read_section_columns(const std::string& text, const std::string& name, SectionParams& params,
+                                    std::size_t skip, std::optional<std::size_t> length);
+struct SectionRun {
+  std::vector<double> time;                  // of each section point
+  std::vector<std::vector<double>> points;   // one row per section point, one value per column read
+  std::vector<std::optional<double>> return_time;  // hyperplane: since the previous crossing (none for the first)
+  std::size_t rows = 0;                      // N, the rows read
+  Report report;
+};
+// data: one column per params.columns, all of the same length; times: the time column's values
+// (empty: rows dt apart).
+SectionRun run_section(const std::vector<std::span<const double>>& data, std::span<const double> times,
+                       const std::string& file, const SectionParams& params, const OutputOptions& output = {});
+
+// chaos validate: the reference cases of references/references.tsv, run on this machine
+struct ValidateParams {
+  std::string filter;  // only cases whose id contains this text; empty: every case
+};
+// The cases selected, in table order; refuses a filter that matches no case id.
+std::vector<Reference> validate_cases(const ValidateParams& params);
+// The report with its parameters, before any case runs (the command line writes its header then).
+Report validate_report(const ValidateParams& params, const OutputOptions& output = {});
+struct ValidateTally {
+  std::size_t passed = 0, failed = 0;
+};
+// Runs the selected cases in table order, each appended to the report's "cases" as `chaos validate
+// --json` writes it, then "passed" and "failed". `each` is called after every case (the command
+// line prints its row; it may throw to stop).
+ValidateTally run_validate(const ValidateParams& params, Report& report,
+                           const std::function<void(const ValidationResult&)>& each = nullptr);
+
+// chaos zoo --series NAME: the exact series a zoo case is analysed with
+struct ZooSeriesParams {
+  std::string name;          // the case (the first column of docs/zoo.md)
+  bool fast = false;         // the CI subset's cases (N = 10^4)
+  std::size_t threads = 1;   // the spectra behind the cases' bands
+};
+struct ZooSeriesRun {
+  std::vector<double> x;
+  Report report;             // parameters case, kind, description, N, dt; "x" the series
+};
+ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& output = {});
 
 }  // namespace chaos::cli

@@ -325,6 +325,121 @@ py::object density(const Array& parameter, const Array& value, const std::string
   });
 }
 
+// chaos section: `columns` the data columns (each a float64 array, all of one length) with their
+// 1-based numbers in params["columns"], `times` the time column (empty without one).
+py::object section(const py::list& columns, const Array& times, const std::string& file, const py::dict& p) {
+  SectionParams params;
+  if (has(p, "columns"))
+    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
+  get(p, "time_column", params.time_column);
+  get(p, "dt", params.dt);
+  get(p, "stroboscopic", params.period);
+  get(p, "phase", params.phase);
+  get(p, "hyperplane", params.hyperplane);
+  get(p, "level", params.level);
+  get(p, "direction", params.direction);
+  check_section_params(params);
+  std::vector<Array> held;
+  std::vector<std::span<const double>> data;
+  for (const auto& c : columns) {
+    held.push_back(c.cast<Array>());
+    data.emplace_back(held.back().data(), static_cast<std::size_t>(held.back().size()));
+  }
+  const std::span<const double> t(times.data(), static_cast<std::size_t>(times.size()));
+  // What the command's reader refuses in a file: no rows, NaN or infinity.
+  if (!data.empty() && data.front().empty())
+    throw chaos::InvalidInput(chaos::ErrorCode::empty, file + ": the series is empty (no samples)");
+  const auto finite = [&](std::span<const double> x, std::size_t column) {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (!std::isfinite(x[i]))
+        throw chaos::InvalidInput(chaos::ErrorCode::non_finite, file + ": row " + std::to_string(i + 1) + ": column " +
+                                                                    std::to_string(column) + ": " + number(x[i]) +
+                                                                    " is not finite; NaN and infinity are refused");
+  };
+  for (std::size_t k = 0; k < data.size() && k < params.columns.size(); ++k) finite(data[k], params.columns[k]);
+  if (params.time_column) finite(t, *params.time_column);
+  return call([&] { return run_section(data, t, file, params).report.json(); });
+}
+
+// The columns of a file, read as `chaos section FILE -c ... -x -l --time-column` reads them:
+// (columns read, their values, the times or an empty array).
+py::tuple section_file_columns(const std::string& path, const py::dict& p, std::size_t skip,
+                               std::optional<std::size_t> length) {
+  SectionParams params;
+  if (has(p, "columns"))
+    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
+  get(p, "time_column", params.time_column);
+  SectionColumns input;
+  {
+    py::gil_scoped_release release;
+    input = read_section_columns(chaos::read_text(path), path, params, skip, length);
+  }
+  const auto array = [](const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); };
+  py::list values;
+  for (const auto& c : input.columns) values.append(array(c));
+  return py::make_tuple(params.columns, values, array(input.times));
+}
+
+// chaos validate: each case's result passed to `progress` (a callable taking the fraction of cases
+// done, or None); Ctrl-C stops between cases.
+py::object validate_cases_run(const py::dict& p, py::object progress) {
+  ValidateParams params;
+  get(p, "filter", params.filter);
+  const std::size_t count = validate_cases(params).size();
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  std::size_t done = 0;
+  try {
+    return call([&] {
+      Report report = validate_report(params);
+      run_validate(params, report, [&](const chaos::ValidationResult&) {
+        py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw Interrupted{};
+        ++done;
+        if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(count));
+      });
+      return report.json();
+    });
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
+  }
+}
+
+// chaos validate --list: the selected cases' rows (id, quantity, value, low, high, source, kind).
+py::list validate_list(const py::dict& p) {
+  ValidateParams params;
+  get(p, "filter", params.filter);
+  py::list out;
+  for (const chaos::Reference& r : validate_cases(params)) {
+    py::dict row;
+    row["id"] = r.id;
+    row["system"] = r.system;
+    row["quantity"] = r.quantity;
+    row["value"] = r.value ? py::object(py::float_(*r.value)) : py::object(py::none());
+    row["low"] = r.low;
+    row["high"] = r.high;
+    row["source"] = r.source;
+    row["kind"] = r.kind;
+    out.append(row);
+  }
+  return out;
+}
+
+// chaos zoo --series NAME: the JSON without the series, and the series as an array.
+py::tuple zoo_series(const std::string& name, const py::dict& p) {
+  ZooSeriesParams params;
+  params.name = name;
+  get(p, "fast", params.fast);
+  get(p, "threads", params.threads);
+  std::optional<ZooSeriesRun> run;
+  {
+    py::gil_scoped_release release;
+    run.emplace(run_zoo_series(params));
+  }
+  nlohmann::ordered_json json = run->report.json();
+  json.erase("x");
+  return py::make_tuple(to_python(json), Array(static_cast<py::ssize_t>(run->x.size()), run->x.data()));
+}
+
 // -p name=value, repeatable: a dict {name: value}.
 void get_settings(const py::dict& p, std::map<std::string, double>& target) {
   if (!has(p, "parameter")) return;
@@ -529,6 +644,11 @@ PYBIND11_MODULE(_core, m) {
   m.def("spectrum", &spectrum);
   m.def("density", &density);
   m.def("nonlinearity", &nonlinearity);
+  m.def("section", &section);
+  m.def("section_file_columns", &section_file_columns);
+  m.def("validate", &validate_cases_run);
+  m.def("validate_list", &validate_list);
+  m.def("zoo_series", &zoo_series);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());
   m.def("builtin_series", [](std::size_t length) {

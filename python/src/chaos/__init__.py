@@ -29,7 +29,7 @@ from . import _core
 from ._results import Result, make as _make
 
 __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
-           "nonlinearity", "density", "embed",
+           "nonlinearity", "density", "section", "validate", "validation_cases", "zoo_series", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
 
@@ -357,6 +357,117 @@ def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwi
     p_values, file, _, _ = _series(parameter, None)
     v_values, _, _, _ = _series(value, None)
     return _make(_core.density(p_values, v_values, file, 1, 2, params))
+
+
+def _column_numbers(columns, name):
+    if columns is None:
+        return None
+    if isinstance(columns, (int, np.integer)) and not isinstance(columns, bool):
+        return [int(columns)]
+    if isinstance(columns, (str, bytes)) or not hasattr(columns, "__iter__"):
+        raise TypeError(f"{name} must be a column number or a list of them (got {type(columns).__name__})")
+    return list(columns)
+
+
+def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, phase=0, hyperplane=None, level=None,
+            direction="up", skip=0, length=None):
+    """A Poincare section of a multi-column series (``chaos section``).
+
+    Stroboscopic (``stroboscopic=P``): every P-th row from row ``phase``, x(t_0 + k P dt), the
+    section of a system driven with a period of P rows. Hyperplane (``hyperplane=k, level=c``): the
+    crossings of column k through x_k = c (``direction`` up, down or both), each located on the
+    cubic through the four rows around it (Lagrange interpolation, error O(dt^4) for a smooth flow;
+    linear in the first and last interval), every column interpolated there, and the return times
+    t_{j+1} - t_j between crossings (H. Poincare, Les methodes nouvelles de la mecanique celeste,
+    1899; the seed's Section 6). docs/poincare.md.
+
+    ``data``: a 2-D array of rows (a 1-D array is one column) or the path of a text file, read as
+    the command reads it (``skip``, ``length``). ``columns``: the 1-based columns read (default:
+    every column but ``time_column``); ``time_column``: the column holding the time (increasing,
+    steps may be uneven), else rows are ``dt`` apart. The hyperplane column must be among
+    ``columns``.
+
+    Result keys: parameters, time, points (2-D: one row per section point, one column per column
+    read), return_time (hyperplane; NaN for the first crossing).
+    """
+    params = dict(columns=_column_numbers(columns, "columns"), time_column=time_column, dt=dt,
+                  stroboscopic=stroboscopic, phase=phase, hyperplane=hyperplane, level=level, direction=direction)
+    if isinstance(data, (str, os.PathLike)):
+        path = os.fspath(data)
+        numbers, values, times = _core.section_file_columns(path, params, skip, length)
+        params["columns"] = list(numbers)
+        return _make(_core.section(values, times, path, params))
+    if skip != 0 or length is not None:
+        raise TypeError("skip and length select rows of a file; slice an array instead")
+    a = np.asarray(data)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"the series must hold real numbers (got an array of dtype {a.dtype})")
+    if a.ndim == 1:
+        a = a[:, np.newaxis]
+    if a.ndim != 2:
+        raise ValueError(f"section takes rows of columns: a 1-D or 2-D array (got shape {a.shape})")
+    width = a.shape[1]
+
+    def column(number, name):
+        if isinstance(number, bool) or not isinstance(number, (int, np.integer)):
+            raise TypeError(f"{name} must be an integer (got {type(number).__name__})")
+        if not 1 <= number <= width:
+            raise ValueError(f"{ARRAY_NAME}: {name} {number} requested but the array has {width} column(s) (1-based)")
+        return np.ascontiguousarray(a[:, number - 1], dtype=np.float64)
+
+    numbers = params["columns"]
+    if numbers is None:
+        numbers = [c for c in range(1, width + 1) if c != time_column]
+        if not numbers:
+            raise ValueError(f"{ARRAY_NAME}: no data columns besides the time column")
+    values = [column(c, "column") for c in numbers]
+    times = column(time_column, "time_column") if time_column is not None else np.empty(0)
+    params["columns"] = numbers
+    return _make(_core.section(values, times, ARRAY_NAME, params))
+
+
+def validate(filter=None, *, progress=None):
+    """Runs the reference cases of references/references.tsv on this machine (``chaos validate``).
+
+    Each case regenerates its data from the row's conditions (system, parameters, N, seed), runs the
+    estimator and checks that the measured value lies in the row's band [low, high], fixed before
+    any run from the cited source (an analytic value, a published one or a peer tool's output;
+    references/bibliography.md). ``filter``: only the cases whose id contains this text (a filter
+    that matches no id raises ValueError). ``progress``: True for a bar on stderr, or a callable
+    taking the fraction of cases done; Ctrl-C stops between cases.
+
+    Returns the command's result: ``cases`` (one read-only mapping per case: id, system, quantity,
+    value, low, high, measured, passed, seconds, source, kind, detail), ``passed``, ``failed``. A
+    failed case is reported there, not raised (the command exits with 4).
+    """
+    bar = _progress_bar(progress, "validate")
+    try:
+        return _make(_core.validate(dict(filter=filter), bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
+
+
+def validation_cases(filter=None):
+    """The reference cases (``chaos validate --list``), without running them: a list of dicts with
+    id, system, quantity, value (None where the source gives only a bound), low, high, source, kind."""
+    return _core.validate_list(dict(filter=filter))
+
+
+def zoo_series(name, *, fast=False, threads=1):
+    """The exact series a case of the zoo regression suite is analysed with (``chaos zoo --series
+    NAME``; ``fast=True``: the CI subset's case at N = 10^4), so that any row of docs/zoo.md can be
+    reproduced with ``d2``, ``lyapunov`` or ``analyze``. ``name``: a case of docs/zoo.md's first
+    column (a zoo system such as ``lorenz``, or a control). ``threads``: the spectra behind the
+    cases' bands, computed on that many threads (the series does not depend on it).
+
+    Result keys: parameters (case, kind, description, N, dt), x (the series, a read-only array).
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a string (got {type(name).__name__})")
+    json, values = _core.zoo_series(name, dict(fast=fast, threads=threads))
+    values.flags.writeable = False
+    return _make(json, {"x": values})
 
 
 def embed(x, dimension, delay=1):

@@ -172,3 +172,23 @@ def analyze(r, ax=None):
     right.set_xlabel("embedding dimension m")
     right.grid(True)
     return ax
+
+
+def section(r, ax=None):
+    """The section's points: the first two columns read against each other, or for one column the
+    return map (value of point k against point k + 1)."""
+    ax = _axes(ax)
+    points = r.points
+    columns = r.parameters["columns"].split(",")
+    if points.ndim == 2 and points.shape[1] >= 2:
+        ax.plot(points[:, 0], points[:, 1], "o", ms=2)
+        ax.set_xlabel(f"column {columns[0]}")
+        ax.set_ylabel(f"column {columns[1]}")
+    else:
+        x = points.reshape(-1)
+        ax.plot(x[:-1], x[1:], "o", ms=2)
+        ax.set_xlabel(f"column {columns[0]} at point k")
+        ax.set_ylabel(f"column {columns[0]} at point k + 1")
+    ax.set_title(f"{r.parameters['section']} section: {r.parameters['points']} points")
+    ax.grid(True)
+    return ax

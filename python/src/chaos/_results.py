@@ -112,7 +112,10 @@ class Result:
     def plot(self, ax=None):
         """Draws the command's figure with matplotlib; returns the axes."""
         from . import _plot
-        return getattr(_plot, self._json["command"])(self, ax)
+        draw = getattr(_plot, self._json["command"], None)
+        if draw is None:
+            raise TypeError(f"chaos {self._json['command']} has no figure")
+        return draw(self, ax)
 
 
 def make(json, arrays=None):
