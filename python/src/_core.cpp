@@ -27,6 +27,11 @@
 #include "mechanism/signals.hpp"
 #include "mechanism/simulate.hpp"
 #include "mechanism/slider_crank.hpp"
+#include "study/error.hpp"
+#include "study/grid.hpp"
+#include "study/result_store.hpp"
+#include "study/run_sweep.hpp"
+#include "study/sweep.hpp"
 #include "summary_json.hpp"
 
 namespace py = pybind11;
@@ -135,26 +140,41 @@ py::object to_python(const nlohmann::ordered_json& j) {
   }
 }
 
-// Runs `compute` without the GIL; the result's JSON comes back as Python objects.
+// Runs `compute` without the GIL; the result's JSON comes back as Python objects. A progress hook
+// that found a pending signal (Interrupted) stops the computation, and the signal's exception
+// (KeyboardInterrupt for Ctrl-C) is raised.
 template <class F>
 py::object call(F&& compute) {
   nlohmann::ordered_json json;
-  {
+  try {
     py::gil_scoped_release release;
     json = compute();
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
   }
   return to_python(json);
 }
 
-// The progress hook of the correlation sums, the library's one cancellation point: each call (every
-// thousandth of the work) checks for a pending signal and stops the sums when there is one; with
-// `callback`, it is also handed the fraction done.
+// A command's progress hook (options.progress), the library's cancellation point: each call (every
+// thousandth of the correlation sums, every 4096 points of Cao and FNN, every block of reference
+// points of the divergence curve, every IAAFT iteration) checks for a pending signal and stops the
+// computation when there is one; with `callback`, it is also handed the fraction done.
 std::function<void(double)> progress_hook(py::object callback) {
   auto shared = std::make_shared<py::object>(std::move(callback));
   return [shared](double fraction) {
     py::gil_scoped_acquire acquire;
     if (PyErr_CheckSignals() != 0) throw Interrupted{};
     if (!shared->is_none()) (*shared)(fraction);
+  };
+}
+
+// The same for analyze's steps: the callback is handed the step's name and the fraction of it done.
+std::function<void(const std::string&, double)> step_progress_hook(py::object callback) {
+  auto shared = std::make_shared<py::object>(std::move(callback));
+  return [shared](const std::string& step, double fraction) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw Interrupted{};
+    if (!shared->is_none()) (*shared)(step, fraction);
   };
 }
 
@@ -175,7 +195,8 @@ py::object autocorrelation(const Array& x, const std::string& file, std::size_t 
   return call([&] { return run_autocorrelation(in, params).report.json(); });
 }
 
-py::object cao(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+py::object cao(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+               const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   CaoParams params;
   get(p, "delay", params.options.delay);
@@ -186,10 +207,12 @@ py::object cao(const Array& x, const std::string& file, std::size_t column, std:
   get(p, "level", params.options.saturation_level);
   get(p, "change", params.options.saturation_change);
   get(p, "sigmas", params.options.stochastic_sigmas);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_cao(in, params).report.json(); });
 }
 
-py::object fnn(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+py::object fnn(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+               const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   FnnParams params;
   get(p, "delay", params.options.delay);
@@ -200,6 +223,7 @@ py::object fnn(const Array& x, const std::string& file, std::size_t column, std:
   get(p, "atol", params.options.atol);
   get(p, "norm", params.norm);
   get(p, "threshold", params.options.threshold);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_fnn(in, params).report.json(); });
 }
 
@@ -228,15 +252,11 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);
   params.sums.progress = progress_hook(std::move(progress));
-  try {
-    return call([&] { return run_d2(in, params).report.json(); });
-  } catch (const Interrupted&) {
-    throw py::error_already_set();  // the signal handler's exception (KeyboardInterrupt)
-  }
+  return call([&] { return run_d2(in, params).report.json(); });
 }
 
 py::object lyapunov(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                    const py::dict& p) {
+                    const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovParams params;
   get(p, "method", params.method);
@@ -255,11 +275,12 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "half_width", params.fit.half_width);
   get(p, "min_steps", params.fit.min_steps);
   get(p, "min_rise", params.fit.min_rise);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_lyapunov(in, params).report.json(); });
 }
 
-py::object analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                   const py::dict& p) {
+py::tuple analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                   const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   AnalyzeParams params;
   get(p, "delay", params.delay);
@@ -270,11 +291,36 @@ py::object analyze(const Array& x, const std::string& file, std::size_t column, 
   get(p, "test_length", params.test_length);
   get(p, "surrogates", params.surrogates);
   get(p, "seed", params.seed);
-  return call([&] { return run_analyze(in, params).report.json(); });
+  params.progress = step_progress_hook(std::move(progress));
+  params.mutual_curve = true;  // the information curve, for the plot (the JSON does not change)
+  nlohmann::ordered_json json, evidence = nlohmann::ordered_json::object();
+  try {
+    py::gil_scoped_release release;
+    AnalyzeRun run = run_analyze(in, params);
+    json = std::move(run.report.json());
+    // What `chaos analyze --plot` draws beyond the JSON: the information curve and the local
+    // slopes of the correlation sums.
+    if (run.mutual)
+      evidence["mutual"] = {{"delay", run.mutual->delay}, {"mutual_information", run.mutual->information}};
+    if (run.fnn) evidence["fnn_threshold"] = run.fnn_options.threshold;
+    if (const auto& d = run.analysis.d2) {
+      nlohmann::ordered_json slopes = nlohmann::ordered_json::array();
+      for (const auto& row : d->local_slope) {
+        nlohmann::ordered_json r = nlohmann::ordered_json::array();
+        for (const auto& v : row) r.push_back(optional_json(v));
+        slopes.push_back(std::move(r));
+      }
+      evidence["d2"] = {{"dimension", d->dimension}, {"radius", d->radius}, {"local_slope", std::move(slopes)},
+                        {"scaling_region", interval_json(d->scaling_region)}};
+    }
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
+  }
+  return py::make_tuple(to_python(json), to_python(evidence));
 }
 
 py::object surrogates(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                      const py::dict& p) {
+                      const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   SurrogatesParams params;
   get(p, "method", params.method);
@@ -284,11 +330,12 @@ py::object surrogates(const Array& x, const std::string& file, std::size_t colum
   get(p, "tolerance", params.options.tolerance);
   get(p, "end_match", params.end_match);
   get(p, "max_trim", params.end.max_trim);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_surrogates(in, params).report.json(); });
 }
 
 py::object nonlinearity(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                        const py::dict& p) {
+                        const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   NonlinearityParams params;
   get(p, "count", params.options.surrogates);
@@ -304,6 +351,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   get(p, "neighbours", params.options.prediction.neighbours);
   get(p, "norm", params.norm);
   get(p, "end_match", params.end_match);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 
@@ -388,20 +436,16 @@ py::object validate_cases_run(const py::dict& p, py::object progress) {
   const std::size_t count = validate_cases(params).size();
   auto callback = std::make_shared<py::object>(std::move(progress));
   std::size_t done = 0;
-  try {
-    return call([&] {
-      Report report = validate_report(params);
-      run_validate(params, report, [&](const chaos::ValidationResult&) {
-        py::gil_scoped_acquire acquire;
-        if (PyErr_CheckSignals() != 0) throw Interrupted{};
-        ++done;
-        if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(count));
-      });
-      return report.json();
+  return call([&] {
+    Report report = validate_report(params);
+    run_validate(params, report, [&](const chaos::ValidationResult&) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      ++done;
+      if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(count));
     });
-  } catch (const Interrupted&) {
-    throw py::error_already_set();
-  }
+    return report.json();
+  });
 }
 
 // chaos validate --list: the selected cases' rows (id, quantity, value, low, high, source, kind).
@@ -598,6 +642,76 @@ py::dict simulate_scene(const std::string& toml, const std::vector<std::string>&
   return out;
 }
 
+// study sweep: the spec as `study sweep` builds it from its options (scene text and source, --set,
+// --axis, --initial, --periods, --keep, --signals, --analysis and its options), run into `directory`
+// on `threads` threads (ResultStore, run_sweep, assemble: the code behind the command), returning
+// the counts the command's summary reports. `progress` (a callable or None) gets the fraction of
+// points done; Ctrl-C stops the sweep after the points being computed (a --resume finishes it).
+py::dict study_sweep(const std::string& toml, const std::string& source, const std::vector<std::string>& overrides,
+                     const std::vector<std::string>& axes, const py::dict& p, const std::string& directory, bool resume,
+                     std::size_t threads, py::object progress) {
+  study::SweepSpec spec;
+  if (!toml.empty()) {
+    spec.scene_text = toml;
+    spec.scene_source = source;
+  }
+  spec.overrides = overrides;
+  std::vector<study::Axis> parsed;
+  for (const auto& a : axes) parsed.push_back(study::parse_axis(a));
+  spec.grid = study::Grid(std::move(parsed));
+  std::string initial = "fresh";
+  get(p, "initial", initial);
+  if (initial != "fresh" && initial != "continuation")
+    value_error("initial must be fresh or continuation (got '" + initial + "')");
+  spec.initial = initial == "fresh" ? study::InitialConditions::fresh : study::InitialConditions::continuation;
+  get(p, "periods", spec.periods);
+  get(p, "keep", spec.keep);
+  if (has(p, "signals")) {
+    spec.signals.clear();
+    for (const auto& v : p["signals"]) {
+      if (!py::isinstance<py::str>(v)) type_error("signals must be strings");
+      spec.signals.push_back(v.cast<std::string>());
+    }
+  }
+  get(p, "analysis", spec.analyse);
+  get(p, "analysis_periods", spec.analysis.periods);
+  get(p, "analysis_interval", spec.analysis.interval);
+  get(p, "analysis_samples_per_period", spec.analysis.samples_per_period);
+  get(p, "max_delay", spec.analysis.max_delay);
+  get(p, "max_dimension", spec.analysis.max_dimension);
+  if (threads == 0) value_error("threads must be at least 1 (got 0)");
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  study::SweepProgress done;
+  {
+    py::gil_scoped_release release;
+    spec.validate();
+    const study::ResultStore store(directory, spec, resume);
+    study::SweepExecution exec;
+    exec.threads = threads;
+    exec.progress = [callback](const study::SweepProgress& at) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!callback->is_none() && at.to_do)
+        (*callback)(static_cast<double>(at.done) / static_cast<double>(at.to_do));
+    };
+    try {
+      done = study::run_sweep(spec, store, exec);
+    } catch (const Interrupted&) {
+      py::gil_scoped_acquire acquire;
+      throw py::error_already_set();
+    }
+    store.assemble();
+  }
+  py::dict out;
+  out["points"] = spec.grid.size();
+  out["computed"] = done.done;
+  out["resumed_from_disk"] = done.skipped;
+  out["failed"] = done.failed;
+  out["threads"] = threads;
+  out["warnings"] = mechanism::scene_warnings(study::point_scene(spec, 0));
+  return out;
+}
+
 // The time of the library's own work for one command, without the Python layer: the shared
 // computation and its JSON, `repeats` times (scripts/python_timing.py subtracts it from a call's time
 // to get the call overhead).
@@ -663,6 +777,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("scene_toml", &scene_toml);
   m.def("scene_warnings", &scene_warnings);
   m.def("simulate", &simulate_scene);
+  m.def("study_sweep", &study_sweep);
   m.def("_compute_seconds", &compute_seconds);
   m.def("_last_input_address", [] { return static_cast<std::uintptr_t>(last_input_address); });
 }
