@@ -56,11 +56,20 @@ struct Interrupted {};
 // Parameters: read from the dict by name, None or absent leaves the command's default.
 bool has(const py::dict& p, const char* name) { return p.contains(name) && !p[name].is_none(); }
 
+// A NumPy integer scalar (np.int64(3), an element of an integer array) counts as an integer; NumPy's
+// bool does not, as Python's does not.
+bool is_numpy_integer(const py::handle& v) {
+  static PyObject* const integer = py::object(py::module_::import("numpy").attr("integer")).release().ptr();
+  return PyObject_IsInstance(v.ptr(), integer) == 1;
+}
+
 std::size_t to_count(const py::handle& v, const char* name) {
-  if (PyBool_Check(v.ptr()) || !PyLong_Check(v.ptr()))
+  if (PyBool_Check(v.ptr()) || !(PyLong_Check(v.ptr()) || is_numpy_integer(v)))
     type_error(std::string(name) + " must be an integer (got " + std::string(py::str(py::type::of(v).attr("__name__"))) + ")");
+  const py::object number = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
+  if (!number) throw py::error_already_set();
   int overflow = 0;
-  const long long value = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+  const long long value = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
   if (overflow > 0) value_error(std::string(name) + " is too large");
   if (overflow < 0 || value < 0) value_error(std::string(name) + " must be >= 0 (got " + std::string(py::str(v)) + ")");
   return static_cast<std::size_t>(value);
@@ -375,7 +384,7 @@ py::object density(const Array& parameter, const Array& value, const std::string
 
 // chaos section: `columns` the data columns (each a float64 array, all of one length) with their
 // 1-based numbers in params["columns"], `times` the time column (empty without one).
-py::object section(const py::list& columns, const Array& times, const std::string& file, const py::dict& p) {
+SectionParams section_params(const py::dict& p) {
   SectionParams params;
   if (has(p, "columns"))
     for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
@@ -386,7 +395,12 @@ py::object section(const py::list& columns, const Array& times, const std::strin
   get(p, "hyperplane", params.hyperplane);
   get(p, "level", params.level);
   get(p, "direction", params.direction);
-  check_section_params(params);
+  check_section_params(params);  // before any input is read, as the command checks them
+  return params;
+}
+
+py::object section(const py::list& columns, const Array& times, const std::string& file, const py::dict& p) {
+  const SectionParams params = section_params(p);
   std::vector<Array> held;
   std::vector<std::span<const double>> data;
   for (const auto& c : columns) {
@@ -413,10 +427,7 @@ py::object section(const py::list& columns, const Array& times, const std::strin
 // (columns read, their values, the times or an empty array).
 py::tuple section_file_columns(const std::string& path, const py::dict& p, std::size_t skip,
                                std::optional<std::size_t> length) {
-  SectionParams params;
-  if (has(p, "columns"))
-    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
-  get(p, "time_column", params.time_column);
+  SectionParams params = section_params(p);
   SectionColumns input;
   {
     py::gil_scoped_release release;
@@ -760,6 +771,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("nonlinearity", &nonlinearity);
   m.def("section", &section);
   m.def("section_file_columns", &section_file_columns);
+  m.def("check_section", [](const py::dict& p) { (void)section_params(p); });
   m.def("validate", &validate_cases_run);
   m.def("validate_list", &validate_list);
   m.def("zoo_series", &zoo_series);

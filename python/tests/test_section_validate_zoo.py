@@ -105,6 +105,22 @@ def test_section_bad_arrays(bad, error):
         chaos.section(bad, stroboscopic=1)
 
 
+def test_section_checks_the_options_before_the_data(tmp_path):
+    """As the command: a missing section is named before a missing file or a bad column."""
+    p = run_cli("section", tmp_path / "missing.txt", check=False)
+    assert p.returncode == 3 and "choose one section" in p.stderr
+    with pytest.raises(ValueError, match="choose one section"):
+        chaos.section(tmp_path / "missing.txt")
+    with pytest.raises(ValueError, match="choose one section"):
+        chaos.section(np.zeros((5, 2)), columns=[7])
+
+
+def test_section_takes_numpy_integers(lorenz3):
+    expected = cli_json("section", lorenz3, "-c", "1,3", "--hyperplane", 3, "--level", 20)
+    got = chaos.section(lorenz3, columns=np.array([1, 3]), hyperplane=np.int64(3), level=20)
+    assert got.to_dict() == expected
+
+
 def test_section_bad_column_numbers():
     rows = np.arange(20.0).reshape(10, 2)
     with pytest.raises(ValueError, match="requested but the array has 2 column"):

@@ -424,7 +424,7 @@ def _column_numbers(columns, name):
         return [int(columns)]
     if isinstance(columns, (str, bytes)) or not hasattr(columns, "__iter__"):
         raise TypeError(f"{name} must be a column number or a list of them (got {type(columns).__name__})")
-    return list(columns)
+    return [int(c) if isinstance(c, np.integer) else c for c in columns]
 
 
 def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, phase=0, hyperplane=None, level=None,
@@ -448,6 +448,8 @@ def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, 
     Result keys: parameters, time, points (2-D: one row per section point, one column per column
     read), return_time (hyperplane; NaN for the first crossing).
     """
+    if isinstance(time_column, np.integer):
+        time_column = int(time_column)
     params = dict(columns=_column_numbers(columns, "columns"), time_column=time_column, dt=dt,
                   stroboscopic=stroboscopic, phase=phase, hyperplane=hyperplane, level=level, direction=direction)
     if isinstance(data, (str, os.PathLike)):
@@ -473,6 +475,7 @@ def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, 
             raise ValueError(f"{ARRAY_NAME}: {name} {number} requested but the array has {width} column(s) (1-based)")
         return np.ascontiguousarray(a[:, number - 1], dtype=np.float64)
 
+    _core.check_section(params)  # the option checks first, as the command makes them
     numbers = params["columns"]
     if numbers is None:
         numbers = [c for c in range(1, width + 1) if c != time_column]
