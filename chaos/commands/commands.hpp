@@ -30,6 +30,7 @@
 #include "chaos/series.hpp"
 #include "chaos/surrogates.hpp"
 #include "chaos/validation.hpp"
+#include "chaos/zoo_suite.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -297,5 +298,27 @@ struct ZooSeriesRun {
   Report report;             // parameters case, kind, description, N, dt; "x" the series
 };
 ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& output = {});
+
+// chaos zoo: the out-of-sample regression suite (zoo_suite.hpp) and its Markdown report
+struct ZooParams {
+  bool fast = false;                // the CI subset
+  bool grid = true;                 // chaotic systems over the neighbourhood grid
+  std::vector<std::string> only;    // these cases (empty: every case)
+  std::size_t threads = 1;          // cases run in parallel (the report does not depend on it)
+};
+struct ZooRun {
+  std::vector<ZooCase> cases;
+  std::vector<ZooCaseResult> results;  // one per case, in case order
+  double wall_seconds = 0.0;
+  std::size_t wrong = 0;               // confident estimates outside their band, over every row
+  std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;  // coverage at the automatic choices
+  std::string markdown;                // the report `chaos zoo` writes (docs/zoo.md)
+  nlohmann::ordered_json json;         // the same as data: parameters, counts, one entry per row
+};
+// `each` is called after every case (serialised, from the worker threads) with the number of cases
+// done, their total, the case and its result; it may throw to stop (the other threads finish their
+// case first).
+ZooRun run_zoo(const ZooParams& params,
+               const std::function<void(std::size_t, std::size_t, const ZooCase&, const ZooCaseResult&)>& each = nullptr);
 
 }  // namespace chaos::cli

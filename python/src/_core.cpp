@@ -479,6 +479,31 @@ py::list validate_list(const py::dict& p) {
   return out;
 }
 
+// chaos zoo: the suite's data (run_zoo's JSON) and its Markdown report. `progress` (a callable or
+// None) gets the fraction of cases done; Ctrl-C stops after the cases being run.
+py::object zoo_run(const py::dict& p, py::object progress) {
+  ZooParams params;
+  get(p, "fast", params.fast);
+  get(p, "grid", params.grid);
+  get(p, "threads", params.threads);
+  if (has(p, "only"))
+    for (const auto& v : p["only"]) {
+      if (!py::isinstance<py::str>(v)) type_error("only must hold case names (strings)");
+      params.only.push_back(v.cast<std::string>());
+    }
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  return call([&] {
+    ZooRun run = run_zoo(params, [&](std::size_t done, std::size_t total, const chaos::ZooCase&,
+                                     const chaos::ZooCaseResult&) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(total));
+    });
+    run.json["markdown"] = run.markdown;
+    return run.json;
+  });
+}
+
 // chaos zoo --series NAME: the JSON without the series, and the series as an array.
 py::tuple zoo_series(const std::string& name, const py::dict& p) {
   ZooSeriesParams params;
@@ -775,6 +800,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("validate", &validate_cases_run);
   m.def("validate_list", &validate_list);
   m.def("zoo_series", &zoo_series);
+  m.def("zoo", &zoo_run);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());
   m.def("builtin_series", [](std::size_t length) {

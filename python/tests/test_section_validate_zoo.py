@@ -1,6 +1,7 @@
-"""section, validate and zoo_series against the command's output on the same data (the JSON is built by
+"""section, validate, zoo and zoo_series against the command's output on the same data (the JSON is built by
 the same code in both, chaos/commands/)."""
 import json
+import re
 
 import numpy as np
 import pytest
@@ -199,3 +200,42 @@ def test_zoo_series_refuses_an_unknown_case():
     assert str(error.value) == p.stderr.strip().split(": ", 2)[2]
     with pytest.raises(ValueError, match="--threads must be at least 1"):
         chaos.zoo_series("henon", threads=0)
+
+
+def masked(markdown):
+    """The report without what differs between runs: the wall time and each system's seconds."""
+    markdown = re.sub(r"Wall time: [0-9.e+-]+ s", "Wall time: T s", markdown)
+    return re.sub(r"\| [0-9.e+-]+ \|$", "| S |", markdown, flags=re.M)
+
+
+def test_zoo_equals_the_command():
+    cases = ["henon", "white_noise", "torus2"]
+    text = run_cli("zoo", "--fast", "--no-grid", "--only", ",".join(cases), "-q").stdout
+    seen = []
+    r = chaos.zoo(cases, fast=True, grid=False, progress=seen.append)
+    assert masked(r.markdown) == masked(text)
+    assert seen == [1 / 3, 2 / 3, 1.0]
+    assert r.wrong == 0 and r.chaotic == 1 and r.parameters["only"] == tuple(cases)
+    # One row per case at the automatic choices; the report's rows say the same.
+    assert [row["case"] for row in r.rows] == cases and all(row["automatic"] for row in r.rows)
+    henon = r.rows[0]
+    line = next(line for line in text.splitlines() if line.startswith("| henon | 10000 |"))
+    assert f"| {henon['delay']} | {henon['dimension']} | {henon['theiler']} |" in line
+    assert henon["d2"]["status"] in line and henon["rosenstein"]["status"] in line
+    # The verdicts follow the bands' rule: a confident value is in band or wrong, anything else unsure.
+    for row in r.rows:
+        for estimate in (row["d2"], row["rosenstein"], row["kantz"]):
+            confident = estimate["status"] in ("saturated", "linear_region")
+            assert (estimate["verdict"] != "unsure") == confident
+
+
+def test_zoo_refuses_what_the_command_refuses():
+    p = run_cli("zoo", "--only", "no_such_case", "-q", check=False)
+    assert p.returncode == 3
+    with pytest.raises(ValueError) as error:
+        chaos.zoo("no_such_case")
+    assert str(error.value) == p.stderr.strip().split(": ", 2)[2]
+    with pytest.raises(ValueError, match="--threads must be at least 1"):
+        chaos.zoo("henon", threads=0)
+    with pytest.raises(TypeError):
+        chaos.zoo([1, 2])

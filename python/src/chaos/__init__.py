@@ -29,7 +29,7 @@ from . import _core
 from ._results import Result, make as _make
 
 __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
-           "nonlinearity", "density", "section", "validate", "validation_cases", "zoo_series", "embed",
+           "nonlinearity", "density", "section", "validate", "validation_cases", "zoo", "zoo_series", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
 
@@ -513,6 +513,39 @@ def validation_cases(filter=None):
     """The reference cases (``chaos validate --list``), without running them: a list of dicts with
     id, system, quantity, value (None where the source gives only a bound), low, high, source, kind."""
     return _core.validate_list(dict(filter=filter))
+
+
+def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
+    """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
+    controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
+    short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
+    against a band fixed in advance (chaos/include/chaos/zoo_suite.hpp): D2 within +-0.1 of a cited
+    literature D2, else not above D_KY + 0.1 (Kaplan and Yorke 1979, from the equations); lambda_1
+    within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
+    no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension
+    +-0.1 and no confident lambda_1. docs/zoo.md is its report.
+
+    ``only``: case names (a list, or a comma-separated string; default every case); ``fast``: the CI
+    subset (4 systems and 5 controls at N = 10^4, automatic choices only); ``grid=False``: automatic
+    choices only (``--no-grid``); ``threads``: cases run in parallel (nothing depends on it).
+    ``progress``: True for a bar on stderr, or a callable taking the fraction of cases done; Ctrl-C
+    stops after the cases being run.
+
+    Result keys: parameters, wrong (confident estimates outside their band: the command exits 4
+    when there is one), chaotic, d2_covered, lambda_covered (coverage at the automatic choices),
+    wall_seconds, rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
+    theiler_factor, d2 / rosenstein / kantz as value, interval, status, verdict, note, seconds,
+    error), markdown (the report ``chaos zoo`` writes).
+    """
+    if isinstance(only, str):
+        only = [name for name in only.split(",") if name]
+    bar = _progress_bar(progress, "zoo")
+    try:
+        return _make(_core.zoo(dict(only=None if only is None else list(only), fast=fast, grid=grid,
+                                    threads=threads), bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
 
 
 def zoo_series(name, *, fast=False, threads=1):
