@@ -1,7 +1,7 @@
 // chaos zoo: the out-of-sample regression suite (zoo_suite.hpp) over the zoo's chaotic systems and
 // the controls, in parallel on threads (run_zoo, commands.hpp), written as a Markdown report
-// (docs/zoo.md is made by `chaos zoo --threads 2 -o docs/zoo.md`). Exits with the validation-failure code when any
-// estimate is confident and outside its band.
+// (docs/zoo.md is made by `chaos zoo --threads 2 -o docs/zoo.md`). Exits with the
+// validation-failure code when any estimate is confident and outside its band.
 
 #include <fstream>
 #include <iostream>
