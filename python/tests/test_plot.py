@@ -80,3 +80,16 @@ def test_analyze_plot_says_what_did_not_run(data_dir):
     (mi, cao), (fnn, d2) = a.plot()
     assert d2.texts and d2.texts[0].get_text().startswith("not run: ")
     assert len(cao.lines) >= 2
+
+
+def test_section_plot_and_a_command_without_figure():
+    rows = np.column_stack([np.sin(np.arange(200) * 0.1), np.cos(np.arange(200) * 0.1)])
+    r = chaos.section(rows, stroboscopic=7)
+    ax = r.plot()
+    np.testing.assert_array_equal(ax.lines[0].get_xdata(), rows[::7, 0])  # every 7th row, by definition
+    np.testing.assert_array_equal(ax.lines[0].get_ydata(), rows[::7, 1])
+    one = chaos.section(rows[:, 0], stroboscopic=7).plot()  # one column: the return map
+    np.testing.assert_array_equal(one.lines[0].get_xdata(), rows[::7, 0][:-1])
+    np.testing.assert_array_equal(one.lines[0].get_ydata(), rows[::7, 0][1:])
+    with pytest.raises(TypeError, match="has no figure"):
+        chaos.zoo_series("henon", fast=True).plot()
