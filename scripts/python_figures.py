@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The figures of docs/python.md, made by the package: a real-looking series (Lorenz x observed with
 2% noise, N = 20 000), chaos.analyze, then the correlation sums and local slopes of chaos.d2 in the
-embedding analyze chose. Writes docs/python/*.png and prints the numbers the page quotes.
+embedding analyze chose, and a small clearance sweep of the simulator (chaos.study.sweep). Writes
+docs/python/*.png and prints the numbers the page quotes.
 
 Usage (the venv's python, from outside the checkout's root): python scripts/python_figures.py
 """
@@ -41,34 +42,22 @@ c.plot(ax=right)
 fig.savefig(os.path.join(out, "mutual_cao.png"), dpi=90)
 
 # A small clearance sweep of the simulator: the slider's stroboscopic y against the translational
-# clearance (the seed's Fig. 4, coarse), with the cheap settings of scripts/demo.sh. Simulations
-# release the GIL, so two threads run two clearances at once.
+# clearance (the seed's Fig. 4, coarse), with the cheap settings of scripts/demo.sh, by study.sweep
+# (the code of `study sweep`) on two threads.
 import time  # noqa: E402
-from concurrent.futures import ThreadPoolExecutor  # noqa: E402
 
-from chaos import mechanism  # noqa: E402
+from chaos import mechanism, study  # noqa: E402
 
 base = mechanism.default_scene()
 for key, value in {"joint.slider.friction.sigma1_velocity": 1e-3, "integrator.method": "dopri5",
-                   "integrator.relative_tolerance": 1e-3, "integrator.max_step": 1e-4,
-                   "run.transient": 0.6, "run.duration": 2.4, "run.output_interval": 0.0}.items():
+                   "integrator.relative_tolerance": 1e-3, "integrator.max_step": 1e-4}.items():
     base.set(key, value)
-clearances = np.linspace(1e-5, 6e-4, 40)
-
-
-def strobe(c):
-    run = mechanism.simulate(base.copy().set("joint.slider.clearance", float(c)), stroboscopic=True)
-    return run.status, run.stroboscopic["slider_y"][-100:]
-
-
 started = time.perf_counter()
-with ThreadPoolExecutor(2) as pool:
-    runs = list(pool.map(strobe, clearances))
-print(f"sweep: {len(clearances)} clearances x 250 revolutions in {time.perf_counter() - started:.1f} s on 2 threads; "
-      f"statuses {sorted({s for s, _ in runs})}")
+s = study.sweep(base, axis="joint.slider.clearance=1e-5:6e-4:40", periods=250, keep=100, threads=2)
+print(f"sweep: {s.summary['points']} clearances x 250 revolutions in {time.perf_counter() - started:.1f} s on 2 threads; "
+      f"statuses {sorted(set(s.points['status']))}")
 fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
-for c, (_, y) in zip(clearances, runs):
-    ax.plot(np.full(len(y), c * 1e3), y * 1e3, ",k")
+ax.plot(s.samples["joint.slider.clearance"] * 1e3, s.samples["slider_y"] * 1e3, ",k")
 ax.set_xlabel("clearance c_t (mm)")
 ax.set_ylabel("slider y at each revolution (mm)")
 ax.set_title("stroboscopic slider position, last 100 of 250 revolutions")

@@ -1,11 +1,9 @@
 // chaos validate: run every reference case of references/references.tsv on this machine and show
 // reference, source, band, measured value and verdict. Exit code 4 if any case fails.
 
-#include <algorithm>
-#include <iostream>
+#include <vector>
 
-#include "chaos/error.hpp"
-#include "chaos/validation.hpp"
+#include "commands.hpp"
 #include "common.hpp"
 
 namespace chaos::cli {
@@ -21,50 +19,35 @@ struct ValidateArgs {
 std::string band(const Reference& r) { return "[" + number(r.low) + ", " + number(r.high) + "]"; }
 
 void run(const ValidateArgs& args) {
-  // A typo in --filter ran nothing and exited 0, as if every case had passed (issue 16).
-  if (!args.filter.empty() && std::none_of(reference_table().begin(), reference_table().end(),
-                                           [&](const Reference& r) { return r.id.find(args.filter) != std::string::npos; }))
-    throw InvalidInput(ErrorCode::invalid_parameter,
-                       "--filter '" + args.filter + "' matches no case id (chaos validate --list shows them)");
-  Report report("validate", args.output);
-  report.parameter("filter", args.filter.empty() ? std::string("(all)") : args.filter);
+  const ValidateParams params{args.filter};
+  const std::vector<Reference> selected = validate_cases(params);  // refuses a filter that matches nothing
+  Report report = validate_report(params, args.output);
   std::ostream& out = report.stream();
   if (!report.json_mode()) {
     report.write_header(out);
     out << "# id\tquantity\tvalue\tband\tmeasured\tresult\tseconds\tsource\tkind\tdetail\n";
     out.flush();
   }
-  std::size_t passed = 0, failed = 0;
-  auto& cases = report.json()["cases"] = nlohmann::ordered_json::array();
-  for (const Reference& r : reference_table()) {
-    if (!args.filter.empty() && r.id.find(args.filter) == std::string::npos) continue;
-    if (args.list) {
+  if (args.list) {
+    for (const Reference& r : selected)
       out << r.id << "\t" << r.quantity << "\t" << (r.value ? number(*r.value) : "-") << "\t" << band(r) << "\t" << r.source
           << "\t" << r.kind << "\n";
-      continue;
-    }
-    const ValidationResult v = validate(r);
-    (v.passed ? passed : failed)++;
-    if (report.json_mode()) {
-      cases.push_back({{"id", r.id}, {"system", r.system}, {"quantity", r.quantity}, {"value", optional_json(r.value)},
-                       {"low", r.low}, {"high", r.high}, {"measured", optional_json(v.measured)}, {"passed", v.passed},
-                       {"seconds", v.seconds}, {"source", r.source}, {"kind", r.kind}, {"detail", v.detail}});
-    } else {
-      out << r.id << "\t" << r.quantity << "\t" << (r.value ? number(*r.value) : "-") << "\t" << band(r) << "\t"
-          << (v.measured ? number(*v.measured) : "none") << "\t" << (v.passed ? "pass" : "FAIL") << "\t"
-          << number(v.seconds) << "\t" << r.source << "\t" << r.kind << "\t" << v.detail << "\n";
-      out.flush();
-    }
+    return;
   }
-  if (args.list) return;
+  const ValidateTally tally = run_validate(params, report, [&](const ValidationResult& v) {
+    if (report.json_mode()) return;
+    const Reference& r = v.reference;
+    out << r.id << "\t" << r.quantity << "\t" << (r.value ? number(*r.value) : "-") << "\t" << band(r) << "\t"
+        << (v.measured ? number(*v.measured) : "none") << "\t" << (v.passed ? "pass" : "FAIL") << "\t"
+        << number(v.seconds) << "\t" << r.source << "\t" << r.kind << "\t" << v.detail << "\n";
+    out.flush();
+  });
   if (report.json_mode()) {
-    report.json()["passed"] = passed;
-    report.json()["failed"] = failed;
     report.write_json(out);
   } else {
-    out << "# " << passed << " passed, " << failed << " failed\n";
+    out << "# " << tally.passed << " passed, " << tally.failed << " failed\n";
   }
-  if (failed > 0) throw ValidationFailed{};
+  if (tally.failed > 0) throw ValidationFailed{};
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,8 @@
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/series.hpp"
 #include "chaos/surrogates.hpp"
+#include "chaos/validation.hpp"
+#include "chaos/zoo_suite.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -232,5 +235,90 @@ void check_density_params(const DensityParams& params);
 DensityRun run_density(std::span<const double> parameter, std::span<const double> value, const std::string& file,
                        std::size_t parameter_column, std::size_t value_column, const DensityParams& params,
                        const OutputOptions& output = {});
+
+// chaos section: a Poincare section of a multi-column series
+struct SectionParams {
+  std::vector<std::size_t> columns;          // the columns read, 1-based (empty: every column but the time column)
+  std::optional<std::size_t> time_column;    // the column holding the time; none: rows dt apart
+  double dt = 1.0;
+  std::optional<std::size_t> period;         // stroboscopic: every PERIOD-th row ...
+  std::size_t phase = 0;                     // ... from this row
+  std::optional<std::size_t> hyperplane;     // hyperplane: the crossings of this column ...
+  std::optional<double> level;               // ... through this level
+  std::string direction = "up";              // up, down or both
+};
+// The option checks made before any input is read (one section, a level for a hyperplane, dt > 0,
+// the direction's name).
+void check_section_params(const SectionParams& params);
+// The columns of a section's input text, read as `chaos section` reads them (-x -l): params.columns
+// (filled with every column but the time column when empty) and, with a time column, the times.
+struct SectionColumns {
+  std::vector<std::vector<double>> columns;
+  std::vector<double> times;  // empty without params.time_column
+};
+SectionColumns read_section_columns(const std::string& text, const std::string& name, SectionParams& params,
+                                    std::size_t skip, std::optional<std::size_t> length);
+struct SectionRun {
+  std::vector<double> time;                  // of each section point
+  std::vector<std::vector<double>> points;   // one row per section point, one value per column read
+  std::vector<std::optional<double>> return_time;  // hyperplane: since the previous crossing (none for the first)
+  std::size_t rows = 0;                      // N, the rows read
+  Report report;
+};
+// data: one column per params.columns, all of the same length; times: the time column's values
+// (empty: rows dt apart).
+SectionRun run_section(const std::vector<std::span<const double>>& data, std::span<const double> times,
+                       const std::string& file, const SectionParams& params, const OutputOptions& output = {});
+
+// chaos validate: the reference cases of references/references.tsv, run on this machine
+struct ValidateParams {
+  std::string filter;  // only cases whose id contains this text; empty: every case
+};
+// The cases selected, in table order; refuses a filter that matches no case id.
+std::vector<Reference> validate_cases(const ValidateParams& params);
+// The report with its parameters, before any case runs (the command line writes its header then).
+Report validate_report(const ValidateParams& params, const OutputOptions& output = {});
+struct ValidateTally {
+  std::size_t passed = 0, failed = 0;
+};
+// Runs the selected cases in table order, each appended to the report's "cases" as `chaos validate
+// --json` writes it, then "passed" and "failed". `each` is called after every case (the command
+// line prints its row; it may throw to stop).
+ValidateTally run_validate(const ValidateParams& params, Report& report,
+                           const std::function<void(const ValidationResult&)>& each = nullptr);
+
+// chaos zoo --series NAME: the exact series a zoo case is analysed with
+struct ZooSeriesParams {
+  std::string name;          // the case (the first column of docs/zoo.md)
+  bool fast = false;         // the CI subset's cases (N = 10^4)
+  std::size_t threads = 1;   // the spectra behind the cases' bands
+};
+struct ZooSeriesRun {
+  std::vector<double> x;
+  Report report;             // parameters case, kind, description, N, dt; "x" the series
+};
+ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& output = {});
+
+// chaos zoo: the out-of-sample regression suite (zoo_suite.hpp) and its Markdown report
+struct ZooParams {
+  bool fast = false;                // the CI subset
+  bool grid = true;                 // chaotic systems over the neighbourhood grid
+  std::vector<std::string> only;    // these cases (empty: every case)
+  std::size_t threads = 1;          // cases run in parallel (the report does not depend on it)
+};
+struct ZooRun {
+  std::vector<ZooCase> cases;
+  std::vector<ZooCaseResult> results;  // one per case, in case order
+  double wall_seconds = 0.0;
+  std::size_t wrong = 0;               // confident estimates outside their band, over every row
+  std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;  // coverage at the automatic choices
+  std::string markdown;                // the report `chaos zoo` writes (docs/zoo.md)
+  nlohmann::ordered_json json;         // the same as data: parameters, counts, one entry per row
+};
+// `each` is called after every case (serialised, from the worker threads) with the number of cases
+// done, their total, the case and its result; it may throw to stop (the other threads finish their
+// case first).
+ZooRun run_zoo(const ZooParams& params,
+               const std::function<void(std::size_t, std::size_t, const ZooCase&, const ZooCaseResult&)>& each = nullptr);
 
 }  // namespace chaos::cli

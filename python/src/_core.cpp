@@ -27,6 +27,11 @@
 #include "mechanism/signals.hpp"
 #include "mechanism/simulate.hpp"
 #include "mechanism/slider_crank.hpp"
+#include "study/error.hpp"
+#include "study/grid.hpp"
+#include "study/result_store.hpp"
+#include "study/run_sweep.hpp"
+#include "study/sweep.hpp"
 #include "summary_json.hpp"
 
 namespace py = pybind11;
@@ -51,11 +56,20 @@ struct Interrupted {};
 // Parameters: read from the dict by name, None or absent leaves the command's default.
 bool has(const py::dict& p, const char* name) { return p.contains(name) && !p[name].is_none(); }
 
+// A NumPy integer scalar (np.int64(3), an element of an integer array) counts as an integer; NumPy's
+// bool does not, as Python's does not.
+bool is_numpy_integer(const py::handle& v) {
+  static PyObject* const integer = py::object(py::module_::import("numpy").attr("integer")).release().ptr();
+  return PyObject_IsInstance(v.ptr(), integer) == 1;
+}
+
 std::size_t to_count(const py::handle& v, const char* name) {
-  if (PyBool_Check(v.ptr()) || !PyLong_Check(v.ptr()))
+  if (PyBool_Check(v.ptr()) || !(PyLong_Check(v.ptr()) || is_numpy_integer(v)))
     type_error(std::string(name) + " must be an integer (got " + std::string(py::str(py::type::of(v).attr("__name__"))) + ")");
+  const py::object number = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
+  if (!number) throw py::error_already_set();
   int overflow = 0;
-  const long long value = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+  const long long value = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
   if (overflow > 0) value_error(std::string(name) + " is too large");
   if (overflow < 0 || value < 0) value_error(std::string(name) + " must be >= 0 (got " + std::string(py::str(v)) + ")");
   return static_cast<std::size_t>(value);
@@ -135,26 +149,41 @@ py::object to_python(const nlohmann::ordered_json& j) {
   }
 }
 
-// Runs `compute` without the GIL; the result's JSON comes back as Python objects.
+// Runs `compute` without the GIL; the result's JSON comes back as Python objects. A progress hook
+// that found a pending signal (Interrupted) stops the computation, and the signal's exception
+// (KeyboardInterrupt for Ctrl-C) is raised.
 template <class F>
 py::object call(F&& compute) {
   nlohmann::ordered_json json;
-  {
+  try {
     py::gil_scoped_release release;
     json = compute();
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
   }
   return to_python(json);
 }
 
-// The progress hook of the correlation sums, the library's one cancellation point: each call (every
-// thousandth of the work) checks for a pending signal and stops the sums when there is one; with
-// `callback`, it is also handed the fraction done.
+// A command's progress hook (options.progress), the library's cancellation point: each call (every
+// thousandth of the correlation sums, every 4096 points of Cao and FNN, every block of reference
+// points of the divergence curve, every IAAFT iteration) checks for a pending signal and stops the
+// computation when there is one; with `callback`, it is also handed the fraction done.
 std::function<void(double)> progress_hook(py::object callback) {
   auto shared = std::make_shared<py::object>(std::move(callback));
   return [shared](double fraction) {
     py::gil_scoped_acquire acquire;
     if (PyErr_CheckSignals() != 0) throw Interrupted{};
     if (!shared->is_none()) (*shared)(fraction);
+  };
+}
+
+// The same for analyze's steps: the callback is handed the step's name and the fraction of it done.
+std::function<void(const std::string&, double)> step_progress_hook(py::object callback) {
+  auto shared = std::make_shared<py::object>(std::move(callback));
+  return [shared](const std::string& step, double fraction) {
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw Interrupted{};
+    if (!shared->is_none()) (*shared)(step, fraction);
   };
 }
 
@@ -175,7 +204,8 @@ py::object autocorrelation(const Array& x, const std::string& file, std::size_t 
   return call([&] { return run_autocorrelation(in, params).report.json(); });
 }
 
-py::object cao(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+py::object cao(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+               const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   CaoParams params;
   get(p, "delay", params.options.delay);
@@ -186,10 +216,12 @@ py::object cao(const Array& x, const std::string& file, std::size_t column, std:
   get(p, "level", params.options.saturation_level);
   get(p, "change", params.options.saturation_change);
   get(p, "sigmas", params.options.stochastic_sigmas);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_cao(in, params).report.json(); });
 }
 
-py::object fnn(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
+py::object fnn(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+               const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   FnnParams params;
   get(p, "delay", params.options.delay);
@@ -200,6 +232,7 @@ py::object fnn(const Array& x, const std::string& file, std::size_t column, std:
   get(p, "atol", params.options.atol);
   get(p, "norm", params.norm);
   get(p, "threshold", params.options.threshold);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_fnn(in, params).report.json(); });
 }
 
@@ -228,15 +261,11 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);
   params.sums.progress = progress_hook(std::move(progress));
-  try {
-    return call([&] { return run_d2(in, params).report.json(); });
-  } catch (const Interrupted&) {
-    throw py::error_already_set();  // the signal handler's exception (KeyboardInterrupt)
-  }
+  return call([&] { return run_d2(in, params).report.json(); });
 }
 
 py::object lyapunov(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                    const py::dict& p) {
+                    const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovParams params;
   get(p, "method", params.method);
@@ -255,11 +284,12 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "half_width", params.fit.half_width);
   get(p, "min_steps", params.fit.min_steps);
   get(p, "min_rise", params.fit.min_rise);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_lyapunov(in, params).report.json(); });
 }
 
-py::object analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                   const py::dict& p) {
+py::tuple analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                   const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   AnalyzeParams params;
   get(p, "delay", params.delay);
@@ -270,11 +300,36 @@ py::object analyze(const Array& x, const std::string& file, std::size_t column, 
   get(p, "test_length", params.test_length);
   get(p, "surrogates", params.surrogates);
   get(p, "seed", params.seed);
-  return call([&] { return run_analyze(in, params).report.json(); });
+  params.progress = step_progress_hook(std::move(progress));
+  params.mutual_curve = true;  // the information curve, for the plot (the JSON does not change)
+  nlohmann::ordered_json json, evidence = nlohmann::ordered_json::object();
+  try {
+    py::gil_scoped_release release;
+    AnalyzeRun run = run_analyze(in, params);
+    json = std::move(run.report.json());
+    // What `chaos analyze --plot` draws beyond the JSON: the information curve and the local
+    // slopes of the correlation sums.
+    if (run.mutual)
+      evidence["mutual"] = {{"delay", run.mutual->delay}, {"mutual_information", run.mutual->information}};
+    if (run.fnn) evidence["fnn_threshold"] = run.fnn_options.threshold;
+    if (const auto& d = run.analysis.d2) {
+      nlohmann::ordered_json slopes = nlohmann::ordered_json::array();
+      for (const auto& row : d->local_slope) {
+        nlohmann::ordered_json r = nlohmann::ordered_json::array();
+        for (const auto& v : row) r.push_back(optional_json(v));
+        slopes.push_back(std::move(r));
+      }
+      evidence["d2"] = {{"dimension", d->dimension}, {"radius", d->radius}, {"local_slope", std::move(slopes)},
+                        {"scaling_region", interval_json(d->scaling_region)}};
+    }
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
+  }
+  return py::make_tuple(to_python(json), to_python(evidence));
 }
 
 py::object surrogates(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                      const py::dict& p) {
+                      const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   SurrogatesParams params;
   get(p, "method", params.method);
@@ -284,11 +339,12 @@ py::object surrogates(const Array& x, const std::string& file, std::size_t colum
   get(p, "tolerance", params.options.tolerance);
   get(p, "end_match", params.end_match);
   get(p, "max_trim", params.end.max_trim);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_surrogates(in, params).report.json(); });
 }
 
 py::object nonlinearity(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
-                        const py::dict& p) {
+                        const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   NonlinearityParams params;
   get(p, "count", params.options.surrogates);
@@ -304,6 +360,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   get(p, "neighbours", params.options.prediction.neighbours);
   get(p, "norm", params.norm);
   get(p, "end_match", params.end_match);
+  params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 
@@ -323,6 +380,144 @@ py::object density(const Array& parameter, const Array& value, const std::string
   return call([&] {
     return run_density(x.values, y.values, file, parameter_column, value_column, params).report.json();
   });
+}
+
+// chaos section: `columns` the data columns (each a float64 array, all of one length) with their
+// 1-based numbers in params["columns"], `times` the time column (empty without one).
+SectionParams section_params(const py::dict& p) {
+  SectionParams params;
+  if (has(p, "columns"))
+    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
+  get(p, "time_column", params.time_column);
+  get(p, "dt", params.dt);
+  get(p, "stroboscopic", params.period);
+  get(p, "phase", params.phase);
+  get(p, "hyperplane", params.hyperplane);
+  get(p, "level", params.level);
+  get(p, "direction", params.direction);
+  check_section_params(params);  // before any input is read, as the command checks them
+  return params;
+}
+
+py::object section(const py::list& columns, const Array& times, const std::string& file, const py::dict& p) {
+  const SectionParams params = section_params(p);
+  std::vector<Array> held;
+  std::vector<std::span<const double>> data;
+  for (const auto& c : columns) {
+    held.push_back(c.cast<Array>());
+    data.emplace_back(held.back().data(), static_cast<std::size_t>(held.back().size()));
+  }
+  const std::span<const double> t(times.data(), static_cast<std::size_t>(times.size()));
+  // What the command's reader refuses in a file: no rows, NaN or infinity.
+  if (!data.empty() && data.front().empty())
+    throw chaos::InvalidInput(chaos::ErrorCode::empty, file + ": the series is empty (no samples)");
+  const auto finite = [&](std::span<const double> x, std::size_t column) {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (!std::isfinite(x[i]))
+        throw chaos::InvalidInput(chaos::ErrorCode::non_finite, file + ": row " + std::to_string(i + 1) + ": column " +
+                                                                    std::to_string(column) + ": " + number(x[i]) +
+                                                                    " is not finite; NaN and infinity are refused");
+  };
+  for (std::size_t k = 0; k < data.size() && k < params.columns.size(); ++k) finite(data[k], params.columns[k]);
+  if (params.time_column) finite(t, *params.time_column);
+  return call([&] { return run_section(data, t, file, params).report.json(); });
+}
+
+// The columns of a file, read as `chaos section FILE -c ... -x -l --time-column` reads them:
+// (columns read, their values, the times or an empty array).
+py::tuple section_file_columns(const std::string& path, const py::dict& p, std::size_t skip,
+                               std::optional<std::size_t> length) {
+  SectionParams params = section_params(p);
+  SectionColumns input;
+  {
+    py::gil_scoped_release release;
+    input = read_section_columns(chaos::read_text(path), path, params, skip, length);
+  }
+  const auto array = [](const std::vector<double>& v) { return Array(static_cast<py::ssize_t>(v.size()), v.data()); };
+  py::list values;
+  for (const auto& c : input.columns) values.append(array(c));
+  return py::make_tuple(params.columns, values, array(input.times));
+}
+
+// chaos validate: each case's result passed to `progress` (a callable taking the fraction of cases
+// done, or None); Ctrl-C stops between cases.
+py::object validate_cases_run(const py::dict& p, py::object progress) {
+  ValidateParams params;
+  get(p, "filter", params.filter);
+  const std::size_t count = validate_cases(params).size();
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  std::size_t done = 0;
+  return call([&] {
+    Report report = validate_report(params);
+    run_validate(params, report, [&](const chaos::ValidationResult&) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      ++done;
+      if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(count));
+    });
+    return report.json();
+  });
+}
+
+// chaos validate --list: the selected cases' rows (id, quantity, value, low, high, source, kind).
+py::list validate_list(const py::dict& p) {
+  ValidateParams params;
+  get(p, "filter", params.filter);
+  py::list out;
+  for (const chaos::Reference& r : validate_cases(params)) {
+    py::dict row;
+    row["id"] = r.id;
+    row["system"] = r.system;
+    row["quantity"] = r.quantity;
+    row["value"] = r.value ? py::object(py::float_(*r.value)) : py::object(py::none());
+    row["low"] = r.low;
+    row["high"] = r.high;
+    row["source"] = r.source;
+    row["kind"] = r.kind;
+    out.append(row);
+  }
+  return out;
+}
+
+// chaos zoo: the suite's data (run_zoo's JSON) and its Markdown report. `progress` (a callable or
+// None) gets the fraction of cases done; Ctrl-C stops after the cases being run.
+py::object zoo_run(const py::dict& p, py::object progress) {
+  ZooParams params;
+  get(p, "fast", params.fast);
+  get(p, "grid", params.grid);
+  get(p, "threads", params.threads);
+  if (has(p, "only"))
+    for (const auto& v : p["only"]) {
+      if (!py::isinstance<py::str>(v)) type_error("only must hold case names (strings)");
+      params.only.push_back(v.cast<std::string>());
+    }
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  return call([&] {
+    ZooRun run = run_zoo(params, [&](std::size_t done, std::size_t total, const chaos::ZooCase&,
+                                     const chaos::ZooCaseResult&) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!callback->is_none()) (*callback)(static_cast<double>(done) / static_cast<double>(total));
+    });
+    run.json["markdown"] = run.markdown;
+    return run.json;
+  });
+}
+
+// chaos zoo --series NAME: the JSON without the series, and the series as an array.
+py::tuple zoo_series(const std::string& name, const py::dict& p) {
+  ZooSeriesParams params;
+  params.name = name;
+  get(p, "fast", params.fast);
+  get(p, "threads", params.threads);
+  std::optional<ZooSeriesRun> run;
+  {
+    py::gil_scoped_release release;
+    run.emplace(run_zoo_series(params));
+  }
+  nlohmann::ordered_json json = run->report.json();
+  json.erase("x");
+  return py::make_tuple(to_python(json), Array(static_cast<py::ssize_t>(run->x.size()), run->x.data()));
 }
 
 // -p name=value, repeatable: a dict {name: value}.
@@ -483,6 +678,76 @@ py::dict simulate_scene(const std::string& toml, const std::vector<std::string>&
   return out;
 }
 
+// study sweep: the spec as `study sweep` builds it from its options (scene text and source, --set,
+// --axis, --initial, --periods, --keep, --signals, --analysis and its options), run into `directory`
+// on `threads` threads (ResultStore, run_sweep, assemble: the code behind the command), returning
+// the counts the command's summary reports. `progress` (a callable or None) gets the fraction of
+// points done; Ctrl-C stops the sweep after the points being computed (a --resume finishes it).
+py::dict study_sweep(const std::string& toml, const std::string& source, const std::vector<std::string>& overrides,
+                     const std::vector<std::string>& axes, const py::dict& p, const std::string& directory, bool resume,
+                     std::size_t threads, py::object progress) {
+  study::SweepSpec spec;
+  if (!toml.empty()) {
+    spec.scene_text = toml;
+    spec.scene_source = source;
+  }
+  spec.overrides = overrides;
+  std::vector<study::Axis> parsed;
+  for (const auto& a : axes) parsed.push_back(study::parse_axis(a));
+  spec.grid = study::Grid(std::move(parsed));
+  std::string initial = "fresh";
+  get(p, "initial", initial);
+  if (initial != "fresh" && initial != "continuation")
+    value_error("initial must be fresh or continuation (got '" + initial + "')");
+  spec.initial = initial == "fresh" ? study::InitialConditions::fresh : study::InitialConditions::continuation;
+  get(p, "periods", spec.periods);
+  get(p, "keep", spec.keep);
+  if (has(p, "signals")) {
+    spec.signals.clear();
+    for (const auto& v : p["signals"]) {
+      if (!py::isinstance<py::str>(v)) type_error("signals must be strings");
+      spec.signals.push_back(v.cast<std::string>());
+    }
+  }
+  get(p, "analysis", spec.analyse);
+  get(p, "analysis_periods", spec.analysis.periods);
+  get(p, "analysis_interval", spec.analysis.interval);
+  get(p, "analysis_samples_per_period", spec.analysis.samples_per_period);
+  get(p, "max_delay", spec.analysis.max_delay);
+  get(p, "max_dimension", spec.analysis.max_dimension);
+  if (threads == 0) value_error("threads must be at least 1 (got 0)");
+  auto callback = std::make_shared<py::object>(std::move(progress));
+  study::SweepProgress done;
+  {
+    py::gil_scoped_release release;
+    spec.validate();
+    const study::ResultStore store(directory, spec, resume);
+    study::SweepExecution exec;
+    exec.threads = threads;
+    exec.progress = [callback](const study::SweepProgress& at) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw Interrupted{};
+      if (!callback->is_none() && at.to_do)
+        (*callback)(static_cast<double>(at.done) / static_cast<double>(at.to_do));
+    };
+    try {
+      done = study::run_sweep(spec, store, exec);
+    } catch (const Interrupted&) {
+      py::gil_scoped_acquire acquire;
+      throw py::error_already_set();
+    }
+    store.assemble();
+  }
+  py::dict out;
+  out["points"] = spec.grid.size();
+  out["computed"] = done.done;
+  out["resumed_from_disk"] = done.skipped;
+  out["failed"] = done.failed;
+  out["threads"] = threads;
+  out["warnings"] = mechanism::scene_warnings(study::point_scene(spec, 0));
+  return out;
+}
+
 // The time of the library's own work for one command, without the Python layer: the shared
 // computation and its JSON, `repeats` times (scripts/python_timing.py subtracts it from a call's time
 // to get the call overhead).
@@ -529,6 +794,13 @@ PYBIND11_MODULE(_core, m) {
   m.def("spectrum", &spectrum);
   m.def("density", &density);
   m.def("nonlinearity", &nonlinearity);
+  m.def("section", &section);
+  m.def("section_file_columns", &section_file_columns);
+  m.def("check_section", [](const py::dict& p) { (void)section_params(p); });
+  m.def("validate", &validate_cases_run);
+  m.def("validate_list", &validate_list);
+  m.def("zoo_series", &zoo_series);
+  m.def("zoo", &zoo_run);
   m.def("read", &read_file, py::arg("path"), py::arg("column") = 1, py::arg("skip") = 0, py::arg("length") = py::none(),
         py::arg("dt") = py::none());
   m.def("builtin_series", [](std::size_t length) {
@@ -543,6 +815,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("scene_toml", &scene_toml);
   m.def("scene_warnings", &scene_warnings);
   m.def("simulate", &simulate_scene);
+  m.def("study_sweep", &study_sweep);
   m.def("_compute_seconds", &compute_seconds);
   m.def("_last_input_address", [] { return static_cast<std::uintptr_t>(last_input_address); });
 }

@@ -186,3 +186,14 @@ def test_progress_callable(lorenz):
     r = chaos.d2(np.tile(lorenz, 2), delay=10, max_dimension=5, progress=seen.append)
     assert seen and all(0 < a < b < 1 for a, b in zip(seen, seen[1:]))
     assert r.to_dict() == chaos.d2(np.tile(lorenz, 2), delay=10, max_dimension=5).to_dict()
+
+
+def test_numpy_integers_are_integers(lorenz):
+    """A NumPy integer scalar (an element of an integer array) is taken as the integer it holds;
+    NumPy's bool is refused like Python's."""
+    expected = chaos.mutual(lorenz, max_delay=20, boxes=16).to_dict()
+    assert chaos.mutual(lorenz, max_delay=np.int64(20), boxes=np.uint8(16)).to_dict() == expected
+    with pytest.raises(TypeError, match="max_delay must be an integer"):
+        chaos.mutual(lorenz, max_delay=np.True_)
+    with pytest.raises(ValueError, match="must be >= 0"):
+        chaos.mutual(lorenz, max_delay=np.int32(-1))

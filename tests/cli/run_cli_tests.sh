@@ -269,6 +269,14 @@ expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
 [[ $(grep -vc '^#' "$work/rational.dat") == 100000 ]] && pass || fail "zoo --series: not 10^5 samples"
 [[ $(grep -v '^#' "$work/rational.dat" | sort -u | wc -l) == 317 ]] && pass || fail "zoo --series: not 317 distinct values"
 expect_error 3 "no case is named 'no_such_case'" -- zoo --series no_such_case
+# zoo --series --json: the same series, every value (%.17g text and JSON both read back exactly),
+# under the case's parameters; --json without --series is refused.
+"$CHAOS" zoo --series periodic_rational --json -o "$work/rational.json" && pass || fail "zoo --series --json"
+[[ $(jq -r '[.parameters.case, .parameters.N, (.x | length)] | @tsv' "$work/rational.json") == $'periodic_rational\t100000\t100000' ]] \
+  && pass || fail "zoo --series --json: not the case's 10^5 samples"
+cmp -s <(jq -r '.x[] | tostring' "$work/rational.json" | awk '{ printf "%.17g\n", $1 }') \
+  <(grep -v '^#' "$work/rational.dat" | awk '{ printf "%.17g\n", $1 }') && pass || fail "zoo --series: --json and text differ"
+expect_error 3 "--json writes a case's series: give --series NAME" -- zoo --fast --json -q
 
 # analyze on a random walk: non-stationary, said with advice, nothing estimated, exit 0.
 "$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"

@@ -29,7 +29,7 @@ from . import _core
 from ._results import Result, make as _make
 
 __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
-           "nonlinearity", "density", "embed",
+           "nonlinearity", "density", "section", "validate", "validation_cases", "zoo", "zoo_series", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
 
@@ -87,6 +87,36 @@ def _progress_bar(progress, label):
     return bar
 
 
+def _run(function, label, progress, *args):
+    """Calls _core.function(*args, hook) with the progress bar or callable; a bar ends its line."""
+    bar = _progress_bar(progress, label)
+    try:
+        return _make(function(*args, bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
+
+
+def _step_bar(progress):
+    """analyze's hook: (step, fraction); True draws a bar per step on stderr."""
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    state = {"shown": None}
+
+    def bar(step, fraction):
+        percent = int(fraction * 100)
+        if state["shown"] != (step, percent):
+            if state["shown"] is not None and state["shown"][0] != step:
+                sys.stderr.write("\n")
+            state["shown"] = (step, percent)
+            filled = percent // 2
+            sys.stderr.write(f"\r{step} [{'#' * filled}{'.' * (50 - filled)}] {percent:3d}%")
+            sys.stderr.flush()
+    return bar
+
+
 def mutual(x, *, max_delay=20, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
     """Average mutual information I(tau) in nats and its first minimum (``chaos mutual``).
 
@@ -116,7 +146,7 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
 
 
 def cao(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, norm="max", level=0.8, change=0.1, sigmas=4.0,
-        dt=None, column=1, skip=0, length=None):
+        progress=None, dt=None, column=1, skip=0, length=None):
     """Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates (``chaos cao``).
 
     E(m) = mean_i |y_i(m+1) - y_n(i,m)(m+1)| / |y_i(m) - y_n(i,m)(m)| with n(i, m) the nearest
@@ -127,15 +157,18 @@ def cao(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, norm="max",
 
     Result keys: dimension, E1, E2, E, E_star, E2_standard_error, embedding_dimension, e1_saturation,
     stochastic, max_E2_deviation, points_without_neighbor.
+
+    ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction done); Ctrl-C
+    stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.cao(values, file, column, dt,
-                           dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                                norm=norm, level=level, change=change, sigmas=sigmas)))
+    return _run(_core.cao, "Cao's method", progress, values, file, column, dt,
+                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
+                     norm=norm, level=level, change=change, sigmas=sigmas))
 
 
 def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, atol=2.0, norm="euclidean",
-        threshold=0.01, dt=None, column=1, skip=0, length=None):
+        threshold=0.01, progress=None, dt=None, column=1, skip=0, length=None):
     """The fraction of false nearest neighbours against m (``chaos fnn``).
 
     A neighbour is false when |x_{i+m tau} - x_{n+m tau}| / R_m(i) > rtol (criterion 1) or R_{m+1}(i) /
@@ -143,11 +176,14 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
     M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45, 3403 (1992). docs/fnn.md.
 
     Result keys: dimension, false_fraction, embedding_dimension.
+
+    ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction done); Ctrl-C
+    stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.fnn(values, file, column, dt,
-                           dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                                rtol=rtol, atol=atol, norm=norm, threshold=threshold)))
+    return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt,
+                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
+                     rtol=rtol, atol=atol, norm=norm, threshold=threshold))
 
 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
@@ -195,7 +231,7 @@ correlation_sum = d2  # the correlation sums are part of d2's result (correlatio
 
 def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
              radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, dt=None, column=1, skip=0, length=None):
+             min_steps=0, min_rise=2.0, progress=None, dt=None, column=1, skip=0, length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
     Rosenstein: S(k) = < ln d_i(k) >, d_i(k) the distance after k steps of point i and its nearest
@@ -206,18 +242,22 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
     C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/lyapunov.md.
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
+
+    ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction done; it starts
+    from 0 again for each of the ``dimensions`` curves); Ctrl-C stops the curve within a block of
+    reference points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.lyapunov(values, file, column, dt,
-                                dict(method=method, dimension=dimension, delay=delay, theiler=theiler, steps=steps,
-                                     period=period, dimensions=dimensions, radius=radius,
-                                     min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
-                                     threads=threads, tolerance=tolerance, half_width=half_width,
-                                     min_steps=min_steps, min_rise=min_rise)))
+    return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt,
+                dict(method=method, dimension=dimension, delay=delay, theiler=theiler, steps=steps,
+                     period=period, dimensions=dimensions, radius=radius,
+                     min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
+                     threads=threads, tolerance=tolerance, half_width=half_width,
+                     min_steps=min_steps, min_rise=min_rise))
 
 
 def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
-            test_length=4096, surrogates=19, seed=1, dt=None, column=1, skip=0, length=None):
+            test_length=4096, surrogates=19, seed=1, progress=None, dt=None, column=1, skip=0, length=None):
     """The embedding parameters chosen and justified, then D2, lambda_1 and a nonlinearity test
     (``chaos analyze``).
 
@@ -229,20 +269,32 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     one-sided rank-order test against IAAFT surrogates (prediction error). With ``x=None`` it analyses
     the built-in Lorenz x series (``builtin_length`` samples, dt = 0.01), as ``chaos analyze`` with no
     file does.
+
+    ``progress=True`` draws a bar per step on stderr (the steps of the command's progress line:
+    Cao's method, false nearest neighbours, correlation sums, the Lyapunov curves, the nonlinearity
+    test), or pass a callable taking ``(step, fraction)``; Ctrl-C stops the step that is running at
+    its next report (the mutual information and the autocorrelation, a fraction of a second, have
+    none).
     """
     if x is None:
         values, builtin_dt = _core.builtin_series(builtin_length)
         file, column, dt = _core.builtin_series_name, 1, builtin_dt
     else:
         values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.analyze(values, file, column, dt,
-                               dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
-                                    max_dimension=max_dimension, test_length=test_length, surrogates=surrogates,
-                                    seed=seed)))
+    bar = _step_bar(progress)
+    try:
+        json, evidence = _core.analyze(values, file, column, dt,
+                                       dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
+                                            max_dimension=max_dimension, test_length=test_length,
+                                            surrogates=surrogates, seed=seed), bar)
+        return _make(json, evidence=evidence)
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
 
 
 def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, tolerance=0.0, end_match=False,
-               max_trim=0.1, dt=None, column=1, skip=0, length=None):
+               max_trim=0.1, progress=None, dt=None, column=1, skip=0, length=None):
     """FT, AAFT or IAAFT surrogate series (``chaos surrogates``).
 
     FT: the data's Fourier amplitudes with uniformly random phases (Theiler et al., Physica D 58, 77,
@@ -253,16 +305,19 @@ def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, toler
     match best (TISEAN endtoend). docs/surrogates.md.
 
     Result keys: offset, length, status, iterations, spectral_deviation, surrogates (count x length).
+
+    ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction of all the
+    surrogates done); Ctrl-C stops the IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.surrogates(values, file, column, dt,
-                                  dict(method=method, count=count, seed=seed, max_iterations=max_iterations,
-                                       tolerance=tolerance, end_match=end_match, max_trim=max_trim)))
+    return _run(_core.surrogates, "surrogates", progress, values, file, column, dt,
+                dict(method=method, count=count, seed=seed, max_iterations=max_iterations,
+                     tolerance=tolerance, end_match=end_match, max_trim=max_trim))
 
 
 def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
                  max_iterations=1000, delay=1, dimension=3, theiler=0, horizon=1, neighbours=5, norm="max",
-                 end_match=False, dt=None, column=1, skip=0, length=None):
+                 end_match=False, progress=None, dt=None, column=1, skip=0, length=None):
     """Rank-order surrogate test for nonlinearity (``chaos nonlinearity``).
 
     The statistic (the locally constant predictor's error in a delay embedding, or the time-reversal
@@ -273,13 +328,16 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
 
     Result keys: statistic, statistic_name, surrogate_statistics, rank, count, below, above, rejected,
     significance, surrogates_not_converged.
+
+    ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction of the surrogates
+    done); Ctrl-C stops the surrogates' IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.nonlinearity(values, file, column, dt,
-                                    dict(count=count, seed=seed, statistic=statistic, alternative=alternative,
-                                         method=method, max_iterations=max_iterations, delay=delay,
-                                         dimension=dimension, theiler=theiler, horizon=horizon,
-                                         neighbours=neighbours, norm=norm, end_match=end_match)))
+    return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt,
+                dict(count=count, seed=seed, statistic=statistic, alternative=alternative,
+                     method=method, max_iterations=max_iterations, delay=delay,
+                     dimension=dimension, theiler=theiler, horizon=horizon,
+                     neighbours=neighbours, norm=norm, end_match=end_match))
 
 
 def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
@@ -357,6 +415,153 @@ def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwi
     p_values, file, _, _ = _series(parameter, None)
     v_values, _, _, _ = _series(value, None)
     return _make(_core.density(p_values, v_values, file, 1, 2, params))
+
+
+def _column_numbers(columns, name):
+    if columns is None:
+        return None
+    if isinstance(columns, (int, np.integer)) and not isinstance(columns, bool):
+        return [int(columns)]
+    if isinstance(columns, (str, bytes)) or not hasattr(columns, "__iter__"):
+        raise TypeError(f"{name} must be a column number or a list of them (got {type(columns).__name__})")
+    return [int(c) if isinstance(c, np.integer) else c for c in columns]
+
+
+def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, phase=0, hyperplane=None, level=None,
+            direction="up", skip=0, length=None):
+    """A Poincare section of a multi-column series (``chaos section``).
+
+    Stroboscopic (``stroboscopic=P``): every P-th row from row ``phase``, x(t_0 + k P dt), the
+    section of a system driven with a period of P rows. Hyperplane (``hyperplane=k, level=c``): the
+    crossings of column k through x_k = c (``direction`` up, down or both), each located on the
+    cubic through the four rows around it (Lagrange interpolation, error O(dt^4) for a smooth flow;
+    linear in the first and last interval), every column interpolated there, and the return times
+    t_{j+1} - t_j between crossings (H. Poincare, Les methodes nouvelles de la mecanique celeste,
+    1899; the seed's Section 6). docs/poincare.md.
+
+    ``data``: a 2-D array of rows (a 1-D array is one column) or the path of a text file, read as
+    the command reads it (``skip``, ``length``). ``columns``: the 1-based columns read (default:
+    every column but ``time_column``); ``time_column``: the column holding the time (increasing,
+    steps may be uneven), else rows are ``dt`` apart. The hyperplane column must be among
+    ``columns``.
+
+    Result keys: parameters, time, points (2-D: one row per section point, one column per column
+    read), return_time (hyperplane; NaN for the first crossing).
+    """
+    if isinstance(time_column, np.integer):
+        time_column = int(time_column)
+    params = dict(columns=_column_numbers(columns, "columns"), time_column=time_column, dt=dt,
+                  stroboscopic=stroboscopic, phase=phase, hyperplane=hyperplane, level=level, direction=direction)
+    if isinstance(data, (str, os.PathLike)):
+        path = os.fspath(data)
+        numbers, values, times = _core.section_file_columns(path, params, skip, length)
+        params["columns"] = list(numbers)
+        return _make(_core.section(values, times, path, params))
+    if skip != 0 or length is not None:
+        raise TypeError("skip and length select rows of a file; slice an array instead")
+    a = np.asarray(data)
+    if a.dtype.kind not in "iuf":
+        raise TypeError(f"the series must hold real numbers (got an array of dtype {a.dtype})")
+    if a.ndim == 1:
+        a = a[:, np.newaxis]
+    if a.ndim != 2:
+        raise ValueError(f"section takes rows of columns: a 1-D or 2-D array (got shape {a.shape})")
+    width = a.shape[1]
+
+    def column(number, name):
+        if isinstance(number, bool) or not isinstance(number, (int, np.integer)):
+            raise TypeError(f"{name} must be an integer (got {type(number).__name__})")
+        if not 1 <= number <= width:
+            raise ValueError(f"{ARRAY_NAME}: {name} {number} requested but the array has {width} column(s) (1-based)")
+        return np.ascontiguousarray(a[:, number - 1], dtype=np.float64)
+
+    _core.check_section(params)  # the option checks first, as the command makes them
+    numbers = params["columns"]
+    if numbers is None:
+        numbers = [c for c in range(1, width + 1) if c != time_column]
+        if not numbers:
+            raise ValueError(f"{ARRAY_NAME}: no data columns besides the time column")
+    values = [column(c, "column") for c in numbers]
+    times = column(time_column, "time_column") if time_column is not None else np.empty(0)
+    params["columns"] = numbers
+    return _make(_core.section(values, times, ARRAY_NAME, params))
+
+
+def validate(filter=None, *, progress=None):
+    """Runs the reference cases of references/references.tsv on this machine (``chaos validate``).
+
+    Each case regenerates its data from the row's conditions (system, parameters, N, seed), runs the
+    estimator and checks that the measured value lies in the row's band [low, high], fixed before
+    any run from the cited source (an analytic value, a published one or a peer tool's output;
+    references/bibliography.md). ``filter``: only the cases whose id contains this text (a filter
+    that matches no id raises ValueError). ``progress``: True for a bar on stderr, or a callable
+    taking the fraction of cases done; Ctrl-C stops between cases.
+
+    Returns the command's result: ``cases`` (one read-only mapping per case: id, system, quantity,
+    value, low, high, measured, passed, seconds, source, kind, detail), ``passed``, ``failed``. A
+    failed case is reported there, not raised (the command exits with 4).
+    """
+    bar = _progress_bar(progress, "validate")
+    try:
+        return _make(_core.validate(dict(filter=filter), bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
+
+
+def validation_cases(filter=None):
+    """The reference cases (``chaos validate --list``), without running them: a list of dicts with
+    id, system, quantity, value (None where the source gives only a bound), low, high, source, kind."""
+    return _core.validate_list(dict(filter=filter))
+
+
+def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
+    """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
+    controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
+    short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
+    against a band fixed in advance (chaos/include/chaos/zoo_suite.hpp): D2 within +-0.1 of a cited
+    literature D2, else not above D_KY + 0.1 (Kaplan and Yorke 1979, from the equations); lambda_1
+    within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
+    no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension
+    +-0.1 and no confident lambda_1. docs/zoo.md is its report.
+
+    ``only``: case names (a list, or a comma-separated string; default every case); ``fast``: the CI
+    subset (4 systems and 5 controls at N = 10^4, automatic choices only); ``grid=False``: automatic
+    choices only (``--no-grid``); ``threads``: cases run in parallel (nothing depends on it).
+    ``progress``: True for a bar on stderr, or a callable taking the fraction of cases done; Ctrl-C
+    stops after the cases being run.
+
+    Result keys: parameters, wrong (confident estimates outside their band: the command exits 4
+    when there is one), chaotic, d2_covered, lambda_covered (coverage at the automatic choices),
+    wall_seconds, rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
+    theiler_factor, d2 / rosenstein / kantz as value, interval, status, verdict, note, seconds,
+    error), markdown (the report ``chaos zoo`` writes).
+    """
+    if isinstance(only, str):
+        only = [name for name in only.split(",") if name]
+    bar = _progress_bar(progress, "zoo")
+    try:
+        return _make(_core.zoo(dict(only=None if only is None else list(only), fast=fast, grid=grid,
+                                    threads=threads), bar))
+    finally:
+        if bar is not None and not callable(progress):
+            sys.stderr.write("\n")
+
+
+def zoo_series(name, *, fast=False, threads=1):
+    """The exact series a case of the zoo regression suite is analysed with (``chaos zoo --series
+    NAME``; ``fast=True``: the CI subset's case at N = 10^4), so that any row of docs/zoo.md can be
+    reproduced with ``d2``, ``lyapunov`` or ``analyze``. ``name``: a case of docs/zoo.md's first
+    column (a zoo system such as ``lorenz``, or a control). ``threads``: the spectra behind the
+    cases' bands, computed on that many threads (the series does not depend on it).
+
+    Result keys: parameters (case, kind, description, N, dt), x (the series, a read-only array).
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a string (got {type(name).__name__})")
+    json, values = _core.zoo_series(name, dict(fast=fast, threads=threads))
+    values.flags.writeable = False
+    return _make(json, {"x": values})
 
 
 def embed(x, dimension, delay=1):

@@ -145,30 +145,119 @@ def lyapunov(r, ax=None):
     return (top, bottom) if top is not None else bottom
 
 
+def _not_run(ax, title, why):
+    """An empty panel that says why it has nothing to show (as the command's plot does)."""
+    ax.set_title(title)
+    ax.text(0.5, 0.5, f"not run: {why[:57] + '...' if len(why) > 60 else why}", ha="center", va="center",
+            transform=ax.transAxes)
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
 def analyze(r, ax=None):
-    """Cao's E1/E2 and the false-neighbour fraction (the evidence in the JSON), with the choices."""
+    """The evidence, a panel each, as ``chaos analyze --plot`` draws it: I(tau) with the delay chosen,
+    Cao's E1 and E2 with the dimension, the false-neighbour fraction, and the local slopes of the
+    correlation sums with the scaling region and D2. ``ax``: four axes (a 2 x 2 array or a list),
+    or None for a new figure."""
     if ax is None:
         import matplotlib.pyplot as plt
-        ax = plt.subplots(1, 2, figsize=(10, 3.6), constrained_layout=True)[1]
-    left, right = ax
+        fig, ax = plt.subplots(2, 2, figsize=(11, 7.5), constrained_layout=True)
+        fig.suptitle("chaos analyze: the evidence")
+    mi_ax, cao_ax, fnn_ax, d2_ax = np.asarray(ax, dtype=object).reshape(-1)[:4]
+    evidence = r._evidence
+    stopped = r.stopped if r.stationary else "non-stationary series (see stationarity)"
+    stopped = stopped or "not run"
+    # Mutual information.
+    if "mutual" in evidence:
+        mi = evidence["mutual"]
+        delay, info = np.asarray(mi["delay"]), np.asarray(mi["mutual_information"], dtype=float)
+        mi_ax.plot(delay, info, "o-", ms=3, label="I(tau)")
+        if r.delay is not None:
+            mi_ax.axvline(r.delay, ls="--", color="gray")
+            k = np.flatnonzero(delay == r.delay)
+            if k.size:
+                mi_ax.plot(delay[k], info[k], "o", mfc="none", ms=10, label="delay")
+        mi_ax.set_xlabel("delay tau (samples)")
+        mi_ax.set_ylabel("I(tau) (nats)")
+        mi_ax.set_title(f"mutual information: delay {r.delay if r.delay is not None else 'none'}")
+        mi_ax.grid(True)
+        mi_ax.legend()
+    else:
+        _not_run(mi_ax, "mutual information", stopped)
+    # Cao.
     if "cao" in r.keys():
         c = r["cao"]
-        left.plot(c["dimension"], c["E1"], "o-", label="E1")
-        left.plot(c["dimension"], c["E2"], "s-", label="E2")
-        left.axhline(1.0, ls="--", color="gray")
+        cao_ax.plot(c["dimension"], c["E1"], "o-", label="E1")
+        cao_ax.plot(c["dimension"], c["E2"], "s-", label="E2")
+        cao_ax.axhline(1.0, ls="--", color="gray")
         if r.embedding_dimension is not None:
-            left.axvline(r.embedding_dimension, ls="--", color="black")
-        left.legend(loc="lower right")
-    left.set_title(f"Cao: m = {r.embedding_dimension}\ndelay {r.delay}, Theiler window {r.theiler}")
-    left.set_xlabel("embedding dimension m")
-    left.grid(True)
+            cao_ax.axvline(r.embedding_dimension, ls="--", color="black")
+        m = (r.embedding_dimension if r.embedding_dimension is not None
+             else "none (stochastic)" if r.stochastic else "none (not saturated)")
+        cao_ax.set_title(f"Cao: m = {m}")
+        cao_ax.set_xlabel("embedding dimension m")
+        cao_ax.set_ylabel("E1(m), E2(m)")
+        cao_ax.grid(True)
+        cao_ax.legend(loc="lower right")
+    else:
+        _not_run(cao_ax, "Cao", stopped)
+    # False nearest neighbours.
     if "fnn" in r.keys():
         f = r["fnn"]
-        right.plot(f["dimension"], f["false_fraction"], "o-")
-    d2 = f"D2 = {r.d2:.4g}" if r.d2 is not None else f"D2 {r.d2_status}"
-    lam = r["lambda"]
-    lyap = f"lambda = {lam:.4g}" if lam is not None else f"lambda {r.lambda_status}"
-    right.set_title(f"false neighbours: m = {r.fnn_embedding_dimension}\n{d2}; {lyap}")
-    right.set_xlabel("embedding dimension m")
-    right.grid(True)
+        fnn_ax.plot(f["dimension"], f["false_fraction"], "o-", label="false fraction")
+        if "fnn_threshold" in evidence:
+            fnn_ax.axhline(evidence["fnn_threshold"], ls="--", color="gray")
+        if r.fnn_embedding_dimension is not None:
+            fnn_ax.axvline(r.fnn_embedding_dimension, ls="--", color="black")
+        fnn_ax.set_ylim(bottom=0)
+        m = r.fnn_embedding_dimension if r.fnn_embedding_dimension is not None else "none"
+        fnn_ax.set_title(f"false nearest neighbours: m = {m}")
+        fnn_ax.set_xlabel("embedding dimension m")
+        fnn_ax.set_ylabel("false nearest neighbours (fraction)")
+        fnn_ax.grid(True)
+    else:
+        _not_run(fnn_ax, "false nearest neighbours", stopped)
+    # D2: local slopes.
+    d = evidence.get("d2")
+    slopes = None
+    if d is not None:
+        slopes = np.array([[np.nan if v is None else v for v in row] for row in d["local_slope"]], dtype=float)
+    if slopes is not None and slopes.size and not np.isnan(slopes).all():
+        radius = np.asarray(d["radius"], dtype=float)
+        for m, row in zip(d["dimension"], slopes):
+            if not np.isnan(row).all():
+                d2_ax.semilogx(radius, row, "o-", ms=2, label=f"m={m}")
+        if d["scaling_region"] is not None:
+            d2_ax.axvspan(*d["scaling_region"], color="#dddddd", zorder=0)
+        title = r.d2_status
+        if r.d2 is not None:
+            d2_ax.axhline(r.d2, ls="--", color="black")
+            title += f": D2 = {r.d2:.4g}"
+        d2_ax.set_title(title)
+        d2_ax.set_xlabel("eps")
+        d2_ax.set_ylabel("d ln C / d ln eps")
+        d2_ax.grid(True)
+        d2_ax.legend(fontsize="small", ncol=2)
+    else:
+        _not_run(d2_ax, "correlation dimension", "no local slopes" if d is not None else stopped)
+    return np.asarray([[mi_ax, cao_ax], [fnn_ax, d2_ax]], dtype=object)
+
+
+def section(r, ax=None):
+    """The section's points: the first two columns read against each other, or for one column the
+    return map (value of point k against point k + 1)."""
+    ax = _axes(ax)
+    points = r.points
+    columns = r.parameters["columns"].split(",")
+    if points.ndim == 2 and points.shape[1] >= 2:
+        ax.plot(points[:, 0], points[:, 1], "o", ms=2)
+        ax.set_xlabel(f"column {columns[0]}")
+        ax.set_ylabel(f"column {columns[1]}")
+    else:
+        x = points.reshape(-1)
+        ax.plot(x[:-1], x[1:], "o", ms=2)
+        ax.set_xlabel(f"column {columns[0]} at point k")
+        ax.set_ylabel(f"column {columns[0]} at point k + 1")
+    ax.set_title(f"{r.parameters['section']} section: {r.parameters['points']} points")
+    ax.grid(True)
     return ax

@@ -53,10 +53,13 @@ class Result:
     (``r.lambda_``) and, like every key, as ``r["lambda"]``.
     """
 
-    __slots__ = ("_json", "_values", "_arrays")
+    __slots__ = ("_json", "_values", "_arrays", "_evidence")
 
-    def __init__(self, json, arrays=None):
+    def __init__(self, json, arrays=None, evidence=None):
         object.__setattr__(self, "_json", json)
+        # What the command's plot draws beyond its JSON (analyze: the information curve and the local
+        # slopes), kept out of the attributes and of to_dict().
+        object.__setattr__(self, "_evidence", evidence or {})
         object.__setattr__(self, "_values", {})  # converted on first access
         # Values handed over as arrays (generate's components): the JSON gets them as lists on to_dict().
         object.__setattr__(self, "_arrays", arrays or {})
@@ -112,15 +115,18 @@ class Result:
     def plot(self, ax=None):
         """Draws the command's figure with matplotlib; returns the axes."""
         from . import _plot
-        return getattr(_plot, self._json["command"])(self, ax)
+        draw = getattr(_plot, self._json["command"], None)
+        if draw is None:
+            raise TypeError(f"chaos {self._json['command']} has no figure")
+        return draw(self, ax)
 
 
-def make(json, arrays=None):
+def make(json, arrays=None, evidence=None):
     name = "".join(part.capitalize() for part in json["command"].split("_")) + "Result"
     cls = _classes.get(name)
     if cls is None:
         cls = _classes[name] = type(name, (Result,), {"__slots__": ()})
-    return cls(json, arrays)
+    return cls(json, arrays, evidence)
 
 
 _classes = {}
