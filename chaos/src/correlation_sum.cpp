@@ -924,6 +924,9 @@ void CorrelationSumOptions::validate() const {
   for (std::size_t k = 0; k < radii.size(); ++k) {
     if (!std::isfinite(radii[k]) || !(radii[k] > 0.0))
       refuse("radii must be finite and positive (got radius[" + std::to_string(k) + "] = " + number(radii[k]) + ")");
+    if (inclusive && radii[k] == std::numeric_limits<double>::max())
+      refuse("with inclusive counting (d <= eps) a radius must be below the largest double (got radius[" +
+             std::to_string(k) + "] = " + number(radii[k]) + ")");
     if (k > 0 && !(radii[k] > radii[k - 1]))
       refuse("radii must be strictly increasing (got radius[" + std::to_string(k) + "] = " + number(radii[k]) +
              " after radius[" + std::to_string(k - 1) + "] = " + number(radii[k - 1]) + ")");
@@ -995,6 +998,11 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
     for (double& r : radii) r = std::ldexp(r, -exponent);
     y = scaled;
   }
+
+  // d <= r is d < r+, the next double above r (d is a double): the counting loops keep their strict
+  // comparison. For the Euclidean norm this comes after the exact power-of-two scaling above.
+  if (options.inclusive)
+    for (double& r : radii) r = std::nextafter(r, infinity);
 
   std::vector<double> thresholds(radii.size());
   for (std::size_t k = 0; k < radii.size(); ++k) thresholds[k] = threshold(options.norm, radii[k]);

@@ -92,6 +92,14 @@ h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
     else false end)]')
 [[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
+# Issue 15: --inclusive counts pairs at distance <= eps (TISEAN's d2), the default < eps. Expected
+# counts: every pair of a 12-sample integer series enumerated here by awk (ties at both radii).
+printf '%s\n' 0 1 2 3 1 0 2 2 3 1 0 1 > "$work/ties.dat"
+want=$(awk '{ x[NR] = $1 } END {
+  for (i = 1; i <= NR; i++) for (j = i + 1; j <= NR; j++) { d = x[i] - x[j]; if (d < 0) d = -d; a += d < 1; b += d < 2; c += d <= 1; e += d <= 2 }
+  printf "[[[%d,%d]],false] [[[%d,%d]],true]", a, b, c, e }' "$work/ties.dat")
+got="$("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --json | jq -c '[.pairs, .parameters.inclusive]') $("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --inclusive --json | jq -c '[.pairs, .parameters.inclusive]')"
+[[ $got == "$want" ]] && pass || fail "d2 pairs without and with --inclusive: $got, expected $want"
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"

@@ -51,7 +51,8 @@ double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std:
   return norm == Norm::max ? acc : std::sqrt(acc);
 }
 
-// The definition, term by term: every pair, every dimension, every radius.
+// The definition, term by term: every pair, every dimension, every radius (d <= eps when the
+// options ask for inclusive counting).
 struct Expected {
   Counts pairs;
   std::uint64_t admissible = 0;
@@ -66,7 +67,7 @@ Expected brute_force(const std::vector<double>& x, const CorrelationSumOptions& 
       for (std::size_t m = o.min_dimension; m <= o.max_dimension; ++m) {
         const double d = distance(x, i, j, m, tau, o.norm);
         for (std::size_t k = 0; k < o.radii.size(); ++k)
-          if (d < o.radii[k]) ++e.pairs[m - o.min_dimension][k];
+          if (o.inclusive ? d <= o.radii[k] : d < o.radii[k]) ++e.pairs[m - o.min_dimension][k];
       }
     }
   return e;
@@ -261,6 +262,49 @@ TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
   for (std::size_t i = 0; i < x.size(); ++i) y[i] = x[i] / 8.0 - 0.75;
   for (std::size_t k = 0; k < radii.size(); ++k) dyadic_radii[k] = radii[k] / 8.0;
   for (const auto norm : both_norms) expect_all_modes_exact(y, options(2, 1, 3, 1, dyadic_radii, norm));
+}
+
+TEST(CorrelationSum, InclusiveCountsTiesAtTheRadii) {
+  // Issue 15: `inclusive` counts d <= eps (TISEAN's convention). Expected counts: the brute force
+  // above with <=, on integer data with integer radii (ties at every radius, both norms) and on a
+  // dyadic grid, in every search mode and the portable path.
+  chaos::Random rng(5);
+  std::vector<double> x(500);
+  for (auto& v : x) v = static_cast<double>(rng.below(9));
+  const std::vector<double> radii{1, 2, 3, 4, 5, 8};
+  for (const auto norm : both_norms)
+    for (const std::size_t w : {0u, 3u}) {
+      auto o = options(1, 1, 3, w, radii, norm);
+      o.inclusive = true;
+      expect_all_modes_exact(x, o);
+    }
+  std::vector<double> y(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) y[i] = x[i] / 16.0 + 0.5;
+  auto o = options(2, 2, 4, 1, {0.0625, 0.125, 0.25}, Norm::max);
+  o.inclusive = true;
+  expect_all_modes_exact(y, o);
+  // By hand: radius 1 in m = 1 counts the pairs at distance 0 or 1 when inclusive, at 0 when not.
+  o = options(1, 1, 1, 0, {1.0});
+  std::uint64_t zero = 0, one = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = i + 1; j < x.size(); ++j) {
+      zero += x[i] == x[j];
+      one += std::abs(x[i] - x[j]) == 1.0;
+    }
+  EXPECT_EQ(chaos::correlation_sum(x, o).pairs[0][0], zero);
+  o.inclusive = true;
+  EXPECT_EQ(chaos::correlation_sum(x, o).pairs[0][0], zero + one);
+  // The radii are reported as given, not as the next double used inside.
+  EXPECT_EQ(chaos::correlation_sum(x, o).radius, std::vector<double>{1.0});
+  // A reference subset and a pair cap count the same way: with all P points as reference points
+  // and no cap reached, every pair is seen from both ends (docs/correlation_sum.md).
+  o = options(1, 1, 3, 2, radii, Norm::max);
+  o.inclusive = true;
+  const Expected e = brute_force(x, o);
+  o.reference_points = x.size() - 2;
+  const auto twice = chaos::correlation_sum(x, o);
+  for (std::size_t mi = 0; mi < e.pairs.size(); ++mi)
+    for (std::size_t k = 0; k < radii.size(); ++k) EXPECT_EQ(twice.pairs[mi][k], 2 * e.pairs[mi][k]);
 }
 
 TEST(CorrelationSum, ThreadCountDoesNotChangeAnything) {
@@ -487,6 +531,10 @@ TEST(CorrelationSum, InvalidOptionsAreRefused) {
   expect_refused(x, o, ErrorCode::invalid_parameter, "radius[2] = 0.29999999999999999 after radius[1]");
   o.radii = {0.2, 0.1};
   expect_refused(x, o, ErrorCode::invalid_parameter, "strictly increasing");
+  o.radii = {0.1, std::numeric_limits<double>::max()};
+  EXPECT_NO_THROW(o.validate());  // d < the largest double is a valid question
+  o.inclusive = true;             // d <= it needs a double above it, and there is none
+  expect_refused(x, o, ErrorCode::invalid_parameter, "inclusive counting (d <= eps) a radius must be below the largest double (got radius[1] = 1.7976931348623157e+308)");
   o = ok;
   o.min_dimension = 0;
   expect_refused(x, o, ErrorCode::invalid_parameter, "m = 0");
