@@ -33,13 +33,21 @@ constexpr CorrelationSearch all_modes[] = {CorrelationSearch::brute_force, Corre
 constexpr Norm both_norms[] = {Norm::max, Norm::euclidean};
 
 // The box-assisted search has an AVX2 path and a portable one; CHAOS_NO_SIMD=1 selects the
-// portable one, so both are checked against the same expectations.
-class PortablePath {
+// portable one, so both are checked against the same expectations. Likewise CHAOS_NO_PLANE=1 makes
+// the grid bin m = 2 itself instead of counting it by plane_counts (maximum norm, issue 15).
+class ScopedEnv {
  public:
-  PortablePath() { ::setenv("CHAOS_NO_SIMD", "1", 1); }
-  ~PortablePath() { ::unsetenv("CHAOS_NO_SIMD"); }
-  PortablePath(const PortablePath&) = delete;
-  PortablePath& operator=(const PortablePath&) = delete;
+  explicit ScopedEnv(const char* name) : name_(name) { ::setenv(name_, "1", 1); }
+  ~ScopedEnv() { ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+class PortablePath : public ScopedEnv {
+ public:
+  PortablePath() : ScopedEnv("CHAOS_NO_SIMD") {}
 };
 
 double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std::size_t m, std::size_t tau, Norm norm) {
@@ -98,6 +106,10 @@ void expect_all_modes_exact(const std::vector<double>& x, CorrelationSumOptions 
     expect_matches(chaos::correlation_sum(x, o), e, describe(o));
   }
   o.search = CorrelationSearch::box_assisted;
+  {
+    const ScopedEnv grid_only("CHAOS_NO_PLANE");
+    expect_matches(chaos::correlation_sum(x, o), e, describe(o) + " m = 2 on the grid");
+  }
   const PortablePath portable;
   expect_matches(chaos::correlation_sum(x, o), e, describe(o) + " portable");
 }
@@ -199,6 +211,8 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnRandomData) {
     for (const std::size_t w : {0u, 1u, 10u}) expect_all_modes_exact(x, options(1, 1, 5, w, radii, norm));
   // m from 3 only (nothing counted for m = 1, 2) and a delay of 3.
   expect_all_modes_exact(x, options(3, 3, 4, 2, radii, Norm::max));
+  // m = 2 alone: with the maximum norm only plane_counts runs, no grid scan (issue 15).
+  for (const std::size_t w : {0u, 5u}) expect_all_modes_exact(x, options(2, 2, 2, w, radii, Norm::max));
 }
 
 TEST(CorrelationSum, EveryModeEqualsBruteForceOnHenon) {
@@ -223,22 +237,24 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnLorenz) {
 // Issue 16: chaos d2 draws a progress line from this callback. It is called with growing fractions
 // below 1, in every exact search mode and on 1 or 2 threads, and the counts do not depend on it.
 TEST(CorrelationSum, ProgressIsReportedAndChangesNothing) {
+  // max m = 2: the box-assisted search counts m = 2 by plane_counts alone and reports from there.
   const auto x = chaos::lorenz(3000).components[0];
   for (const auto search : {CorrelationSearch::box_assisted, CorrelationSearch::kd_tree, CorrelationSearch::brute_force})
-    for (const std::size_t threads : {1u, 2u}) {
-      auto o = options(17, 1, 3, 10, chaos::log_radii(0.25, 5.0, 8), Norm::max);
-      o.search = search;
-      o.threads = threads;
-      const auto quiet = chaos::correlation_sum(x, o);
-      std::vector<double> seen;
-      o.progress = [&seen](double f) { seen.push_back(f); };
-      const auto reported = chaos::correlation_sum(x, o);
-      EXPECT_EQ(reported.pairs, quiet.pairs);
-      ASSERT_FALSE(seen.empty()) << chaos::to_string(search) << ", " << threads << " thread(s)";
-      EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-      EXPECT_GT(seen.front(), 0.0);
-      EXPECT_LT(seen.back(), 1.0);
-    }
+    for (const std::size_t threads : {1u, 2u})
+      for (const std::size_t max_m : {2u, 3u}) {
+        auto o = options(17, 1, max_m, 10, chaos::log_radii(0.25, 5.0, 8), Norm::max);
+        o.search = search;
+        o.threads = threads;
+        const auto quiet = chaos::correlation_sum(x, o);
+        std::vector<double> seen;
+        o.progress = [&seen](double f) { seen.push_back(f); };
+        const auto reported = chaos::correlation_sum(x, o);
+        EXPECT_EQ(reported.pairs, quiet.pairs);
+        ASSERT_FALSE(seen.empty()) << chaos::to_string(search) << ", " << threads << " thread(s), max m " << max_m;
+        EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+        EXPECT_GT(seen.front(), 0.0);
+        EXPECT_LT(seen.back(), 1.0);
+      }
 }
 
 TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
