@@ -827,62 +827,96 @@ class KdCounter final : public ReferenceCounter {
   std::vector<KdTree> trees_;
 };
 
-// Box-assisted per point: the points sorted by coordinate 0, so the candidates of i are the
-// positions whose coordinate 0 lies within the largest radius still needed (found by binary
-// search); the accumulator is extended coordinate by coordinate from m = 1 with early exit.
+// Box-assisted per point, on the grid of the exact walk: the partners of reference point i that can
+// be closer than r_max in m >= 2 lie in i's row or the adjacent ones, inside i's coordinate-0
+// window (the argument of box_grid), so the work per reference point is the exact walk's work per
+// point and a subset of R points costs about R/P of the exact job (twice that, as each point
+// counts its partners on both sides). The candidates are scanned without the index test, as in
+// the exact walk; i itself and its partners inside the Theiler window are then enumerated and
+// taken out again with the same accumulators, so exactly the same bins. m = 1 is counted on the
+// sorted values: the partners within t of a value form a run found by two binary searches.
 template <class N>
-class BoxCounter final : public ReferenceCounter {
+class GridCounter final : public ReferenceCounter {
  public:
-  explicit BoxCounter(const Problem& pb) : pb_(pb) {
-    const std::size_t n = pb.points, m = pb.max_m;
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return pb.at(a, 0) != pb.at(b, 0) ? pb.at(a, 0) < pb.at(b, 0) : a < b;
-    });
-    coords_.resize(n * m);
-    index_ = std::move(order);
-    for (std::size_t p = 0; p < n; ++p)
-      for (std::size_t k = 0; k < m; ++k) coords_[p * m + k] = pb.at(index_[p], k);
+  explicit GridCounter(const Problem& pb) : pb_(pb), simd_(use_avx2()) {
+    if (pb.max_m >= 2) {
+      grid_ = build_grid(pb);
+      position_.resize(pb.points);
+      row_of_.resize(pb.points);
+      for (std::size_t r = 0; r < grid_.rows.size(); ++r)
+        for (std::size_t p = grid_.rows[r].begin; p < grid_.rows[r].end; ++p) {
+          position_[grid_.index[p]] = p;
+          row_of_[p] = r;
+        }
+    }
+    if (pb.min_m == 1) {
+      sorted_.assign(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
+      std::sort(sorted_.begin(), sorted_.end());
+    }
   }
 
   void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram& h) const override {
     std::fill(h.begin(), h.end(), 0);
-    std::size_t top = 0;
-    for (const std::size_t n : need) top = std::max(top, n);
-    if (top > 0) {
-      const std::size_t m = pb_.max_m, nr = pb_.nr;
-      const double t = pb_.thresholds[top - 1];
-      const double a0 = pb_.at(i, 0);
-      const auto c0 = [&](std::size_t p) { return coords_[p * m]; };
-      // The window: first position not too far left, then the first one too far right.
-      const std::size_t lo = first_failing(0, pb_.points, [&](std::size_t p) {
-        return c0(p) <= a0 && !(N::add(0.0, a0 - c0(p)) < t);
-      });
-      const std::size_t hi = first_failing(lo, pb_.points, [&](std::size_t p) {
-        return c0(p) <= a0 || N::add(0.0, c0(p) - a0) < t;
-      });
+    const std::size_t nr = pb_.nr;
+    if (pb_.max_m >= 2) {
+      {
+        Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0);
+        const Grid& g = grid_;
+        const std::size_t p = position_[i], r = row_of_[p];
+        const double* c0 = g.coordinate(0);
+        const double t = pb_.t_max;
+        for (std::size_t s = r > 0 ? r - 1 : 0; s <= r + 1 && s < g.rows.size(); ++s) {
+          const Grid::Row& row = g.rows[s];
+          if (row.id < g.rows[r].id - 1 || row.id > g.rows[r].id + 1) continue;
+          const std::size_t lo = first_failing(row.begin, row.end, [&](std::size_t q) {
+            return c0[q] <= c0[p] && !(N::add(0.0, c0[p] - c0[q]) < t);
+          });
+          const std::size_t hi = first_failing(lo, row.end, [&](std::size_t q) {
+            return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
+          });
+          grid_candidates<N, false>(pb_, g, p, lo, hi, survivors, simd_);
+        }
+      }
+      // i itself and the window partners, as the scan saw them (acc < t_max in the first two
+      // coordinates: the same or an adjacent row and inside the coordinate-0 window).
       const AccBins::Lookup bins = pb_.bins->lookup();
-      std::vector<double> a(m);
-      for (std::size_t k = 0; k < m; ++k) a[k] = pb_.at(i, k);
-      for (std::size_t q = lo; q < hi; ++q) {
-        if (in_window(i, index_[q], pb_.w)) continue;
-        const double* b = &coords_[q * m];
-        double acc = 0.0;
-        for (std::size_t k = 0; k < m; ++k) {
-          acc = N::add(acc, std::abs(a[k] - b[k]));
-          if (!(acc < t)) break;  // the accumulator never decreases: no larger m counts either
-          if (k + 1 >= pb_.min_m) ++h[(k + 1 - pb_.min_m) * nr + bins.inside(acc)];
+      const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
+      for (std::size_t j = first; j <= last; ++j) {
+        double acc = N::add(N::add(0.0, std::abs(pb_.at(i, 0) - pb_.at(j, 0))), std::abs(pb_.at(i, 1) - pb_.at(j, 1)));
+        for (std::size_t m = 2; m <= pb_.max_m; ++m) {
+          if (m > 2) acc = N::add(acc, std::abs(pb_.at(i, m - 1) - pb_.at(j, m - 1)));
+          if (!(acc < pb_.t_max)) break;
+          if (m >= pb_.min_m) --h[(m - pb_.min_m) * nr + bins.inside(acc)];
         }
       }
     }
-    histogram_to_cumulative(h, pb_.nm, pb_.nr, cum);
+    histogram_to_cumulative(h, pb_.nm, nr, cum);
+    if (pb_.min_m == 1) {
+      // Partners within t_k in coordinate 0: the run of sorted values around a0, less i itself and
+      // the window partners that pass the same test.
+      const double a0 = pb_.at(i, 0);
+      const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
+      for (std::size_t k = 0; k < need[0]; ++k) {
+        const double t = pb_.thresholds[k];
+        const auto lo = std::partition_point(sorted_.begin(), sorted_.end(), [&](double v) {
+          return v <= a0 && !(N::add(0.0, a0 - v) < t);
+        });
+        const auto hi = std::partition_point(lo, sorted_.end(), [&](double v) {
+          return v <= a0 || N::add(0.0, v - a0) < t;
+        });
+        Count inside = static_cast<Count>(hi - lo);
+        for (std::size_t j = first; j <= last; ++j) inside -= N::add(0.0, std::abs(a0 - pb_.at(j, 0))) < t;
+        cum[k] = inside;
+      }
+    }
   }
 
  private:
   const Problem& pb_;
-  std::vector<double> coords_;  // all max_m coordinates per point, in coordinate-0 order
-  std::vector<std::size_t> index_;
+  bool simd_;
+  Grid grid_;
+  std::vector<std::size_t> position_, row_of_;  // grid position of each point, row of each position
+  std::vector<double> sorted_;                  // coordinate 0 of every point, sorted (m = 1)
 };
 
 // Partners of point i on both sides outside the Theiler window.
@@ -992,7 +1026,7 @@ Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
     case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap);
     case CorrelationSearch::box_assisted: break;
   }
-  return reference_walk(pb, BoxCounter<N>(pb), order, cap);
+  return reference_walk(pb, GridCounter<N>(pb), order, cap);
 }
 
 }  // namespace

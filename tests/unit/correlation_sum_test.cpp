@@ -379,7 +379,8 @@ Walk reference_walk(const std::vector<double>& x, const CorrelationSumOptions& o
       ++partners;
       for (std::size_t m = o.min_dimension; m <= o.max_dimension; ++m)
         for (std::size_t k = 0; k < nr; ++k)
-          found[m - o.min_dimension][k] += distance(x, i, j, m, tau, o.norm) < o.radii[k];
+          found[m - o.min_dimension][k] += o.inclusive ? distance(x, i, j, m, tau, o.norm) <= o.radii[k]
+                                                       : distance(x, i, j, m, tau, o.norm) < o.radii[k];
     }
     for (std::size_t mi = 0; mi < nm; ++mi)
       for (std::size_t k = 0; k < nr; ++k) {
@@ -414,6 +415,31 @@ TEST(CorrelationSum, ReferenceSubsetFollowsTheDocumentedWalk) {
   auto other = o;
   other.seed = 12;
   EXPECT_NE(chaos::correlation_sum(x, other).pairs, want.pairs);
+}
+
+TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
+  // Issue 15: the box-assisted reference walk scans the exact walk's grid and takes i and its
+  // Theiler-window partners out afterwards. Expected: the documented walk above, on integer data
+  // (ties at the radii), both norms, windows 0 to 9, m from 1, 2 or 3, strict and inclusive
+  // counting, with the AVX2 and the portable scan.
+  chaos::Random rng(8);
+  std::vector<double> x(700);
+  for (auto& v : x) v = static_cast<double>(rng.below(11));
+  const std::vector<double> radii{1, 2, 3, 5, 8};
+  for (const auto norm : both_norms)
+    for (const std::size_t w : {0u, 2u, 9u})
+      for (const std::size_t min_m : {1u, 2u, 3u})
+        for (const bool inclusive : {false, true}) {
+          auto o = options(2, min_m, 4, w, radii, norm);
+          o.inclusive = inclusive;
+          o.reference_points = 90;
+          o.seed = 3 + w;
+          const Walk want = reference_walk(x, o);
+          const std::string what = describe(o) + (inclusive ? " inclusive" : "");
+          EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what;
+          const PortablePath portable;
+          EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " portable";
+        }
 }
 
 TEST(CorrelationSum, FullReferenceSubsetCountsEveryPairTwice) {
