@@ -528,9 +528,9 @@ class Survivors {
 // ends the block (the accumulator never decreases). Level-major order keeps each level's count
 // in a register; candidate-major order would chain every update through memory.
 template <class N, bool check_window>
-void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s) {
+void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+                 double t) {
   const std::size_t levels = s.levels(), first = s.first_stored(), w = pb.w, i = g.index[p];
-  const double t = pb.t_max;
   const double* c0 = g.coordinate(0);
   const double* c1 = g.coordinate(1);
   double a[Survivors::block];
@@ -584,10 +584,10 @@ constexpr CompressTable compress_table = make_compress_table();
 
 template <class N>
 __attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb,
-                                                       std::size_t qe, Survivors& s) {
+                                                       std::size_t qe, Survivors& s, double t_filter) {
   const std::size_t levels = s.levels(), first = s.first_stored();
   const __m256d sign = _mm256_set1_pd(-0.0);
-  const __m256d t = _mm256_set1_pd(pb.t_max);
+  const __m256d t = _mm256_set1_pd(t_filter);
   const double* c0 = g.coordinate(0);
   const __m256d a0 = _mm256_set1_pd(c0[p]);
   alignas(32) double a[Survivors::block];
@@ -629,7 +629,7 @@ __attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const G
       if (alive == 0) break;
     }
   }
-  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s);
+  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s, t_filter);
 }
 
 bool use_avx2() {
@@ -648,13 +648,15 @@ bool plane_disabled() {
 }
 
 template <class N, bool check_window>
+// Candidates q in [qb, qe) of grid position p, kept while their accumulator is below t (at most
+// t_max: the exact walk passes t_max, a capped reference walk the largest radius still open).
 void grid_candidates(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
-                     bool simd) {
+                     bool simd, double t) {
 #if defined(__x86_64__) && defined(__GNUC__)
-  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s);
+  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s, t);
 #endif
   (void)simd;
-  scan_scalar<N, check_window>(pb, g, p, qb, qe, s);
+  scan_scalar<N, check_window>(pb, g, p, qb, qe, s, t);
 }
 
 // The pairs 1 <= j - i <= w that the grid counted when it leaves the Theiler window to a
@@ -707,12 +709,12 @@ Histogram box_grid(const Problem& pb, const Grid& g, std::size_t first) {
     for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
       same = std::max(same, p + 1);
       while (same < row.end && not_right_of(p, same)) ++same;
-      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd);
+      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd, t);
       if (!has_next) continue;
       while (lo < next.end && left_of(p, lo)) ++lo;
       hi = std::max(hi, lo);
       while (hi < next.end && not_right_of(p, hi)) ++hi;
-      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd);
+      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd, t);
     }
   }, pb.progress);
   return sum_histograms(parts);
@@ -724,12 +726,13 @@ Histogram box_grid(const Problem& pb, const Grid& g, std::size_t first) {
 // m >= 3 (it still filters m = 2, whose survivors carry on to m = 3).
 template <class N>
 Histogram box_grid(const Problem& pb) {
-  const Grid g = build_grid(pb);
   const std::size_t first = pb.min_m > 2 ? pb.min_m - 2 : 0;
-  if (pb.w > pb.points / 8) return box_grid<N, true>(pb, g, first);
+  if (pb.w > pb.points / 8) return box_grid<N, true>(pb, build_grid(pb), first);
   const bool plane = std::is_same_v<N, MaxNorm> && first == 0 && pb.points < std::numeric_limits<std::uint32_t>::max() &&
                      !plane_disabled();
-  Histogram h = plane && pb.max_m == 2 ? Histogram(pb.nm * pb.nr, 0) : box_grid<N, false>(pb, g, plane ? 1 : first);
+  // m = 2 alone under the plane count: nothing left for the grid to bin.
+  Histogram h = plane && pb.max_m == 2 ? Histogram(pb.nm * pb.nr, 0)
+                                       : box_grid<N, false>(pb, build_grid(pb), plane ? 1 : first);
   if (plane) {
     const std::vector<Count> cum = plane_counts(pb, pb.max_m == 2 ? pb.progress : nullptr);  // else the grid reports
     Count* h2 = h.data() + (2 - pb.min_m) * pb.nr;
@@ -858,13 +861,17 @@ class GridCounter final : public ReferenceCounter {
   void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram& h) const override {
     std::fill(h.begin(), h.end(), 0);
     const std::size_t nr = pb_.nr;
-    if (pb_.max_m >= 2) {
+    // Search only as far as the largest radius still open in a dimension m >= 2 (under a cap the
+    // largest radii close first, and with them most of the candidates).
+    std::size_t top = 0;
+    for (std::size_t mi = pb_.min_m == 1 ? 1 : 0; mi < pb_.nm; ++mi) top = std::max(top, need[mi]);
+    if (top > 0) {
+      const double t = pb_.thresholds[top - 1];
       {
         Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0);
         const Grid& g = grid_;
         const std::size_t p = position_[i], r = row_of_[p];
         const double* c0 = g.coordinate(0);
-        const double t = pb_.t_max;
         for (std::size_t s = r > 0 ? r - 1 : 0; s <= r + 1 && s < g.rows.size(); ++s) {
           const Grid::Row& row = g.rows[s];
           if (row.id < g.rows[r].id - 1 || row.id > g.rows[r].id + 1) continue;
@@ -874,10 +881,10 @@ class GridCounter final : public ReferenceCounter {
           const std::size_t hi = first_failing(lo, row.end, [&](std::size_t q) {
             return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
           });
-          grid_candidates<N, false>(pb_, g, p, lo, hi, survivors, simd_);
+          grid_candidates<N, false>(pb_, g, p, lo, hi, survivors, simd_, t);
         }
       }
-      // i itself and the window partners, as the scan saw them (acc < t_max in the first two
+      // i itself and the window partners, as the scan saw them (acc < t in the first two
       // coordinates: the same or an adjacent row and inside the coordinate-0 window).
       const AccBins::Lookup bins = pb_.bins->lookup();
       const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
@@ -885,7 +892,7 @@ class GridCounter final : public ReferenceCounter {
         double acc = N::add(N::add(0.0, std::abs(pb_.at(i, 0) - pb_.at(j, 0))), std::abs(pb_.at(i, 1) - pb_.at(j, 1)));
         for (std::size_t m = 2; m <= pb_.max_m; ++m) {
           if (m > 2) acc = N::add(acc, std::abs(pb_.at(i, m - 1) - pb_.at(j, m - 1)));
-          if (!(acc < pb_.t_max)) break;
+          if (!(acc < t)) break;
           if (m >= pb_.min_m) --h[(m - pb_.min_m) * nr + bins.inside(acc)];
         }
       }

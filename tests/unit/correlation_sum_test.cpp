@@ -418,10 +418,11 @@ TEST(CorrelationSum, ReferenceSubsetFollowsTheDocumentedWalk) {
 }
 
 TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
-  // Issue 15: the box-assisted reference walk scans the exact walk's grid and takes i and its
-  // Theiler-window partners out afterwards. Expected: the documented walk above, on integer data
-  // (ties at the radii), both norms, windows 0 to 9, m from 1, 2 or 3, strict and inclusive
-  // counting, with the AVX2 and the portable scan.
+  // Issue 15: the box-assisted reference walk scans the exact walk's grid (only as far as the
+  // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards.
+  // Expected: the documented walk above, on integer data (ties at the radii), both norms, windows
+  // 0 to 9, m from 1, 2 or 3, strict and inclusive counting, with and without a cap, with the AVX2
+  // and the portable scan.
   chaos::Random rng(8);
   std::vector<double> x(700);
   for (auto& v : x) v = static_cast<double>(rng.below(11));
@@ -434,11 +435,16 @@ TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
           o.inclusive = inclusive;
           o.reference_points = 90;
           o.seed = 3 + w;
-          const Walk want = reference_walk(x, o);
-          const std::string what = describe(o) + (inclusive ? " inclusive" : "");
-          EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what;
-          const PortablePath portable;
-          EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " portable";
+          for (const std::uint64_t cap : {0u, 2500u}) {
+            o.pairs_per_radius = cap;
+            const Walk want = reference_walk(x, o);
+            const std::string what = describe(o) + (inclusive ? " inclusive" : "") + " cap " + std::to_string(cap);
+            const auto got = chaos::correlation_sum(x, o);
+            EXPECT_EQ(got.pairs, want.pairs) << what;
+            EXPECT_EQ(got.examined, want.examined) << what;
+            const PortablePath portable;
+            EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " portable";
+          }
         }
 }
 
