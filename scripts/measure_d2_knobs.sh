@@ -185,8 +185,9 @@ notes() {
       printf "%s%s %s", (n++ ? ", " : ""), ($1 == "henon" ? "Hénon" : "Lorenz"), $3 }' "$work/rows.tsv")
   if [[ -n $slow ]]; then
     echo "Slower than the exact run ($slow): a reference subset counts, for each of its R points, every partner"
-    echo "on both sides (R P ordered pairs, against P^2 / 2 pairs visited once by the exact grid search), and in"
-    echo "these measurements it costs more per pair, so it saves time only for R well below P / 10."
+    echo "on both sides (R P ordered pairs, against P^2 / 2 pairs visited once by the exact grid search), and the"
+    echo "exact walk counts m = 2 without enumerating pairs (docs/correlation_sum.md), so a subset saves time only"
+    echo "for R well below P / 2."
     echo
   fi
   if ((speedups > 0)); then

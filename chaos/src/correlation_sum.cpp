@@ -355,10 +355,92 @@ std::vector<Count> box_dimension_one(const Problem& pb) {
     pairs[k] = total;
   }
   Histogram window(pb.nr + 1, 0);
+  const AccBins::Lookup bins = pb.bins->lookup();
   for (std::size_t lag = 1; lag <= pb.w && lag < pb.points; ++lag)
-    for (std::size_t i = 0; i + lag < pb.points; ++i) ++window[(*pb.bins)(acc(pb.y[i], pb.y[i + lag]))];
+    for (std::size_t i = 0; i + lag < pb.points; ++i) {
+      const double a = acc(pb.y[i], pb.y[i + lag]);
+      ++window[a < pb.t_max ? bins.inside(a) : pb.nr];  // the table serves accumulators below t_max
+    }
   Count excluded = 0;
   for (std::size_t k = 0; k < pb.nr; ++k) pairs[k] -= excluded += window[k];
+  return pairs;
+}
+
+// m = 2 with the maximum norm, without enumerating pairs. max(|a0 - b0|, |a1 - b1|) < t holds
+// exactly when |a0 - b0| < t and |a1 - b1| < t, and for a fixed point the partners that pass one
+// coordinate's test form a contiguous run of that coordinate's sorted order (the test is monotone,
+// as in m = 1). So the partners of point i within t are the points whose position in the
+// coordinate-0 order lies in i's run [lo0, hi0) and whose position in the coordinate-1 order lies
+// in i's run [lo1, hi1): an orthogonal range count, done offline for all points by sweeping the
+// coordinate-0 order once and keeping a Fenwick tree over coordinate-1 positions (point i's count
+// is F(hi0) - F(lo0), F(k) counting the first k points of the sweep inside [lo1, hi1)).
+// O(P log P) per radius instead of one histogram increment per close pair: the Henon target job
+// has 8.5e8 pairs closer than r_max in m = 2. Every pair i != j is counted from both ends and each
+// point finds itself, so the unordered pairs are (sum - P) / 2; pairs inside the Theiler window
+// are included, as in the grid, and subtracted by window_pairs. Returns the pairs closer than each
+// radius (cumulative), counted exactly as the accumulator test of the grid counts them. Reports
+// progress (radii done) when given, i.e. when no grid scan follows.
+std::vector<Count> plane_counts(const Problem& pb, const std::function<void(double)>* progress) {
+  const std::size_t n = pb.points;
+  std::vector<std::uint32_t> by0(n), by1(n);
+  for (std::size_t i = 0; i < n; ++i) by0[i] = by1[i] = static_cast<std::uint32_t>(i);
+  std::sort(by0.begin(), by0.end(), [&](std::uint32_t a, std::uint32_t b) { return pb.at(a, 0) < pb.at(b, 0); });
+  std::sort(by1.begin(), by1.end(), [&](std::uint32_t a, std::uint32_t b) { return pb.at(a, 1) < pb.at(b, 1); });
+  std::vector<double> v0(n), v1(n);
+  std::vector<std::uint32_t> rank1(n), sweep1(n);  // position in the coordinate-1 order, by index and by sweep step
+  for (std::size_t p = 0; p < n; ++p) {
+    v0[p] = pb.at(by0[p], 0);
+    v1[p] = pb.at(by1[p], 1);
+    rank1[by1[p]] = static_cast<std::uint32_t>(p);
+  }
+  for (std::size_t p = 0; p < n; ++p) sweep1[p] = rank1[by0[p]];
+
+  // The run of sorted values v within t of v[p], for every p: [lo[p], hi[p]), both nondecreasing in p.
+  const auto runs = [n](const std::vector<double>& v, double t, std::vector<std::uint32_t>& lo,
+                        std::vector<std::uint32_t>& hi) {
+    std::size_t a = 0, b = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      while (!(std::abs(v[p] - v[a]) < t)) ++a;  // stops at a = p at the latest
+      b = std::max(b, p + 1);
+      while (b < n && std::abs(v[b] - v[p]) < t) ++b;
+      lo[p] = static_cast<std::uint32_t>(a);
+      hi[p] = static_cast<std::uint32_t>(b);
+    }
+  };
+  struct Scratch {
+    std::vector<std::uint32_t> lo0, hi0, lo1, hi1, tree;
+  };
+  const std::size_t workers = worker_count(pb.threads, pb.nr);
+  std::vector<Scratch> scratch(workers);
+  std::vector<Count> pairs(pb.nr, 0);
+  parallel_tasks(pb.threads, pb.nr, [&](std::size_t k, std::size_t worker) {
+    Scratch& sc = scratch[worker];
+    for (auto* v : {&sc.lo0, &sc.hi0, &sc.lo1, &sc.hi1}) v->resize(n);
+    sc.tree.assign(n + 1, 0);
+    const double t = pb.thresholds[k];
+    runs(v0, t, sc.lo0, sc.hi0);
+    runs(v1, t, sc.lo1, sc.hi1);
+    std::uint32_t* tree = sc.tree.data();
+    const auto prefix = [tree](std::size_t r) {  // points inserted so far at coordinate-1 positions < r
+      std::uint64_t c = 0;
+      for (; r > 0; r &= r - 1) c += tree[r];
+      return c;
+    };
+    // F(step) for the run [lo1, hi1) of the point at sweep position p.
+    const auto inside = [&](std::size_t p) {
+      const std::uint32_t r = sweep1[p];
+      return prefix(sc.hi1[r]) - prefix(sc.lo1[r]);
+    };
+    std::uint64_t added = 0, removed = 0;  // both sides as unsigned sums: added >= removed
+    std::size_t q_lo = 0, q_hi = 0;
+    for (std::size_t step = 0; step <= n; ++step) {
+      while (q_lo < n && sc.lo0[q_lo] == step) removed += inside(q_lo++);
+      while (q_hi < n && sc.hi0[q_hi] == step) added += inside(q_hi++);
+      if (step < n)
+        for (std::size_t r = sweep1[step] + 1; r <= n; r += r & (~r + 1)) ++tree[r];
+    }
+    pairs[k] = (added - removed - n) / 2;
+  }, progress);
   return pairs;
 }
 
@@ -435,8 +517,10 @@ class Survivors {
   static constexpr std::size_t block = 256;  // candidates filtered level by level at a time
   static constexpr std::size_t batch = 512;  // survivors per level collected before binning
 
-  Survivors(const Problem& pb, Count* hist)
-      : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(pb.min_m > 2 ? pb.min_m - 2 : 0),
+  // Levels below `first` are filtered but not binned (dimensions below min, or m = 2 when it is
+  // counted by plane_counts).
+  Survivors(const Problem& pb, Count* hist, std::size_t first)
+      : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(first),
         acc_(levels_ * capacity), n_(levels_, 0), wide_(copies * pb.nm * pb.nr, 0) {}
   ~Survivors() {
     flush();
@@ -489,9 +573,9 @@ class Survivors {
 // ends the block (the accumulator never decreases). Level-major order keeps each level's count
 // in a register; candidate-major order would chain every update through memory.
 template <class N, bool check_window>
-void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s) {
+void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+                 double t) {
   const std::size_t levels = s.levels(), first = s.first_stored(), w = pb.w, i = g.index[p];
-  const double t = pb.t_max;
   const double* c0 = g.coordinate(0);
   const double* c1 = g.coordinate(1);
   double a[Survivors::block];
@@ -545,10 +629,10 @@ constexpr CompressTable compress_table = make_compress_table();
 
 template <class N>
 __attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb,
-                                                       std::size_t qe, Survivors& s) {
+                                                       std::size_t qe, Survivors& s, double t_filter) {
   const std::size_t levels = s.levels(), first = s.first_stored();
   const __m256d sign = _mm256_set1_pd(-0.0);
-  const __m256d t = _mm256_set1_pd(pb.t_max);
+  const __m256d t = _mm256_set1_pd(t_filter);
   const double* c0 = g.coordinate(0);
   const __m256d a0 = _mm256_set1_pd(c0[p]);
   alignas(32) double a[Survivors::block];
@@ -590,7 +674,7 @@ __attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const G
       if (alive == 0) break;
     }
   }
-  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s);
+  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s, t_filter);
 }
 
 bool use_avx2() {
@@ -602,14 +686,22 @@ bool use_avx2() {
 bool use_avx2() { return false; }
 #endif
 
+// CHAOS_NO_PLANE=1 makes the grid bin m = 2 itself, so the tests check both ways against brute force.
+bool plane_disabled() {
+  const char* off = std::getenv("CHAOS_NO_PLANE");
+  return off != nullptr && *off != '\0' && *off != '0';
+}
+
 template <class N, bool check_window>
+// Candidates q in [qb, qe) of grid position p, kept while their accumulator is below t (at most
+// t_max: the exact walk passes t_max, a capped reference walk the largest radius still open).
 void grid_candidates(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
-                     bool simd) {
+                     bool simd, double t) {
 #if defined(__x86_64__) && defined(__GNUC__)
-  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s);
+  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s, t);
 #endif
   (void)simd;
-  scan_scalar<N, check_window>(pb, g, p, qb, qe, s);
+  scan_scalar<N, check_window>(pb, g, p, qb, qe, s, t);
 }
 
 // The pairs 1 <= j - i <= w that the grid counted when it leaves the Theiler window to a
@@ -637,12 +729,12 @@ void window_pairs(const Problem& pb, Count* hist) {
 }
 
 template <class N, bool check_window>
-Histogram box_grid(const Problem& pb, const Grid& g) {
+Histogram box_grid(const Problem& pb, const Grid& g, std::size_t first) {
   const double t = pb.t_max;
   const bool simd = use_avx2();
   std::vector<Histogram> parts(worker_count(pb.threads, g.chunks.size()), Histogram(pb.nm * pb.nr, 0));
   parallel_tasks(pb.threads, g.chunks.size(), [&](std::size_t c, std::size_t worker) {
-    Survivors survivors(pb, parts[worker].data());
+    Survivors survivors(pb, parts[worker].data(), first);
     const Grid::Chunk& chunk = g.chunks[c];
     const Grid::Row& row = g.rows[chunk.row];
     const bool has_next = chunk.row + 1 < g.rows.size() && g.rows[chunk.row + 1].id == row.id + 1;
@@ -662,12 +754,12 @@ Histogram box_grid(const Problem& pb, const Grid& g) {
     for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
       same = std::max(same, p + 1);
       while (same < row.end && not_right_of(p, same)) ++same;
-      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd);
+      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd, t);
       if (!has_next) continue;
       while (lo < next.end && left_of(p, lo)) ++lo;
       hi = std::max(hi, lo);
       while (hi < next.end && not_right_of(p, hi)) ++hi;
-      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd);
+      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd, t);
     }
   }, pb.progress);
   return sum_histograms(parts);
@@ -675,11 +767,22 @@ Histogram box_grid(const Problem& pb, const Grid& g) {
 
 // With a small window (w <= P/8, so at most P^2/8 window pairs) the grid counts every pair and
 // the window pairs are subtracted afterwards, which keeps the index test out of the inner loop.
+// With the maximum norm and that path, m = 2 is counted by plane_counts and the grid bins only
+// m >= 3 (it still filters m = 2, whose survivors carry on to m = 3).
 template <class N>
 Histogram box_grid(const Problem& pb) {
-  const Grid g = build_grid(pb);
-  if (pb.w > pb.points / 8) return box_grid<N, true>(pb, g);
-  Histogram h = box_grid<N, false>(pb, g);
+  const std::size_t first = pb.min_m > 2 ? pb.min_m - 2 : 0;
+  if (pb.w > pb.points / 8) return box_grid<N, true>(pb, build_grid(pb), first);
+  const bool plane = std::is_same_v<N, MaxNorm> && first == 0 && pb.points < std::numeric_limits<std::uint32_t>::max() &&
+                     !plane_disabled();
+  // m = 2 alone under the plane count: nothing left for the grid to bin.
+  Histogram h = plane && pb.max_m == 2 ? Histogram(pb.nm * pb.nr, 0)
+                                       : box_grid<N, false>(pb, build_grid(pb), plane ? 1 : first);
+  if (plane) {
+    const std::vector<Count> cum = plane_counts(pb, pb.max_m == 2 ? pb.progress : nullptr);  // else the grid reports
+    Count* h2 = h.data() + (2 - pb.min_m) * pb.nr;
+    for (std::size_t k = 0; k < pb.nr; ++k) h2[k] = cum[k] - (k > 0 ? cum[k - 1] : 0);
+  }
   window_pairs<N>(pb, h.data());
   return h;
 }
@@ -772,62 +875,100 @@ class KdCounter final : public ReferenceCounter {
   std::vector<KdTree> trees_;
 };
 
-// Box-assisted per point: the points sorted by coordinate 0, so the candidates of i are the
-// positions whose coordinate 0 lies within the largest radius still needed (found by binary
-// search); the accumulator is extended coordinate by coordinate from m = 1 with early exit.
+// Box-assisted per point, on the grid of the exact walk: the partners of reference point i that can
+// be closer than r_max in m >= 2 lie in i's row or the adjacent ones, inside i's coordinate-0
+// window (the argument of box_grid), so the work per reference point is the exact walk's work per
+// point and a subset of R points costs about R/P of the exact job (twice that, as each point
+// counts its partners on both sides). The candidates are scanned without the index test, as in
+// the exact walk; i itself and its partners inside the Theiler window are then enumerated and
+// taken out again with the same accumulators, so exactly the same bins. m = 1 is counted on the
+// sorted values: the partners within t of a value form a run found by two binary searches.
 template <class N>
-class BoxCounter final : public ReferenceCounter {
+class GridCounter final : public ReferenceCounter {
  public:
-  explicit BoxCounter(const Problem& pb) : pb_(pb) {
-    const std::size_t n = pb.points, m = pb.max_m;
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return pb.at(a, 0) != pb.at(b, 0) ? pb.at(a, 0) < pb.at(b, 0) : a < b;
-    });
-    coords_.resize(n * m);
-    index_ = std::move(order);
-    for (std::size_t p = 0; p < n; ++p)
-      for (std::size_t k = 0; k < m; ++k) coords_[p * m + k] = pb.at(index_[p], k);
+  explicit GridCounter(const Problem& pb) : pb_(pb), simd_(use_avx2()) {
+    if (pb.max_m >= 2) {
+      grid_ = build_grid(pb);
+      position_.resize(pb.points);
+      row_of_.resize(pb.points);
+      for (std::size_t r = 0; r < grid_.rows.size(); ++r)
+        for (std::size_t p = grid_.rows[r].begin; p < grid_.rows[r].end; ++p) {
+          position_[grid_.index[p]] = p;
+          row_of_[p] = r;
+        }
+    }
+    if (pb.min_m == 1) {
+      sorted_.assign(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
+      std::sort(sorted_.begin(), sorted_.end());
+    }
   }
 
   void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram& h) const override {
     std::fill(h.begin(), h.end(), 0);
+    const std::size_t nr = pb_.nr;
+    // Search only as far as the largest radius still open in a dimension m >= 2 (under a cap the
+    // largest radii close first, and with them most of the candidates).
     std::size_t top = 0;
-    for (const std::size_t n : need) top = std::max(top, n);
+    for (std::size_t mi = pb_.min_m == 1 ? 1 : 0; mi < pb_.nm; ++mi) top = std::max(top, need[mi]);
     if (top > 0) {
-      const std::size_t m = pb_.max_m, nr = pb_.nr;
       const double t = pb_.thresholds[top - 1];
-      const double a0 = pb_.at(i, 0);
-      const auto c0 = [&](std::size_t p) { return coords_[p * m]; };
-      // The window: first position not too far left, then the first one too far right.
-      const std::size_t lo = first_failing(0, pb_.points, [&](std::size_t p) {
-        return c0(p) <= a0 && !(N::add(0.0, a0 - c0(p)) < t);
-      });
-      const std::size_t hi = first_failing(lo, pb_.points, [&](std::size_t p) {
-        return c0(p) <= a0 || N::add(0.0, c0(p) - a0) < t;
-      });
+      {
+        Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0);
+        const Grid& g = grid_;
+        const std::size_t p = position_[i], r = row_of_[p];
+        const double* c0 = g.coordinate(0);
+        for (std::size_t s = r > 0 ? r - 1 : 0; s <= r + 1 && s < g.rows.size(); ++s) {
+          const Grid::Row& row = g.rows[s];
+          if (row.id < g.rows[r].id - 1 || row.id > g.rows[r].id + 1) continue;
+          const std::size_t lo = first_failing(row.begin, row.end, [&](std::size_t q) {
+            return c0[q] <= c0[p] && !(N::add(0.0, c0[p] - c0[q]) < t);
+          });
+          const std::size_t hi = first_failing(lo, row.end, [&](std::size_t q) {
+            return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
+          });
+          grid_candidates<N, false>(pb_, g, p, lo, hi, survivors, simd_, t);
+        }
+      }
+      // i itself and the window partners, as the scan saw them (acc < t in the first two
+      // coordinates: the same or an adjacent row and inside the coordinate-0 window).
       const AccBins::Lookup bins = pb_.bins->lookup();
-      std::vector<double> a(m);
-      for (std::size_t k = 0; k < m; ++k) a[k] = pb_.at(i, k);
-      for (std::size_t q = lo; q < hi; ++q) {
-        if (in_window(i, index_[q], pb_.w)) continue;
-        const double* b = &coords_[q * m];
-        double acc = 0.0;
-        for (std::size_t k = 0; k < m; ++k) {
-          acc = N::add(acc, std::abs(a[k] - b[k]));
-          if (!(acc < t)) break;  // the accumulator never decreases: no larger m counts either
-          if (k + 1 >= pb_.min_m) ++h[(k + 1 - pb_.min_m) * nr + bins.inside(acc)];
+      const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
+      for (std::size_t j = first; j <= last; ++j) {
+        double acc = N::add(N::add(0.0, std::abs(pb_.at(i, 0) - pb_.at(j, 0))), std::abs(pb_.at(i, 1) - pb_.at(j, 1)));
+        for (std::size_t m = 2; m <= pb_.max_m; ++m) {
+          if (m > 2) acc = N::add(acc, std::abs(pb_.at(i, m - 1) - pb_.at(j, m - 1)));
+          if (!(acc < t)) break;
+          if (m >= pb_.min_m) --h[(m - pb_.min_m) * nr + bins.inside(acc)];
         }
       }
     }
-    histogram_to_cumulative(h, pb_.nm, pb_.nr, cum);
+    histogram_to_cumulative(h, pb_.nm, nr, cum);
+    if (pb_.min_m == 1) {
+      // Partners within t_k in coordinate 0: the run of sorted values around a0, less i itself and
+      // the window partners that pass the same test.
+      const double a0 = pb_.at(i, 0);
+      const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
+      for (std::size_t k = 0; k < need[0]; ++k) {
+        const double t = pb_.thresholds[k];
+        const auto lo = std::partition_point(sorted_.begin(), sorted_.end(), [&](double v) {
+          return v <= a0 && !(N::add(0.0, a0 - v) < t);
+        });
+        const auto hi = std::partition_point(lo, sorted_.end(), [&](double v) {
+          return v <= a0 || N::add(0.0, v - a0) < t;
+        });
+        Count inside = static_cast<Count>(hi - lo);
+        for (std::size_t j = first; j <= last; ++j) inside -= N::add(0.0, std::abs(a0 - pb_.at(j, 0))) < t;
+        cum[k] = inside;
+      }
+    }
   }
 
  private:
   const Problem& pb_;
-  std::vector<double> coords_;  // all max_m coordinates per point, in coordinate-0 order
-  std::vector<std::size_t> index_;
+  bool simd_;
+  Grid grid_;
+  std::vector<std::size_t> position_, row_of_;  // grid position of each point, row of each position
+  std::vector<double> sorted_;                  // coordinate 0 of every point, sorted (m = 1)
 };
 
 // Partners of point i on both sides outside the Theiler window.
@@ -937,7 +1078,7 @@ Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
     case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap);
     case CorrelationSearch::box_assisted: break;
   }
-  return reference_walk(pb, BoxCounter<N>(pb), order, cap);
+  return reference_walk(pb, GridCounter<N>(pb), order, cap);
 }
 
 }  // namespace
@@ -969,6 +1110,9 @@ void CorrelationSumOptions::validate() const {
   for (std::size_t k = 0; k < radii.size(); ++k) {
     if (!std::isfinite(radii[k]) || !(radii[k] > 0.0))
       refuse("radii must be finite and positive (got radius[" + std::to_string(k) + "] = " + number(radii[k]) + ")");
+    if (inclusive && radii[k] == std::numeric_limits<double>::max())
+      refuse("with inclusive counting (d <= eps) a radius must be below the largest double (got radius[" +
+             std::to_string(k) + "] = " + number(radii[k]) + ")");
     if (k > 0 && !(radii[k] > radii[k - 1]))
       refuse("radii must be strictly increasing (got radius[" + std::to_string(k) + "] = " + number(radii[k]) +
              " after radius[" + std::to_string(k - 1) + "] = " + number(radii[k - 1]) + ")");
@@ -1040,6 +1184,11 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
     for (double& r : radii) r = std::ldexp(r, -exponent);
     y = scaled;
   }
+
+  // d <= r is d < r+, the next double above r (d is a double): the counting loops keep their strict
+  // comparison. For the Euclidean norm this comes after the exact power-of-two scaling above.
+  if (options.inclusive)
+    for (double& r : radii) r = std::nextafter(r, infinity);
 
   std::vector<double> thresholds(radii.size());
   for (std::size_t k = 0; k < radii.size(); ++k) thresholds[k] = threshold(options.norm, radii[k]);

@@ -260,6 +260,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "min_pairs", params.dimension.min_pairs);
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);
+  get(p, "inclusive", params.sums.inclusive);
   params.sums.progress = progress_hook(std::move(progress));
   return call([&] { return run_d2(in, params).report.json(); });
 }

@@ -44,6 +44,7 @@ def test_d2_the_issue_bar(lorenz_file):
      dict(delay=8, max_dimension=5, theiler=30, norm="euclidean", halves=True, dt=0.01)),
     (["-d", 8, "-M", 4, "--reference-points", 500, "--seed", 3, "-r", 0.5, "-R", 10],
      dict(delay=8, max_dimension=4, reference_points=500, seed=3, min_radius=0.5, max_radius=10)),
+    (["-d", 8, "-M", 3, "--inclusive"], dict(delay=8, max_dimension=3, inclusive=True)),
 ])
 def test_d2(lorenz_file, cli_args, kwargs):
     check(chaos.d2, lorenz_file, ["d2", *cli_args], **kwargs)

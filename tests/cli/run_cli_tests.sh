@@ -92,6 +92,14 @@ h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
     else false end)]')
 [[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
+# Issue 15: --inclusive counts pairs at distance <= eps (TISEAN's d2), the default < eps. Expected
+# counts: every pair of a 12-sample integer series enumerated here by awk (ties at both radii).
+printf '%s\n' 0 1 2 3 1 0 2 2 3 1 0 1 > "$work/ties.dat"
+want=$(awk '{ x[NR] = $1 } END {
+  for (i = 1; i <= NR; i++) for (j = i + 1; j <= NR; j++) { d = x[i] - x[j]; if (d < 0) d = -d; a += d < 1; b += d < 2; c += d <= 1; e += d <= 2 }
+  printf "[[[%d,%d]],false] [[[%d,%d]],true]", a, b, c, e }' "$work/ties.dat")
+got="$("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --json | jq -c '[.pairs, .parameters.inclusive]') $("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --inclusive --json | jq -c '[.pairs, .parameters.inclusive]')"
+[[ $got == "$want" ]] && pass || fail "d2 pairs without and with --inclusive: $got, expected $want"
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
@@ -376,13 +384,15 @@ err=$("$CHAOS" mutual "$work/huge_token.dat" 2>&1)
 # Issue 16, item 8: chaos d2 on 10^6 points ran for over 15 minutes with no word. Above 2e5 points
 # (exact sums) it says so with the option that shortens it, and on a terminal it draws a progress
 # line after 2 s (util-linux `script` gives it one); -q silences both. Each run is cut after 4 s.
+# -M 3: since issue 15, m <= 2 alone takes under 2 s at this N (m = 2 is counted without
+# enumerating pairs), too short for a progress line; m = 3 takes about 30 s.
 "$CHAOS" generate lorenz -l 250000 --components x > "$work/long.dat"
-err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -o /dev/null 2>&1 >/dev/null)
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 3 -o /dev/null 2>&1 >/dev/null)
 [[ $err == *"N = 250000 samples"*"--reference-points"* ]] && pass || fail "d2 on 250000 points gave no hint: ${err:0:300}"
-err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 2 -q -o /dev/null 2>&1 >/dev/null)
+err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 3 -q -o /dev/null 2>&1 >/dev/null)
 [[ -z $err ]] && pass || fail "d2 -q still writes to stderr: ${err:0:300}"
 if command -v script >/dev/null; then
-  tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 2 -o /dev/null" /dev/null | tr '\r' '\n')
+  tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 3 -o /dev/null" /dev/null | tr '\r' '\n')
   grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
 fi
 # Issue 16, item 8: the other long commands (lyapunov, cao, fnn, surrogates, nonlinearity,

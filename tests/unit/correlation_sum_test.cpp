@@ -33,13 +33,21 @@ constexpr CorrelationSearch all_modes[] = {CorrelationSearch::brute_force, Corre
 constexpr Norm both_norms[] = {Norm::max, Norm::euclidean};
 
 // The box-assisted search has an AVX2 path and a portable one; CHAOS_NO_SIMD=1 selects the
-// portable one, so both are checked against the same expectations.
-class PortablePath {
+// portable one, so both are checked against the same expectations. Likewise CHAOS_NO_PLANE=1 makes
+// the grid bin m = 2 itself instead of counting it by plane_counts (maximum norm, issue 15).
+class ScopedEnv {
  public:
-  PortablePath() { ::setenv("CHAOS_NO_SIMD", "1", 1); }
-  ~PortablePath() { ::unsetenv("CHAOS_NO_SIMD"); }
-  PortablePath(const PortablePath&) = delete;
-  PortablePath& operator=(const PortablePath&) = delete;
+  explicit ScopedEnv(const char* name) : name_(name) { ::setenv(name_, "1", 1); }
+  ~ScopedEnv() { ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+class PortablePath : public ScopedEnv {
+ public:
+  PortablePath() : ScopedEnv("CHAOS_NO_SIMD") {}
 };
 
 double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std::size_t m, std::size_t tau, Norm norm) {
@@ -51,7 +59,8 @@ double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std:
   return norm == Norm::max ? acc : std::sqrt(acc);
 }
 
-// The definition, term by term: every pair, every dimension, every radius.
+// The definition, term by term: every pair, every dimension, every radius (d <= eps when the
+// options ask for inclusive counting).
 struct Expected {
   Counts pairs;
   std::uint64_t admissible = 0;
@@ -66,7 +75,7 @@ Expected brute_force(const std::vector<double>& x, const CorrelationSumOptions& 
       for (std::size_t m = o.min_dimension; m <= o.max_dimension; ++m) {
         const double d = distance(x, i, j, m, tau, o.norm);
         for (std::size_t k = 0; k < o.radii.size(); ++k)
-          if (d < o.radii[k]) ++e.pairs[m - o.min_dimension][k];
+          if (o.inclusive ? d <= o.radii[k] : d < o.radii[k]) ++e.pairs[m - o.min_dimension][k];
       }
     }
   return e;
@@ -97,6 +106,10 @@ void expect_all_modes_exact(const std::vector<double>& x, CorrelationSumOptions 
     expect_matches(chaos::correlation_sum(x, o), e, describe(o));
   }
   o.search = CorrelationSearch::box_assisted;
+  {
+    const ScopedEnv grid_only("CHAOS_NO_PLANE");
+    expect_matches(chaos::correlation_sum(x, o), e, describe(o) + " m = 2 on the grid");
+  }
   const PortablePath portable;
   expect_matches(chaos::correlation_sum(x, o), e, describe(o) + " portable");
 }
@@ -198,6 +211,8 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnRandomData) {
     for (const std::size_t w : {0u, 1u, 10u}) expect_all_modes_exact(x, options(1, 1, 5, w, radii, norm));
   // m from 3 only (nothing counted for m = 1, 2) and a delay of 3.
   expect_all_modes_exact(x, options(3, 3, 4, 2, radii, Norm::max));
+  // m = 2 alone: with the maximum norm only plane_counts runs, no grid scan (issue 15).
+  for (const std::size_t w : {0u, 5u}) expect_all_modes_exact(x, options(2, 2, 2, w, radii, Norm::max));
 }
 
 TEST(CorrelationSum, EveryModeEqualsBruteForceOnHenon) {
@@ -222,22 +237,24 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnLorenz) {
 // Issue 16: chaos d2 draws a progress line from this callback. It is called with growing fractions
 // below 1, in every exact search mode and on 1 or 2 threads, and the counts do not depend on it.
 TEST(CorrelationSum, ProgressIsReportedAndChangesNothing) {
+  // max m = 2: the box-assisted search counts m = 2 by plane_counts alone and reports from there.
   const auto x = chaos::lorenz(3000).components[0];
   for (const auto search : {CorrelationSearch::box_assisted, CorrelationSearch::kd_tree, CorrelationSearch::brute_force})
-    for (const std::size_t threads : {1u, 2u}) {
-      auto o = options(17, 1, 3, 10, chaos::log_radii(0.25, 5.0, 8), Norm::max);
-      o.search = search;
-      o.threads = threads;
-      const auto quiet = chaos::correlation_sum(x, o);
-      std::vector<double> seen;
-      o.progress = [&seen](double f) { seen.push_back(f); };
-      const auto reported = chaos::correlation_sum(x, o);
-      EXPECT_EQ(reported.pairs, quiet.pairs);
-      ASSERT_FALSE(seen.empty()) << chaos::to_string(search) << ", " << threads << " thread(s)";
-      EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
-      EXPECT_GT(seen.front(), 0.0);
-      EXPECT_LT(seen.back(), 1.0);
-    }
+    for (const std::size_t threads : {1u, 2u})
+      for (const std::size_t max_m : {2u, 3u}) {
+        auto o = options(17, 1, max_m, 10, chaos::log_radii(0.25, 5.0, 8), Norm::max);
+        o.search = search;
+        o.threads = threads;
+        const auto quiet = chaos::correlation_sum(x, o);
+        std::vector<double> seen;
+        o.progress = [&seen](double f) { seen.push_back(f); };
+        const auto reported = chaos::correlation_sum(x, o);
+        EXPECT_EQ(reported.pairs, quiet.pairs);
+        ASSERT_FALSE(seen.empty()) << chaos::to_string(search) << ", " << threads << " thread(s), max m " << max_m;
+        EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+        EXPECT_GT(seen.front(), 0.0);
+        EXPECT_LT(seen.back(), 1.0);
+      }
 }
 
 TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
@@ -261,6 +278,49 @@ TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
   for (std::size_t i = 0; i < x.size(); ++i) y[i] = x[i] / 8.0 - 0.75;
   for (std::size_t k = 0; k < radii.size(); ++k) dyadic_radii[k] = radii[k] / 8.0;
   for (const auto norm : both_norms) expect_all_modes_exact(y, options(2, 1, 3, 1, dyadic_radii, norm));
+}
+
+TEST(CorrelationSum, InclusiveCountsTiesAtTheRadii) {
+  // Issue 15: `inclusive` counts d <= eps (TISEAN's convention). Expected counts: the brute force
+  // above with <=, on integer data with integer radii (ties at every radius, both norms) and on a
+  // dyadic grid, in every search mode and the portable path.
+  chaos::Random rng(5);
+  std::vector<double> x(500);
+  for (auto& v : x) v = static_cast<double>(rng.below(9));
+  const std::vector<double> radii{1, 2, 3, 4, 5, 8};
+  for (const auto norm : both_norms)
+    for (const std::size_t w : {0u, 3u}) {
+      auto o = options(1, 1, 3, w, radii, norm);
+      o.inclusive = true;
+      expect_all_modes_exact(x, o);
+    }
+  std::vector<double> y(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) y[i] = x[i] / 16.0 + 0.5;
+  auto o = options(2, 2, 4, 1, {0.0625, 0.125, 0.25}, Norm::max);
+  o.inclusive = true;
+  expect_all_modes_exact(y, o);
+  // By hand: radius 1 in m = 1 counts the pairs at distance 0 or 1 when inclusive, at 0 when not.
+  o = options(1, 1, 1, 0, {1.0});
+  std::uint64_t zero = 0, one = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = i + 1; j < x.size(); ++j) {
+      zero += x[i] == x[j];
+      one += std::abs(x[i] - x[j]) == 1.0;
+    }
+  EXPECT_EQ(chaos::correlation_sum(x, o).pairs[0][0], zero);
+  o.inclusive = true;
+  EXPECT_EQ(chaos::correlation_sum(x, o).pairs[0][0], zero + one);
+  // The radii are reported as given, not as the next double used inside.
+  EXPECT_EQ(chaos::correlation_sum(x, o).radius, std::vector<double>{1.0});
+  // A reference subset and a pair cap count the same way: with all P points as reference points
+  // and no cap reached, every pair is seen from both ends (docs/correlation_sum.md).
+  o = options(1, 1, 3, 2, radii, Norm::max);
+  o.inclusive = true;
+  const Expected e = brute_force(x, o);
+  o.reference_points = x.size() - 2;
+  const auto twice = chaos::correlation_sum(x, o);
+  for (std::size_t mi = 0; mi < e.pairs.size(); ++mi)
+    for (std::size_t k = 0; k < radii.size(); ++k) EXPECT_EQ(twice.pairs[mi][k], 2 * e.pairs[mi][k]);
 }
 
 TEST(CorrelationSum, ThreadCountDoesNotChangeAnything) {
@@ -319,7 +379,8 @@ Walk reference_walk(const std::vector<double>& x, const CorrelationSumOptions& o
       ++partners;
       for (std::size_t m = o.min_dimension; m <= o.max_dimension; ++m)
         for (std::size_t k = 0; k < nr; ++k)
-          found[m - o.min_dimension][k] += distance(x, i, j, m, tau, o.norm) < o.radii[k];
+          found[m - o.min_dimension][k] += o.inclusive ? distance(x, i, j, m, tau, o.norm) <= o.radii[k]
+                                                       : distance(x, i, j, m, tau, o.norm) < o.radii[k];
     }
     for (std::size_t mi = 0; mi < nm; ++mi)
       for (std::size_t k = 0; k < nr; ++k) {
@@ -354,6 +415,37 @@ TEST(CorrelationSum, ReferenceSubsetFollowsTheDocumentedWalk) {
   auto other = o;
   other.seed = 12;
   EXPECT_NE(chaos::correlation_sum(x, other).pairs, want.pairs);
+}
+
+TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
+  // Issue 15: the box-assisted reference walk scans the exact walk's grid (only as far as the
+  // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards.
+  // Expected: the documented walk above, on integer data (ties at the radii), both norms, windows
+  // 0 to 9, m from 1, 2 or 3, strict and inclusive counting, with and without a cap, with the AVX2
+  // and the portable scan.
+  chaos::Random rng(8);
+  std::vector<double> x(700);
+  for (auto& v : x) v = static_cast<double>(rng.below(11));
+  const std::vector<double> radii{1, 2, 3, 5, 8};
+  for (const auto norm : both_norms)
+    for (const std::size_t w : {0u, 2u, 9u})
+      for (const std::size_t min_m : {1u, 2u, 3u})
+        for (const bool inclusive : {false, true}) {
+          auto o = options(2, min_m, 4, w, radii, norm);
+          o.inclusive = inclusive;
+          o.reference_points = 90;
+          o.seed = 3 + w;
+          for (const std::uint64_t cap : {0u, 2500u}) {
+            o.pairs_per_radius = cap;
+            const Walk want = reference_walk(x, o);
+            const std::string what = describe(o) + (inclusive ? " inclusive" : "") + " cap " + std::to_string(cap);
+            const auto got = chaos::correlation_sum(x, o);
+            EXPECT_EQ(got.pairs, want.pairs) << what;
+            EXPECT_EQ(got.examined, want.examined) << what;
+            const PortablePath portable;
+            EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " portable";
+          }
+        }
 }
 
 TEST(CorrelationSum, FullReferenceSubsetCountsEveryPairTwice) {
@@ -487,6 +579,10 @@ TEST(CorrelationSum, InvalidOptionsAreRefused) {
   expect_refused(x, o, ErrorCode::invalid_parameter, "radius[2] = 0.29999999999999999 after radius[1]");
   o.radii = {0.2, 0.1};
   expect_refused(x, o, ErrorCode::invalid_parameter, "strictly increasing");
+  o.radii = {0.1, std::numeric_limits<double>::max()};
+  EXPECT_NO_THROW(o.validate());  // d < the largest double is a valid question
+  o.inclusive = true;             // d <= it needs a double above it, and there is none
+  expect_refused(x, o, ErrorCode::invalid_parameter, "inclusive counting (d <= eps) a radius must be below the largest double (got radius[1] = 1.7976931348623157e+308)");
   o = ok;
   o.min_dimension = 0;
   expect_refused(x, o, ErrorCode::invalid_parameter, "m = 0");

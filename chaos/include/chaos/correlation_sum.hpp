@@ -2,6 +2,7 @@
 // Correlation sums C(eps, m) for every embedding dimension m = min..max in one pass over the pairs
 // (Grassberger & Procaccia 1983; seed Eq. 32). Convention, the same for every search mode:
 //   C(eps, m) = (number of pairs i < j with j - i > w and |X_i(m) - X_j(m)| < eps) / (admissible pairs),
+// (<= eps with `inclusive`),
 // over the same reference set of points for every m, namely i < N - (max-1) tau, so the curves for
 // different m are comparable. With the maximum norm the distance in m + 1 dimensions extends the
 // one in m by one coordinate, which is what makes the single pass possible.
@@ -32,6 +33,10 @@ struct CorrelationSumOptions {
   std::size_t theiler = 0;         // -t: pairs with |i - j| <= theiler are excluded
   Norm norm = Norm::max;
   std::vector<double> radii;       // strictly increasing, positive (log_radii makes TISEAN's grid)
+  // false (default): count d < eps, the convention of Grassberger & Procaccia's Theta(eps - d) with
+  // Theta(0) = 0. true: count d <= eps, as TISEAN's d2 does (up to the rounding of its logarithmic
+  // binning), for comparing counts on quantised data where distances equal a radius exactly.
+  bool inclusive = false;
   CorrelationSearch search = CorrelationSearch::box_assisted;
   // TISEAN's -N: once this many pairs are closer than a radius, stop counting for that radius and
   // normalise by the pairs examined until then (reference points are visited in a seeded random

@@ -189,14 +189,15 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_pairs=100, max_region_fraction=None,
-       halves=False, progress=None, dt=None, column=1, skip=0, length=None):
+       halves=False, inclusive=False, progress=None, dt=None, column=1, skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
 
     C(eps, m) = #{(i, j): |i - j| > theiler, ||y_i - y_j|| < eps} / #{(i, j): |i - j| > theiler}, over
     the delay vectors y_i = (x_i, x_{i+tau}, ..., x_{i+(m-1)tau}), for m = min_dimension..max_dimension
     in one pass, exactly (box-assisted, kd-tree or brute-force search give identical counts) unless
-    ``pairs_per_radius`` or ``reference_points`` ask for an estimate. Local slopes d ln C / d ln eps;
+    ``pairs_per_radius`` or ``reference_points`` ask for an estimate. ``inclusive=True`` counts
+    ||y_i - y_j|| <= eps instead, as TISEAN's d2 does (``--inclusive``). Local slopes d ln C / d ln eps;
     the scaling region is the widest range of radii where the slopes of the highest
     ``saturation_dimensions`` dimensions agree within ``tolerance``; D2 is their mean there, with an
     interval. Defaults: theiler the autocorrelation's 1/e time (or half the dominant period), radii
@@ -217,7 +218,7 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
                   search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
                   threads=threads, tolerance=tolerance, min_points=min_points,
                   saturation_dimensions=saturation_dimensions, min_pairs=min_pairs,
-                  max_region_fraction=max_region_fraction, halves=halves)
+                  max_region_fraction=max_region_fraction, halves=halves, inclusive=inclusive)
     bar = _progress_bar(progress, "correlation sums")
     try:
         return _make(_core.d2(values, file, column, dt, params, bar))
