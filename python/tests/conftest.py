@@ -2,6 +2,7 @@
 gives the expected values; series are written by `chaos generate` into a temporary directory."""
 import json
 import os
+import signal
 import subprocess
 from pathlib import Path
 
@@ -10,6 +11,18 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CLI = Path(os.environ.get("CHAOS_CLI", REPO / "build" / "chaos" / "chaos"))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def ctrl_c_raises():
+    """Ctrl-C raises KeyboardInterrupt, as in any interactive Python. A process started in the
+    background by a non-interactive shell (`cmd &`, nohup, some CI runners) inherits SIGINT ignored;
+    Python then installs no handler, and _thread.interrupt_main(), which the Ctrl-C tests use to
+    press Ctrl-C, does nothing (its documented behaviour for an ignored signal). Every Ctrl-C test
+    failed that way with DID NOT RAISE when the suite ran under `nohup ... &`."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
 
 
 def run_cli(*args, check=True):
