@@ -257,8 +257,12 @@ int main(int argc, char** argv) {
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";
         *out << "# exponents near or below " << number(r.resolution_limit)
              << " 1/s contract past double precision within one interval: bounds, not values\n";
-        *out << "# Kaplan-Yorke dimension: " << number(r.kaplan_yorke) << " (section " << number(r.kaplan_yorke_section)
-             << ")\n# resolved scene:\n";
+        if (std::isfinite(r.kaplan_yorke))
+          *out << "# Kaplan-Yorke dimension: " << number(r.kaplan_yorke) << " (section " << number(r.kaplan_yorke_section)
+               << ")\n";
+        else
+          *out << "# Kaplan-Yorke dimension: none (the exponents computed do not bound it, or the run failed)\n";
+        *out << "# resolved scene:\n";
         write_scene_header(*out, scene);
         const std::size_t k = r.periods ? r.running.size() / r.periods : 0;  // also after a failed run
         *out << "# period";

@@ -131,6 +131,9 @@ rows=$(grep -vc '^#' "$work/lyap.tsv")
 [[ $rows -eq 10 ]] || fail "lyapunov: expected 10 rows (one per period), got $rows"
 grep -q '^# lambda_1 = ' "$work/lyap.tsv" || fail "lyapunov: the table's header lacks lambda_1"
 grep -q '^# lambda_2' "$work/lyap.tsv" && fail "lyapunov -k 1 wrote a second exponent"
+# One positive exponent alone bounds no dimension: the header says so instead of printing NaN.
+grep -q '^# Kaplan-Yorke dimension: none' "$work/lyap.tsv" || fail "lyapunov -k 1: the Kaplan-Yorke line is not 'none'"
+grep -qiw 'nan' "$work/lyap.tsv" && fail "lyapunov -k 1 printed NaN"
 expect 3 "periods = 5: must be >= 10" -- lyapunov -q --periods 5
 expect 3 "perturbation = 0: must be in (0, 1)" -- lyapunov -q --perturbation 0
 expect 3 "rigid" -- lyapunov -q --set joint.slider.type=ideal
