@@ -88,7 +88,9 @@ void run(LyapunovArgs& args) {
                   "the divergence curve follows the neighbours of every one of the points and may take long; "
                   "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
-  auto [r, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
+  args.params.check_progress =
+      progress.callback(std::string("cross-check (") + (args.params.method == "kantz" ? "rosenstein" : "kantz") + ")");
+  auto [r, check, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
   report.open(args.output);
   const bool per_time = r.dt.has_value();
@@ -106,6 +108,11 @@ void run(LyapunovArgs& args) {
   if (per_time)
     out << "# lambda_per_sample = " << (r.fit.lambda ? number(*r.fit.lambda) : "none") << "  interval "
         << interval_text(r.fit.lambda_interval) << "\n";
+  if (check) {
+    const std::optional<double> other = per_time ? check->lambda_per_time : check->fit.lambda;
+    out << "# cross_check = " << to_string(check->options.method) << ": " << to_string(check->fit.status)
+        << ", lambda = " << (other ? number(*other) : "none") << "\n";
+  }
   if (r.fit_range_time)
     out << "# fitted over t = " << number(r.fit_range_time->low) << " .. " << number(r.fit_range_time->high)
         << " time units\n";
@@ -160,6 +167,9 @@ void register_lyapunov(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-rise", args->params.fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
+  command->add_flag("!--no-cross-check", args->params.cross_check,
+                   "skip the other method's check: the status is then this estimator's alone (by default a linear "
+                   "region the other method does not confirm within the tolerance is 'unconfirmed')");
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

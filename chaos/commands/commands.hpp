@@ -111,9 +111,14 @@ struct LyapunovParams {
   std::optional<std::size_t> theiler, steps, period;
   std::string method = "rosenstein";
   std::string norm = "max";
+  // Run the other method too, with the same settings, and check the two against each other
+  // (lyapunov.hpp, cross_check); its progress goes to check_progress.
+  bool cross_check = true;
+  std::function<void(double)> check_progress;
 };
 struct LyapunovRun {
   LyapunovResult result;
+  std::optional<LyapunovResult> check;  // the other method's result, when cross-checked
   Report report;
 };
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});

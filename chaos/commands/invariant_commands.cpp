@@ -147,6 +147,17 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
+  std::optional<LyapunovResult> check;
+  if (params.cross_check) {
+    LyapunovOptions other = params.options;
+    other.method = other.method == LyapunovMethod::rosenstein ? LyapunovMethod::kantz : LyapunovMethod::rosenstein;
+    other.progress = params.check_progress;
+    check = largest_lyapunov(x, other, params.fit, in.dt);
+    if (other.method == LyapunovMethod::kantz)
+      cross_check(r, *check, params.fit.tolerance);
+    else
+      cross_check(*check, r, params.fit.tolerance);
+  }
 
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
@@ -167,7 +178,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   report.parameter("reference_points", params.options.reference_points).parameter("threads", params.options.threads)
       .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
       .parameter("min_steps", r.fit.min_steps).parameter("period", params.fit.period)
-      .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions);
+      .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions)
+      .parameter("cross_check", params.cross_check);
   auto& j = report.json();
   j["lambda"] = optional_json(lambda);
   j["lambda_interval"] = interval_json(lambda_interval);
@@ -200,7 +212,17 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   j["reference_points_examined"] = r.curve.reference_points;
   j["references_used"] = r.curve.references_used;
   j["mean_neighbours"] = r.curve.mean_neighbours;
-  return {std::move(r), std::move(report)};
+  if (check) {
+    auto& c = j["cross_check"];
+    c["method"] = to_string(check->options.method);
+    c["status"] = to_string(check->fit.status);
+    c["lambda"] = optional_json(per_time ? check->lambda_per_time : check->fit.lambda);
+    c["explanation"] = check->fit.explanation;
+    if (check->options.method == LyapunovMethod::kantz) c["radius"] = check->curve.radius;
+  } else {
+    j["cross_check"] = nullptr;
+  }
+  return {std::move(r), std::move(check), std::move(report)};
 }
 
 const char* const builtin_series_name = "(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)";

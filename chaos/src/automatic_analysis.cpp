@@ -150,6 +150,8 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   try {
     if (options.rosenstein) a.rosenstein = lyapunov(LyapunovMethod::rosenstein);
     if (options.kantz) a.kantz = lyapunov(LyapunovMethod::kantz);
+    if (options.cross_check && a.rosenstein && a.kantz)
+      cross_check(*a.rosenstein, *a.kantz, automatic_lyapunov_fit(a.scales).tolerance);
   } catch (const InvalidInput& e) {
     // Too short for the curve's steps in m + 2 dimensions: the exponent is not estimated.
     a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();

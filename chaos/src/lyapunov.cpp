@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <iomanip>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -155,6 +156,7 @@ const char* to_string(LyapunovStatus status) noexcept {
     case LyapunovStatus::no_linear_region: return "no_linear_region";
     case LyapunovStatus::not_diverging: return "not_diverging";
     case LyapunovStatus::no_neighbours: return "no_neighbours";
+    case LyapunovStatus::unconfirmed: return "unconfirmed";
   }
   return "unknown";
 }
@@ -494,6 +496,58 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
     result.fit_range_time = Interval{static_cast<double>(*result.fit.first_step) * *dt,
                                      static_cast<double>(*result.fit.last_step) * *dt};
   return result;
+}
+
+namespace {
+
+std::string verdict(const char* name, const LyapunovFit& fit) {
+  std::ostringstream s;
+  s << name << " ";
+  if (fit.lambda)
+    s << "gives " << std::setprecision(4) << *fit.lambda << " per sample (steps " << *fit.first_step << ".."
+      << *fit.last_step << ")";
+  else
+    s << "has " << to_string(fit.status);
+  return s.str();
+}
+
+void withdraw(LyapunovFit& fit, const std::string& why) {
+  fit.status = LyapunovStatus::unconfirmed;
+  fit.explanation = why + " (the estimate alone: " + fit.explanation + ")";
+  fit.lambda.reset();
+  fit.lambda_interval.reset();
+  fit.first_step.reset();
+  fit.last_step.reset();
+  fit.lambda_by_curve.clear();
+}
+
+}  // namespace
+
+void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
+  if (!(std::isfinite(tolerance) && tolerance > 0.0))
+    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+  const bool r = rosenstein.status == LyapunovStatus::linear_region, k = kantz.status == LyapunovStatus::linear_region;
+  if (!r && !k) return;
+  if (r && k) {
+    const double a = *rosenstein.lambda, b = *kantz.lambda;
+    if (std::abs(a - b) <= tolerance * 0.5 * (a + b)) return;
+  }
+  std::ostringstream why;
+  why << "the two estimators disagree: " << verdict("Rosenstein", rosenstein) << ", " << verdict("Kantz", kantz);
+  if (r && k) why << ", more than " << tolerance * 100 << "% apart";
+  why << "; a slope only one estimator supports is not trusted";
+  if (r) withdraw(rosenstein, why.str());
+  if (k) withdraw(kantz, why.str());
+}
+
+void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance) {
+  cross_check(rosenstein.fit, kantz.fit, tolerance);
+  for (LyapunovResult* r : {&rosenstein, &kantz})
+    if (!r->fit.lambda) {
+      r->lambda_per_time.reset();
+      r->lambda_per_time_interval.reset();
+      r->fit_range_time.reset();
+    }
 }
 
 LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options,

@@ -377,13 +377,15 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           row.automatic = false;
           row.d2 = d2_estimate(d2_at(m), c.d2_band);
           const std::size_t k = m - m0;
-          const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) {
-            if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return not_run("not_run: " + curve_error);
-            return lambda_estimate(fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit),
-                                   c.dt, c.lambda_band);
+          const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) -> std::optional<LyapunovFit> {
+            if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return std::nullopt;
+            return fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit);
           };
-          row.rosenstein = fit_of(rosenstein);
-          row.kantz = fit_of(kantz);
+          // As in the pipeline: each fit is checked against the other (cross_check).
+          std::optional<LyapunovFit> r = fit_of(rosenstein), q = fit_of(kantz);
+          if (r && q) cross_check(*r, *q, fit.tolerance);
+          row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
+          row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           result.rows.push_back(row);
         }
       }

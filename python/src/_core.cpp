@@ -285,7 +285,15 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "half_width", params.fit.half_width);
   get(p, "min_steps", params.fit.min_steps);
   get(p, "min_rise", params.fit.min_rise);
-  params.options.progress = progress_hook(std::move(progress));
+  get(p, "cross_check", params.cross_check);
+  // With the cross-check the other method's curve is the second half of the work.
+  const std::function<void(double)> hook = progress_hook(std::move(progress));
+  if (hook && params.cross_check) {
+    params.options.progress = [hook](double f) { hook(0.5 * f); };
+    params.check_progress = [hook](double f) { hook(0.5 + 0.5 * f); };
+  } else {
+    params.options.progress = hook;
+  }
   return call([&] { return run_lyapunov(in, params).report.json(); });
 }
 

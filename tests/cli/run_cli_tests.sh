@@ -119,6 +119,12 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.status, .per, (.lambda
 [[ $l == '["linear_region","sample",true,41,40]' ]] && pass || fail "lyapunov henon gave $l"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --json | jq -c '[.status, .parameters.method, (.parameters.radius > 0)]')
 [[ $l == '["linear_region","kantz",true]' ]] && pass || fail "lyapunov --method kantz gave $l"
+# The other method checks the first (cross_check): on Henon both agree; --no-cross-check skips it.
+l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.cross_check.method, .cross_check.status, (.cross_check.lambda > 0.3 and .cross_check.lambda < 0.5), .parameters.cross_check]')
+[[ $l == '["kantz","linear_region",true,true]' ]] && pass || fail "lyapunov cross-check on henon gave $l"
+l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --no-cross-check --json | jq -c '[.status, .cross_check, .parameters.cross_check]')
+[[ $l == '["linear_region",null,false]' ]] && pass || fail "lyapunov --no-cross-check gave $l"
+"$CHAOS" lyapunov "$work/henon.dat" | grep -q "^# cross_check = kantz: linear_region" && pass || fail "lyapunov text output lacks the cross-check line"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --dt 0.5 --json | jq -c '[.per, (.lambda == .lambda_per_sample / 0.5)]')
 [[ $l == '["time",true]' ]] && pass || fail "lyapunov --dt gave $l"
 l=$("$CHAOS" lyapunov "$work/noise.dat" --json | jq -c '[.lambda, .lambda_interval, .status]')

@@ -567,6 +567,99 @@ TEST(LargestLyapunov, Refusals) {
   expect_refusal([&] { chaos::largest_lyapunov(x, {}, fit); }, ErrorCode::invalid_parameter, {"min_steps = 1"});
 }
 
+// cross_check's rule, on fits whose values are set by hand (expected outcomes from the rule's
+// definition: agreement within tolerance * mean keeps both, anything else withdraws each region).
+chaos::LyapunovFit region_fit(double lambda) {
+  chaos::LyapunovFit f;
+  f.status = LyapunovStatus::linear_region;
+  f.lambda = lambda;
+  f.lambda_interval = chaos::Interval{0.9 * lambda, 1.1 * lambda};
+  f.first_step = 10;
+  f.last_step = 40;
+  f.lambda_by_curve = {lambda};
+  f.explanation = "local slopes agree";
+  return f;
+}
+
+chaos::LyapunovFit no_region_fit() {
+  chaos::LyapunovFit f;
+  f.status = LyapunovStatus::no_linear_region;
+  f.explanation = "no stretch";
+  return f;
+}
+
+TEST(LyapunovCrossCheck, TwoEstimatesWithinTheToleranceStandAndAnythingElseIsUnconfirmed) {
+  // 0.40 and 0.43 differ by 0.03 <= 0.1 * 0.415: both stand, untouched.
+  auto r = region_fit(0.40), k = region_fit(0.43);
+  chaos::cross_check(r, k, 0.1);
+  EXPECT_EQ(r.status, LyapunovStatus::linear_region);
+  EXPECT_EQ(k.status, LyapunovStatus::linear_region);
+  EXPECT_EQ(*r.lambda, 0.40);
+  EXPECT_EQ(*k.lambda, 0.43);
+
+  // 0.40 and 0.45 differ by 0.05 > 0.1 * 0.425: both withdrawn, both values named.
+  r = region_fit(0.40);
+  k = region_fit(0.45);
+  chaos::cross_check(r, k, 0.1);
+  for (const auto* f : {&r, &k}) {
+    EXPECT_EQ(f->status, LyapunovStatus::unconfirmed);
+    EXPECT_FALSE(f->lambda.has_value());
+    EXPECT_FALSE(f->lambda_interval.has_value());
+    EXPECT_FALSE(f->first_step.has_value());
+    EXPECT_TRUE(f->lambda_by_curve.empty());
+    EXPECT_NE(f->explanation.find("0.4 per sample"), std::string::npos) << f->explanation;
+    EXPECT_NE(f->explanation.find("0.45 per sample"), std::string::npos) << f->explanation;
+  }
+  EXPECT_STREQ(chaos::to_string(LyapunovStatus::unconfirmed), "unconfirmed");
+
+  // A region only one estimator finds: that one is withdrawn, the other keeps its own status.
+  r = region_fit(0.40);
+  k = no_region_fit();
+  chaos::cross_check(r, k, 0.1);
+  EXPECT_EQ(r.status, LyapunovStatus::unconfirmed);
+  EXPECT_FALSE(r.lambda.has_value());
+  EXPECT_NE(r.explanation.find("Kantz has no_linear_region"), std::string::npos) << r.explanation;
+  EXPECT_EQ(k.status, LyapunovStatus::no_linear_region);
+  EXPECT_EQ(k.explanation, "no stretch");
+
+  // Neither: nothing to confirm, nothing changes.
+  r = no_region_fit();
+  k = no_region_fit();
+  chaos::cross_check(r, k, 0.1);
+  EXPECT_EQ(r.status, LyapunovStatus::no_linear_region);
+  EXPECT_EQ(k.explanation, "no stretch");
+
+  EXPECT_THROW(chaos::cross_check(r, k, 0.0), chaos::InvalidInput);
+  EXPECT_THROW(chaos::cross_check(r, k, NAN), chaos::InvalidInput);
+}
+
+TEST(LyapunovCrossCheck, HenonIsConfirmedByBothEstimators) {
+  // Henon x, N = 5000, m = 2: both estimators have a linear region near lambda_1 = 0.41922 (Sprott;
+  // docs/reference-values.md), within 10% of each other, so the check leaves both standing; the
+  // per-time values survive with them.
+  const auto x = chaos::henon(5000).components[0];
+  LyapunovOptions o;
+  o.dimension = 2;
+  const chaos::LyapunovFitOptions fit;
+  auto r = chaos::largest_lyapunov_rosenstein(x, o, fit, 1.0);
+  auto k = chaos::largest_lyapunov_kantz(x, o, fit, 1.0);
+  ASSERT_EQ(r.fit.status, LyapunovStatus::linear_region) << r.fit.explanation;
+  ASSERT_EQ(k.fit.status, LyapunovStatus::linear_region) << k.fit.explanation;
+  chaos::cross_check(r, k);
+  EXPECT_EQ(r.fit.status, LyapunovStatus::linear_region) << r.fit.explanation;
+  EXPECT_EQ(k.fit.status, LyapunovStatus::linear_region) << k.fit.explanation;
+  EXPECT_TRUE(r.lambda_per_time.has_value());
+  // Withdrawn on a full result: the per-time values go too.
+  auto lonely = chaos::largest_lyapunov_rosenstein(x, o, fit, 1.0);
+  chaos::LyapunovResult none;
+  none.fit = no_region_fit();
+  chaos::cross_check(lonely, none);
+  EXPECT_EQ(lonely.fit.status, LyapunovStatus::unconfirmed);
+  EXPECT_FALSE(lonely.lambda_per_time.has_value());
+  EXPECT_FALSE(lonely.lambda_per_time_interval.has_value());
+  EXPECT_FALSE(lonely.fit_range_time.has_value());
+}
+
 TEST(LargestLyapunov, NamedEntryPointsSetTheMethod) {
   const auto x = chaos::henon(2000).components[0];
   LyapunovOptions o;

@@ -14,7 +14,8 @@
 //   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
 //      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
 //      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
-//      reference points.
+//      reference points; the two fits are then checked against each other (cross_check): a linear
+//      region that only one of them finds, or two slopes more than 10% apart, leaves both unconfirmed.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
@@ -41,6 +42,7 @@ struct AutomaticAnalysisOptions {
   std::size_t radii = 40;            // log-spaced from range/1000 to range/4
   bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
   bool rosenstein = true, kantz = true;
+  bool cross_check = true;           // with both methods: a lambda_1 only one of them supports is unconfirmed
   std::size_t threads = 1;           // results identical for any number
   // Called with the step running ("Cao's method", "correlation sums", ...) and its fraction done,
   // for a progress display; the analysis does not depend on it.

@@ -102,6 +102,7 @@ enum class LyapunovStatus {
   no_linear_region,  // no stretch of min_steps steps whose positive local slopes agree within the tolerance
   not_diverging,     // no local slope is positive: the curve does not rise, no exponential divergence
   no_neighbours,     // no reference point had a neighbour: nothing to fit
+  unconfirmed,       // a linear region, but the other estimator finds none or another slope (cross_check)
 };
 const char* to_string(LyapunovStatus status) noexcept;
 
@@ -169,5 +170,19 @@ LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOp
                                            const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
 LyapunovResult largest_lyapunov_kantz(std::span<const double> x, LyapunovOptions options = {},
                                       const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
+
+// The two estimators checked against each other on one series (docs/lyapunov.md, "Two estimators
+// must agree"). Rosenstein's mean log distance of single nearest neighbours and Kantz's log of a
+// neighbourhood's mean distance are biased differently by the alignment transient, by noise and by
+// the approach to saturation, so a slope both show is evidence and a slope only one shows is not:
+// on rotating flows Rosenstein's curve can hold a straight stretch 10% below lambda_1 while Kantz's
+// has none (docs/zoo-notes.md). Where one fit has a linear region and the other has none, or the
+// two exponents differ by more than `tolerance` times their mean, each fit that had a linear region
+// becomes `unconfirmed`: its value and region are withdrawn, and its explanation gives both
+// verdicts. Fits that agree are left as they are. The fits must come from the same series and
+// sampling (their slopes are compared per sample).
+void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance = 0.1);
+// The same on full results, with the per-time values withdrawn as well.
+void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance = 0.1);
 
 }  // namespace chaos

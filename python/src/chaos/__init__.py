@@ -232,7 +232,7 @@ correlation_sum = d2  # the correlation sums are part of d2's result (correlatio
 
 def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
              radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, progress=None, dt=None, column=1, skip=0, length=None):
+             min_steps=0, min_rise=2.0, cross_check=True, progress=None, dt=None, column=1, skip=0, length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
     Rosenstein: S(k) = < ln d_i(k) >, d_i(k) the distance after k steps of point i and its nearest
@@ -241,6 +241,10 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
     ``tolerance`` in ``dimensions`` embedding dimensions m, m+1, ...), per sample, and per time unit
     when ``dt`` is given (then ``lambda`` is per time unit). M. T. Rosenstein, J. J. Collins,
     C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/lyapunov.md.
+
+    ``cross_check`` (default) also runs the other method with the same settings: a linear region it
+    does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
+    method's verdict is under ``cross_check``).
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
 
@@ -254,7 +258,7 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
                      period=period, dimensions=dimensions, radius=radius,
                      min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
                      threads=threads, tolerance=tolerance, half_width=half_width,
-                     min_steps=min_steps, min_rise=min_rise))
+                     min_steps=min_steps, min_rise=min_rise, cross_check=cross_check))
 
 
 def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
