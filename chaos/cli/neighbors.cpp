@@ -33,13 +33,15 @@ std::string plot_script(const std::vector<NeighborsRow>& rows) {
   for (const auto& r : rows)
     if (r.ran) lines[r.structure + " " + r.query].push_back(&r);
   std::ostringstream s;
-  s << "set multiplot layout 2,1\nset logscale xy\nset grid\nset key outside right\nset xlabel 'N (samples)'\n";
+  s << "set multiplot layout 2,1\nset logscale xy\nset grid\nset key outside right\nset format y '%g'\nset xlabel 'N (samples)'\n";
   const auto panel = [&](const std::string& ylabel, const std::string& title, bool build) {
     s << "set ylabel '" << ylabel << "'\nset title '" << title << "'\nplot ";
     bool first = true;
+    int colour = 0;  // fixed per line, so both panels agree
     for (const auto& [name, line] : lines) {
+      ++colour;
       if (build && line.front()->structure == "brute_force") continue;  // nothing to build
-      s << (first ? "" : ", ") << "'-' using 1:2 with linespoints pt 7 ps 0.6 title '" << name << "'";
+      s << (first ? "" : ", ") << "'-' using 1:2 with linespoints pt 7 ps 0.6 lc " << colour << " title '" << name << "'";
       first = false;
     }
     if (first) s << "1/0 notitle";
