@@ -103,5 +103,6 @@ void register_section(CLI::App& app);
 void register_density(CLI::App& app);
 void register_surrogates(CLI::App& app);
 void register_nonlinearity(CLI::App& app);
+void register_neighbors(CLI::App& app);
 
 }  // namespace chaos::cli

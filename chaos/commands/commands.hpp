@@ -123,6 +123,43 @@ struct LyapunovRun {
 };
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});
 
+// chaos neighbors: a benchmark of the neighbour searches on the user's series and embedding
+struct NeighborsParams {
+  std::size_t dimension = 3;               // -m
+  std::size_t delay = 1;                   // -d
+  std::size_t theiler = 0;                 // -t
+  std::optional<double> radius;            // -r: fixed-radius counts
+  std::optional<std::size_t> k;            // -k: k nearest (k = 1 when neither -r nor -k is given)
+  std::string norm = "max";
+  std::vector<std::size_t> sizes;          // --sizes: the first n samples for each n (empty: all of them)
+  bool brute = true;                       // false (--no-brute): nothing is checked
+  std::optional<std::size_t> check_points; // --check-points K: brute force at K evenly spaced points only
+  std::function<void(double)> progress;    // fraction of the queries done; may throw to stop
+};
+struct NeighborsRow {
+  std::size_t n = 0;           // samples used
+  std::size_t points = 0;      // embedded points, each a query point
+  std::string structure;       // brute_force, kd_tree, box_grid, nanoflann
+  std::string query;           // count (-r) or knn (-k)
+  bool ran = true;             // false: skipped (nanoflann under the maximum norm), see note
+  double build_seconds = 0.0, query_seconds = 0.0;
+  std::size_t queries = 0;     // query points timed (brute force with --check-points: K)
+  std::size_t memory_bytes = 0;  // held by the structure besides the series (brute force: 0)
+  std::size_t checked = 0;     // query points compared with brute force
+  std::size_t mismatches = 0;  // of those, answers that differ from brute force
+  std::size_t tie_swaps = 0;   // nanoflann: answers with other indices at the same distances (not mismatches)
+  std::string equal;           // yes, no, reference (brute force itself), unchecked (--no-brute), skipped
+  std::string note;
+};
+struct NeighborsRun {
+  std::vector<NeighborsRow> rows;
+  bool all_equal = true;       // no row says "no"
+  Report report;
+};
+// The option checks that need no data (k, radius, m, tau, K).
+void check_neighbors_params(const NeighborsParams& params);
+NeighborsRun run_neighbors(const SeriesInput& in, NeighborsParams params, const OutputOptions& output = {});
+
 // chaos analyze
 struct AnalyzeParams {
   std::optional<std::size_t> delay;

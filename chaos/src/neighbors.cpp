@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 #include "chaos/error.hpp"
 
@@ -47,6 +48,10 @@ void check_index(std::size_t i, std::size_t size) {
     throw InvalidInput(ErrorCode::invalid_parameter, "neighbour query for point " + std::to_string(i) +
                                                          " but the embedding has only " + std::to_string(size) +
                                                          " points");
+}
+
+void check_k(std::size_t k) {
+  if (k == 0) throw InvalidInput(ErrorCode::invalid_parameter, "k nearest neighbours with k = 0: k must be at least 1");
 }
 
 void check_radius(double radius) {
@@ -106,6 +111,35 @@ struct KdTree::Impl {
     double best = std::numeric_limits<double>::infinity();
     std::size_t best_index = not_found;
     bool improved_by(double d, std::size_t j) const noexcept { return d < best || (d == best && j < best_index); }
+    void offer(double d, std::size_t j) noexcept {
+      best = d;
+      best_index = j;
+    }
+  };
+
+  // A k-nearest query: the best k candidates so far, in the order (distance, index). Once there are
+  // k of them, `best` and `best_index` are the k-th, the candidate a newcomer must beat, so the
+  // pruning and the tie rule of a nearest query serve unchanged.
+  struct KSearch {
+    const double* q;
+    std::size_t i;
+    const NeighborQuery& query;
+    std::size_t k;
+    std::vector<Neighbor>& found;
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t best_index = not_found;
+    bool improved_by(double d, std::size_t j) const noexcept { return d < best || (d == best && j < best_index); }
+    void offer(double d, std::size_t j) {
+      const auto before = [](const Neighbor& a, const Neighbor& b) {
+        return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
+      };
+      found.insert(std::upper_bound(found.begin(), found.end(), Neighbor{j, d}, before), Neighbor{j, d});
+      if (found.size() > k) found.pop_back();
+      if (found.size() == k) {
+        best = found.back().distance;
+        best_index = found.back().index;
+      }
+    }
   };
 
   // D is the dimension when known at compile time (0: use `dim`), so the short loops over
@@ -195,16 +229,23 @@ struct KdTree::Impl {
                                     std::lower_bound(first, last, lower));
   }
 
-  template <class Metric, std::size_t D>
-  void scan_leaf(const Node& node, Search& s) const {
+  template <class Metric, std::size_t D, class S>
+  void scan_leaf(const Node& node, S& s) const {
     if (node.uniform) {
-      // One distance for all; the tie rule wants the smallest admissible index.
+      // One distance for all; the tie rule wants the smallest admissible indices.
       const double d = point_distance<Metric, D>(s.q, node.begin, s.best);
       if (d > s.best || (s.query.skip_zero_distance && d == 0.0)) return;
-      const std::size_t j = first_admissible(node, s.i, s.query.theiler);
-      if (j != not_found && s.improved_by(d, j)) {
-        s.best = d;
-        s.best_index = j;
+      if constexpr (std::is_same_v<S, Search>) {
+        const std::size_t j = first_admissible(node, s.i, s.query.theiler);
+        if (j != not_found && s.improved_by(d, j)) s.offer(d, j);
+      } else {
+        // Ascending indices at one distance: once one fails to improve, all later ones fail.
+        for (std::size_t pos = node.begin; pos < node.end; ++pos) {
+          const std::size_t j = index_[pos];
+          if (within_window(s.i, j, s.query.theiler)) continue;
+          if (!s.improved_by(d, j)) break;
+          s.offer(d, j);
+        }
       }
       return;
     }
@@ -213,18 +254,15 @@ struct KdTree::Impl {
       if (within_window(s.i, j, s.query.theiler)) continue;
       const double d = point_distance<Metric, D>(s.q, pos, s.best);
       if (s.query.skip_zero_distance && d == 0.0) continue;
-      if (s.improved_by(d, j)) {
-        s.best = d;
-        s.best_index = j;
-      }
+      if (s.improved_by(d, j)) s.offer(d, j);
     }
   }
 
   // A node can be skipped when it cannot hold a better candidate: all its points are in the
   // Theiler window, its box is farther than the best (or as far, with only larger indices), or,
   // with skip_zero_distance, all its points coincide with the query.
-  template <class Metric, std::size_t D>
-  bool prunable(std::size_t node_id, const Search& s) const noexcept {
+  template <class Metric, std::size_t D, class S>
+  bool prunable(std::size_t node_id, const S& s) const noexcept {
     const Node& node = nodes_[node_id];
     if (all_excluded(node, s.i, s.query.theiler)) return true;
     const double d = box_distance<Metric, D>(s.q, node_id, s.best);
@@ -234,8 +272,8 @@ struct KdTree::Impl {
 
   // Depth-first search of a subtree, nearer child (by the split plane) first. Recursion depth is
   // the tree depth, at most log_{4/3}(N) + 1 because every child holds at least a quarter.
-  template <class Metric, std::size_t D>
-  void nearest_in(std::size_t node_id, Search& s) const {
+  template <class Metric, std::size_t D, class S>
+  void nearest_in(std::size_t node_id, S& s) const {
     const Node& node = nodes_[node_id];
     if (node.left == no_child) {
       scan_leaf<Metric, D>(node, s);
@@ -252,8 +290,8 @@ struct KdTree::Impl {
   // level the sibling subtree is searched unless it can be pruned. Every leaf lies in one of those
   // siblings, so this is exhaustive, and it skips the root-to-leaf descent, where most of the time
   // of a top-down search goes (the boxes on the path contain the query and cannot prune).
-  template <class Metric, std::size_t D>
-  void nearest_from_leaf(Search& s) const {
+  template <class Metric, std::size_t D, class S>
+  void nearest_from_leaf(S& s) const {
     std::size_t node_id = leaf_of_[s.i];
     scan_leaf<Metric, D>(nodes_[node_id], s);
     while (node_id != 0) {
@@ -520,6 +558,27 @@ std::optional<Neighbor> KdTree::nearest(std::size_t i, const NeighborQuery& quer
   });
 }
 
+void KdTree::k_nearest(std::size_t i, std::size_t k, std::vector<Neighbor>& out, const NeighborQuery& query) const {
+  const Impl& t = *impl_;
+  check_index(i, t.points.size());
+  check_k(k);
+  out.clear();
+  t.with_query(i, [&](const double* q) {
+    Impl::KSearch s{q, i, query, k, out};
+    return t.dispatch([&]<class Metric, std::size_t D>() {
+      t.nearest_from_leaf<Metric, D>(s);
+      return 0;
+    });
+  });
+}
+
+std::size_t KdTree::memory_bytes() const noexcept {
+  const Impl& t = *impl_;
+  return t.index_.capacity() * sizeof(std::size_t) + t.coords_.capacity() * sizeof(double) +
+         t.nodes_.capacity() * sizeof(Impl::Node) + t.box_.capacity() * sizeof(double) +
+         t.leaf_of_.capacity() * sizeof(std::size_t);
+}
+
 std::size_t KdTree::count_within(std::size_t i, double radius, const NeighborQuery& query) const {
   const Impl& t = *impl_;
   check_index(i, t.points.size());
@@ -552,6 +611,24 @@ std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::s
     const double d = points.distance(i, j, norm);
     if (query.skip_zero_distance && d == 0.0) continue;
     if (!best || d < best->distance) best = Neighbor{j, d};  // ascending j: the first of equals wins
+  }
+  return best;
+}
+
+std::vector<Neighbor> k_nearest_brute_force(const DelayEmbedding& points, std::size_t i, std::size_t k, Norm norm,
+                                            const NeighborQuery& query) {
+  check_index(i, points.size());
+  check_k(k);
+  std::vector<Neighbor> best;  // sorted by (distance, index); j ascends, so equals keep their order
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    if (within_window(i, j, query.theiler)) continue;
+    const double d = points.distance(i, j, norm);
+    if (query.skip_zero_distance && d == 0.0) continue;
+    if (best.size() == k && !(d < best.back().distance)) continue;
+    const auto it = std::upper_bound(best.begin(), best.end(), d,
+                                     [](double value, const Neighbor& n) { return value < n.distance; });
+    best.insert(it, Neighbor{j, d});
+    if (best.size() > k) best.pop_back();
   }
   return best;
 }

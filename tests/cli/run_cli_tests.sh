@@ -139,6 +139,42 @@ expect_error 3 "constant" -- lyapunov "$work/constant.dat"
 head -c 8 "$work/lyap.png" | od -An -c | grep -q "P   N   G" && pass || fail "lyapunov --plot made no PNG"
 expect_error 3 "png or .svg" -- lyapunov "$work/henon.dat" --plot "$work/lyap.pdf"
 
+# chaos neighbors (issue 15): every structure's answers equal brute force's (the definition, run by
+# the command on the same points); the rows follow the structures and queries asked for.
+l=$("$CHAOS" neighbors "$work/lorenz.dat" -m 3 -d 10 -t 50 -k 3 -r 2 --norm euclidean --json | jq -c '
+  [.all_equal, (.rows | length), ([.rows[] | select(.structure != "brute_force") | .equal] | unique),
+   ([.rows[] | .structure] | unique), ([.rows[] | select(.equal == "yes") | .checked == .points] | all),
+   ([.rows[] | .query] | unique), .parameters.k, .parameters.radius]')
+[[ $l == '[true,8,["yes"],["box_grid","brute_force","kd_tree","nanoflann"],true,["count","knn"],3,2]' ]] && pass ||
+  fail "neighbors euclidean -k 3 -r 2 gave $l"
+# Maximum norm (the default) and k = 1 (the default): nanoflann is skipped and says why.
+l=$("$CHAOS" neighbors "$work/henon.dat" -m 2 -t 5 --json | jq -c '
+  [.all_equal, .parameters.k, .parameters.norm, (.rows[] | select(.structure == "nanoflann") | [.ran, .equal, (.note | test("maximum norm"))])]')
+[[ $l == '[true,1,"max",[false,"skipped",true]]' ]] && pass || fail "neighbors max norm gave $l"
+# The table: the '#' header, then one row per structure.
+t=$("$CHAOS" neighbors "$work/henon.dat" -m 2 -k 2)
+[[ $(grep -c '^# chaos neighbors' <<<"$t") == 1 && $(grep -c '^# all_equal = yes' <<<"$t") == 1 && $(grep -vc '^#' <<<"$t") == 4 ]] &&
+  pass || fail "neighbors table: $t"
+# --sizes: the first N samples for each size; --check-points K: brute force at K points only.
+l=$("$CHAOS" neighbors "$work/lorenz.dat" -d 10 -t 20 --sizes 4000,1000 --check-points 50 --json | jq -c '
+  [.all_equal, ([.rows[] | .N] | unique), ([.rows[] | select(.structure == "brute_force") | .queries] | unique),
+   ([.rows[] | select(.structure == "kd_tree") | .queries]), ([.rows[] | select(.equal == "yes") | .checked] | unique)]')
+[[ $l == '[true,[1000,4000],[50],[980,3980],[50]]' ]] && pass || fail "neighbors --sizes --check-points gave $l"
+l=$("$CHAOS" neighbors "$work/henon.dat" --no-brute --json | jq -c '[([.rows[] | .structure] | index("brute_force")), ([.rows[] | select(.ran) | .equal] | unique)]')
+[[ $l == '[null,["unchecked"]]' ]] && pass || fail "neighbors --no-brute gave $l"
+"$CHAOS" neighbors "$work/henon.dat" --sizes 1000,3000 --norm euclidean --plot "$work/neighbors.svg" > /dev/null
+grep -q "<svg" "$work/neighbors.svg" && pass || fail "neighbors --plot made no SVG"
+expect_error 3 "k = 0.*at least 1" -- neighbors -k 0 "$work/henon.dat"
+expect_error 3 "radius r = 0.*positive and finite" -- neighbors -r 0 "$work/henon.dat"
+expect_error 3 "radius r = -1.*positive and finite" -- neighbors -r -1 "$work/henon.dat"
+expect_error 2 "nan" -- neighbors -r nan "$work/henon.dat"
+expect_error 3 "too short: N = 5 samples give 3 embedded points \(m = 3, tau = 1\).*k \+ 2w \+ 1 = 4" -- neighbors -t 1 "$work/five.dat"
+expect_error 3 "too short: N = 3000 .*w = 2000.*= 4002" -- neighbors -t 2000 "$work/henon.dat"
+expect_error 3 "sizes 9000 asks for more samples than the series has \(N = 3000\)" -- neighbors --sizes 1000,9000 "$work/henon.dat"
+expect_error 3 "check-points 0" -- neighbors --check-points 0 "$work/henon.dat"
+expect_error 2 "excludes" -- neighbors --check-points 10 --no-brute "$work/henon.dat"
+expect_error 3 "norm must be" -- neighbors --norm taxicab "$work/henon.dat"
+
 # Issue 16, item 8: mutual, autocorrelation, cao and fnn draw their curves with --plot (PNG and
 # SVG, non-empty, the PNG a PNG); a wrong suffix is refused (exit 3) before any work, like d2's.
 for cmd in mutual autocorrelation cao fnn; do

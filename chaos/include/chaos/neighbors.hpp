@@ -3,6 +3,7 @@
 // |i - j| <= theiler are excluded, so temporally correlated points of a flow do not pose as
 // neighbours (Theiler 1986). Two interchangeable searchers, tested equal to each other:
 //   KdTree      O(N log N) build, fast queries for any dimension and either norm;
+//   BoxGrid     (box_grid.hpp) boxes over the first two coordinates, as TISEAN searches;
 //   brute force O(N) per query, the definition, kept for tests and tiny inputs.
 // The kd-tree prunes with the distance from the query to a node's bounding box, which is a valid
 // lower bound for the maximum norm as well as the Euclidean one (nanoflann's additive bound is
@@ -41,6 +42,11 @@ class KdTree {
   // Ties in distance are broken by the smaller index, so the answer is unique and equals brute force.
   std::optional<Neighbor> nearest(std::size_t i, const NeighborQuery& query = {}) const;
 
+  // The k nearest admissible neighbours of point i, written to `out` (cleared first) in the order
+  // (distance, index): the first k admissible j in that order, fewer when fewer are admissible.
+  // The same tie rule as nearest(), so k = 1 gives nearest()'s answer. Throws for k = 0.
+  void k_nearest(std::size_t i, std::size_t k, std::vector<Neighbor>& out, const NeighborQuery& query = {}) const;
+
   // Number of admissible j with distance(i, j) < radius (strict, the correlation-sum convention).
   std::size_t count_within(std::size_t i, double radius, const NeighborQuery& query = {}) const;
 
@@ -54,6 +60,8 @@ class KdTree {
   // this order, so queries made in it reuse the same nodes from cache (a batch of queries in index
   // order jumps across the whole tree for chaotic data).
   std::span<const std::size_t> leaf_order() const noexcept;
+  // Bytes the tree holds besides the series it views (indices, the coordinate copy, nodes, boxes).
+  std::size_t memory_bytes() const noexcept;
 
  private:
   struct Impl;
@@ -61,6 +69,9 @@ class KdTree {
 };
 
 std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,
+                                            const NeighborQuery& query = {});
+// The k nearest admissible neighbours in the order (distance, index), by looking at every j.
+std::vector<Neighbor> k_nearest_brute_force(const DelayEmbedding& points, std::size_t i, std::size_t k, Norm norm,
                                             const NeighborQuery& query = {});
 std::size_t count_within_brute_force(const DelayEmbedding& points, std::size_t i, double radius,
                                      Norm norm, const NeighborQuery& query = {});

@@ -1,0 +1,278 @@
+#include "chaos/box_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "chaos/error.hpp"
+#include "numeric.hpp"
+
+// Layout: boxes are numbered row by row (box = y * nx + x over coordinates 1 and 0), the points are
+// sorted into them by a counting sort (so each box holds ascending indices), start_[b] .. start_[b+1]
+// are box b's positions in order_, and coords_ copies the coordinates in that order, point after
+// point, so a box's points are contiguous in memory (the kd-tree does the same).
+//
+// The lower bound behind the rings: a point whose box is c > ρ columns (or rows) away from the
+// query's has a coordinate at least (c - 1) boxes away, up to the rounding of (x - lo) / box, a
+// few ulps of the range: `slack_` covers it, so the bound ρ·box - slack is never too large.
+
+namespace chaos {
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+bool within_window(std::size_t i, std::size_t j, std::size_t theiler) noexcept {
+  return (i > j ? i - j : j - i) <= theiler;
+}
+
+// The norms as compile-time policies, accumulating in DelayEmbedding::distance's order.
+struct MaxMetric {
+  static constexpr bool early_exit = true;
+  static double add(double acc, double d) noexcept { return std::max(acc, d); }
+  static double finish(double acc) noexcept { return acc; }
+};
+struct EuclideanMetric {
+  static constexpr bool early_exit = false;
+  static double add(double acc, double d) noexcept { return acc + d * d; }
+  static double finish(double acc) noexcept { return std::sqrt(acc); }
+};
+
+bool before(const Neighbor& a, const Neighbor& b) noexcept {
+  return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
+}
+
+}  // namespace
+
+struct BoxGrid::Impl {
+  DelayEmbedding points;
+  Norm norm;
+  std::size_t dim;
+  std::size_t axes;  // grid coordinates: 1 for m = 1, else 2
+  double lo = 0.0, side = 1.0, slack = 0.0;
+  std::size_t nx = 1, ny = 1;
+  std::vector<std::size_t> start_, order_;
+  std::vector<double> coords_;
+
+  Impl(const DelayEmbedding& p, Norm n, double box) : points(p), norm(n), dim(p.dimension()), axes(std::min<std::size_t>(dim, 2)) {
+    if (!(box > 0.0) || !std::isfinite(box))
+      throw InvalidInput(ErrorCode::invalid_parameter,
+                         "box-assisted search with box size " + detail::format_number(box) + ": it must be positive and finite");
+    const std::size_t count = points.size();
+    double hi = lo = count ? points(0, 0) : 0.0;
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t a = 0; a < axes; ++a) {
+        lo = std::min(lo, points(i, a));
+        hi = std::max(hi, points(i, a));
+      }
+    const double range = hi - lo;
+    slack = 1e-12 * range;
+    // Boxes per axis, capped so that the grid holds at most max(4 N, 1024) boxes.
+    const double cap_boxes = std::max(4.0 * static_cast<double>(count), 1024.0);
+    const double cap_axis = axes == 1 ? cap_boxes : std::floor(std::sqrt(cap_boxes));
+    side = box;
+    double per_axis = std::floor(range / side) + 1.0;
+    if (per_axis > cap_axis) {
+      per_axis = cap_axis;
+      side = range / (cap_axis - 1.0);
+    }
+    nx = static_cast<std::size_t>(per_axis);
+    ny = axes == 2 ? nx : 1;
+    start_.assign(nx * ny + 1, 0);
+    for (std::size_t i = 0; i < count; ++i) ++start_[box_of(i) + 1];
+    for (std::size_t b = 0; b < nx * ny; ++b) start_[b + 1] += start_[b];
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    order_.resize(count);
+    for (std::size_t i = 0; i < count; ++i) order_[next[box_of(i)]++] = i;
+    coords_.resize(count * dim);
+    for (std::size_t pos = 0; pos < count; ++pos)
+      for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(order_[pos], k);
+  }
+
+  std::size_t cell(double v, std::size_t n) const noexcept {
+    const double c = std::floor((v - lo) / side);
+    return c <= 0.0 ? 0 : std::min(static_cast<std::size_t>(c), n - 1);  // the clamp only meets rounding
+  }
+  std::size_t column_of(std::size_t i) const noexcept { return cell(points(i, 0), nx); }
+  std::size_t row_of(std::size_t i) const noexcept { return axes == 2 ? cell(points(i, 1), ny) : 0; }
+  std::size_t box_of(std::size_t i) const noexcept { return row_of(i) * nx + column_of(i); }
+
+  // The last ring that holds any box: beyond it the whole grid has been seen.
+  std::size_t last_ring(std::size_t x, std::size_t y) const noexcept {
+    return std::max(std::max(x, nx - 1 - x), std::max(y, ny - 1 - y));
+  }
+  // Lower bound of the distance from the query to any point outside rings 0..rho.
+  double reach(std::size_t rho) const noexcept { return static_cast<double>(rho) * side - slack; }
+
+  // Calls f(begin, end) for the position ranges of the boxes of ring rho around (x, y): the rows
+  // y - rho and y + rho whole, and the two end columns of the rows between them.
+  template <class F>
+  void ring(std::size_t x, std::size_t y, std::size_t rho, F&& f) const {
+    const auto range = [&](std::size_t row, std::size_t x0, std::size_t x1) {  // x0 <= x1 < nx
+      f(start_[row * nx + x0], start_[row * nx + x1 + 1]);
+    };
+    const std::size_t x0 = x >= rho ? x - rho : 0, x1 = std::min(nx - 1, x + rho);
+    if (rho == 0) {
+      range(y, x, x);
+      return;
+    }
+    if (y >= rho) range(y - rho, x0, x1);
+    if (y + rho < ny) range(y + rho, x0, x1);
+    const std::size_t y0 = y >= rho ? y - rho + 1 : 0, y1 = std::min(ny - 1, y + rho - 1);
+    for (std::size_t row = y0; row <= y1; ++row) {
+      if (x >= rho) range(row, x - rho, x - rho);
+      if (x + rho < nx) range(row, x + rho, x + rho);
+    }
+  }
+
+  template <std::size_t D>
+  std::size_t dims() const noexcept {
+    return D != 0 ? D : dim;
+  }
+
+  // Distance from q to the point at position pos; with early exit, any value > limit means "> limit".
+  template <class Metric, std::size_t D>
+  double point_distance(const double* q, std::size_t pos, double limit) const noexcept {
+    const std::size_t m = dims<D>();
+    const double* c = &coords_[pos * m];
+    double acc = 0.0;
+    for (std::size_t k = 0; k < m; ++k) {
+      acc = Metric::add(acc, std::abs(q[k] - c[k]));
+      if constexpr (Metric::early_exit)
+        if (acc > limit) return acc;
+    }
+    return Metric::finish(acc);
+  }
+
+  template <class Metric, std::size_t D>
+  std::size_t count(const double* q, std::size_t i, double radius, const NeighborQuery& query) const {
+    const std::size_t x = column_of(i), y = row_of(i), last = last_ring(x, y);
+    std::size_t found = 0;
+    for (std::size_t rho = 0; rho <= last; ++rho) {
+      ring(x, y, rho, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t pos = begin; pos < end; ++pos) {
+          if (within_window(i, order_[pos], query.theiler)) continue;
+          const double d = point_distance<Metric, D>(q, pos, radius);
+          if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++found;
+        }
+      });
+      if (reach(rho) >= radius) break;
+    }
+    return found;
+  }
+
+  template <class Metric, std::size_t D>
+  void nearest(const double* q, std::size_t i, std::size_t k, std::vector<Neighbor>& out,
+               const NeighborQuery& query) const {
+    const std::size_t x = column_of(i), y = row_of(i), last = last_ring(x, y);
+    double bound = infinity;  // the k-th distance once there are k candidates
+    std::size_t bound_index = 0;
+    for (std::size_t rho = 0; rho <= last; ++rho) {
+      ring(x, y, rho, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t pos = begin; pos < end; ++pos) {
+          const std::size_t j = order_[pos];
+          if (within_window(i, j, query.theiler)) continue;
+          const double d = point_distance<Metric, D>(q, pos, bound);
+          if (query.skip_zero_distance && d == 0.0) continue;
+          if (!(d < bound || (d == bound && j < bound_index))) continue;
+          const Neighbor n{j, d};
+          out.insert(std::upper_bound(out.begin(), out.end(), n, before), n);
+          if (out.size() > k) out.pop_back();
+          if (out.size() == k) {
+            bound = out.back().distance;
+            bound_index = out.back().index;
+          }
+        }
+      });
+      // Strict: a point beyond can neither beat nor tie the k-th.
+      if (out.size() == k && bound < reach(rho)) break;
+    }
+  }
+
+  template <class F>
+  auto dispatch(F&& f) const {
+    if (norm == Norm::max) return dispatch_dim<MaxMetric>(f);
+    return dispatch_dim<EuclideanMetric>(f);
+  }
+  template <class Metric, class F>
+  auto dispatch_dim(F& f) const {
+    switch (dim) {
+      case 1: return f.template operator()<Metric, 1>();
+      case 2: return f.template operator()<Metric, 2>();
+      case 3: return f.template operator()<Metric, 3>();
+      case 4: return f.template operator()<Metric, 4>();
+      case 5: return f.template operator()<Metric, 5>();
+      case 6: return f.template operator()<Metric, 6>();
+      case 7: return f.template operator()<Metric, 7>();
+      case 8: return f.template operator()<Metric, 8>();
+      default: return f.template operator()<Metric, 0>();
+    }
+  }
+
+  template <class F>
+  auto with_query(std::size_t i, F&& f) const {
+    if (i >= points.size())
+      throw InvalidInput(ErrorCode::invalid_parameter, "neighbour query for point " + std::to_string(i) +
+                                                           " but the embedding has only " +
+                                                           std::to_string(points.size()) + " points");
+    constexpr std::size_t stack_dim = 32;  // the query's coordinates, on the stack for usual dimensions
+    double stack[stack_dim];
+    std::vector<double> heap;
+    double* q = stack;
+    if (dim > stack_dim) {
+      heap.resize(dim);
+      q = heap.data();
+    }
+    for (std::size_t k = 0; k < dim; ++k) q[k] = points(i, k);
+    return f(static_cast<const double*>(q));
+  }
+};
+
+BoxGrid::BoxGrid(const DelayEmbedding& points, Norm norm, double box) : impl_(std::make_unique<Impl>(points, norm, box)) {}
+BoxGrid::~BoxGrid() = default;
+BoxGrid::BoxGrid(BoxGrid&&) noexcept = default;
+BoxGrid& BoxGrid::operator=(BoxGrid&&) noexcept = default;
+
+double BoxGrid::box_for(const DelayEmbedding& points, double per_box) {
+  const std::size_t axes = std::min<std::size_t>(points.dimension(), 2);
+  double lo = infinity, hi = -infinity;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t a = 0; a < axes; ++a) {
+      lo = std::min(lo, points(i, a));
+      hi = std::max(hi, points(i, a));
+    }
+  if (!(hi > lo)) return 1.0;
+  const double boxes = std::max(1.0, static_cast<double>(points.size()) / std::max(per_box, 1.0));
+  return (hi - lo) / std::max(1.0, std::ceil(axes == 1 ? boxes : std::sqrt(boxes)));
+}
+
+std::size_t BoxGrid::count_within(std::size_t i, double radius, const NeighborQuery& query) const {
+  const Impl& g = *impl_;
+  if (std::isnan(radius)) throw InvalidInput(ErrorCode::invalid_parameter, "neighbour count radius is NaN");
+  return g.with_query(i, [&](const double* q) {
+    return g.dispatch([&]<class Metric, std::size_t D>() { return g.count<Metric, D>(q, i, radius, query); });
+  });
+}
+
+void BoxGrid::k_nearest(std::size_t i, std::size_t k, std::vector<Neighbor>& out, const NeighborQuery& query) const {
+  const Impl& g = *impl_;
+  if (k == 0) throw InvalidInput(ErrorCode::invalid_parameter, "k nearest neighbours with k = 0: k must be at least 1");
+  out.clear();
+  g.with_query(i, [&](const double* q) {
+    return g.dispatch([&]<class Metric, std::size_t D>() {
+      g.nearest<Metric, D>(q, i, k, out, query);
+      return 0;
+    });
+  });
+}
+
+double BoxGrid::box() const noexcept { return impl_->side; }
+std::size_t BoxGrid::boxes() const noexcept { return impl_->nx * impl_->ny; }
+
+std::size_t BoxGrid::memory_bytes() const noexcept {
+  const Impl& g = *impl_;
+  return (g.start_.capacity() + g.order_.capacity()) * sizeof(std::size_t) + g.coords_.capacity() * sizeof(double);
+}
+
+}  // namespace chaos
