@@ -75,8 +75,11 @@ void run(NeighborsArgs& args) {
   if (!args.plot.empty()) render_plot(plot_script(rows), args.plot);
   report.open(args.output);
   std::ostream& out = report.stream();
+  // A structure that disagrees with brute force is a wrong answer: after the report, exit 4 (as
+  // validate and zoo do), so a script cannot take the timings of a broken search for good ones.
   if (report.json_mode()) {
     report.write_json(out);
+    if (!all_equal) throw ValidationFailed{};
     return;
   }
   report.write_header(out);
@@ -92,6 +95,7 @@ void run(NeighborsArgs& args) {
       out << "none\tnone\t0\tnone\tnone";
     out << "\t" << r.checked << "\t" << r.mismatches << "\t" << r.tie_swaps << "\t" << r.equal << "\t" << r.note << "\n";
   }
+  if (!all_equal) throw ValidationFailed{};
 }
 
 }  // namespace
