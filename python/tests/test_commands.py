@@ -97,7 +97,12 @@ def test_lyapunov(lorenz_file, cli_args, kwargs):
 
 
 def test_lyapunov_henon(data_dir):
-    check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2])
+    r = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2])
+    # The other method's verdict (the cross-check) comes with the result, as in the command's JSON.
+    assert r["cross_check"]["method"] == "kantz"
+    single = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-cross-check"],
+                   cross_check=False)
+    assert single["cross_check"] is None and single["parameters"]["cross_check"] is False
 
 
 def test_analyze(lorenz_file):
