@@ -38,20 +38,8 @@ class SceneTrajectory {
     memory_ = systems_->front().memory();
   }
 
-  Eigen::VectorXd phase_point() const {
-    const int n = system().coordinate_count();
-    const Eigen::Index z = x_.size() - 2 * n - 2;
-    Eigen::VectorXd p(2 * n + z);
-    p.head(2 * n) = x_.head(2 * n);
-    p.tail(z) = x_.tail(z);
-    return p;
-  }
-  void set_phase_point(const Eigen::VectorXd& p) {
-    const int n = system().coordinate_count();
-    const Eigen::Index z = x_.size() - 2 * n - 2;
-    x_.head(2 * n) = p.head(2 * n);
-    x_.tail(z) = p.tail(z);
-  }
+  Eigen::VectorXd phase_point() const { return system().phase_point(x_); }
+  void set_phase_point(const Eigen::VectorXd& p) { system().set_phase_point(x_, p); }
   bool advance() { return advance({}); }
   bool advance(const SimulationObserver& observer) {
     SliderCrank& sys = (*systems_)[phase_];
@@ -153,13 +141,7 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   std::vector<Eigen::VectorXd> samples;
   SimulationObserver sampler;
   SceneTrajectory probe = reference;
-  sampler.sample = [&](double, const State& x, const Evaluation&) {
-    const int nq = reference.system().coordinate_count();
-    Eigen::VectorXd p(d);
-    p.head(2 * nq) = x.head(2 * nq);
-    p.tail(d - 2 * nq) = x.tail(d - 2 * nq);
-    samples.push_back(std::move(p));
-  };
+  sampler.sample = [&](double, const State& x, const Evaluation&) { samples.push_back(reference.system().phase_point(x)); };
   for (int j = 0; j < m; ++j) {
     if (!probe.advance(sampler)) {
       out.status = "trajectory_failed";

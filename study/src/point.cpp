@@ -67,7 +67,7 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
       o.transient_periods = ls.transient_periods;
       o.perturbation = ls.perturbation;
       o.intervals_per_period = ls.intervals_per_period;
-      const auto dimension = static_cast<int>(system.state_size()) - 2;  // q, q_dot, z: less the work
+      const int dimension = system.phase_dimension();
       o.exponents = std::min(ls.exponents, dimension);
       o.start.assign(r.summary.final_state.data(), r.summary.final_state.data() + r.summary.final_state.size());
       l = mechanism::scene_lyapunov(from_end, o);

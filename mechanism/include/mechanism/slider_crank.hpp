@@ -97,6 +97,20 @@ class SliderCrank {
   const Scene& scene() const { return scene_; }
   int coordinate_count() const { return n_; }
   int state_size() const { return 2 * n_ + 2 + bristles_; }
+  // The phase point (q, q_dot, z): the state less the two work accumulators, which no force
+  // depends on. Its dimension is the number of Lyapunov exponents (scene_lyapunov.hpp).
+  int phase_dimension() const { return 2 * n_ + bristles_; }
+  Eigen::VectorXd phase_point(const State& x) const {
+    Eigen::VectorXd p(phase_dimension());
+    p.head(2 * n_) = x.head(2 * n_);
+    p.tail(bristles_) = x.tail(bristles_);
+    return p;
+  }
+  // Writes p into x's (q, q_dot, z), leaving the work accumulators as they are.
+  void set_phase_point(State& x, const Eigen::VectorXd& p) const {
+    x.head(2 * n_) = p.head(2 * n_);
+    x.tail(bristles_) = p.tail(bristles_);
+  }
   // Index in the state of site i's bristle deflection, or -1 when its friction law has no state.
   int bristle_index(std::size_t i) const { return sites_[i].state; }
   const std::vector<std::string>& coordinate_names() const { return names_; }
