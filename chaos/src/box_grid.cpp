@@ -6,6 +6,7 @@
 #include <string>
 
 #include "chaos/error.hpp"
+#include "metric_dispatch.hpp"
 #include "numeric.hpp"
 
 // Layout: boxes are numbered row by row (box = y * nx + x over coordinates 1 and 0), the points are
@@ -27,17 +28,8 @@ bool within_window(std::size_t i, std::size_t j, std::size_t theiler) noexcept {
   return (i > j ? i - j : j - i) <= theiler;
 }
 
-// The norms as compile-time policies, accumulating in DelayEmbedding::distance's order.
-struct MaxMetric {
-  static constexpr bool early_exit = true;
-  static double add(double acc, double d) noexcept { return std::max(acc, d); }
-  static double finish(double acc) noexcept { return acc; }
-};
-struct EuclideanMetric {
-  static constexpr bool early_exit = false;
-  static double add(double acc, double d) noexcept { return acc + d * d; }
-  static double finish(double acc) noexcept { return std::sqrt(acc); }
-};
+using detail::EuclideanMetric;  // the norms as compile-time policies (metric_dispatch.hpp)
+using detail::MaxMetric;
 
 bool before(const Neighbor& a, const Neighbor& b) noexcept {
   return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
@@ -192,40 +184,11 @@ struct BoxGrid::Impl {
 
   template <class F>
   auto dispatch(F&& f) const {
-    if (norm == Norm::max) return dispatch_dim<MaxMetric>(f);
-    return dispatch_dim<EuclideanMetric>(f);
+    return detail::dispatch_metric<8>(norm, dim, f);
   }
-  template <class Metric, class F>
-  auto dispatch_dim(F& f) const {
-    switch (dim) {
-      case 1: return f.template operator()<Metric, 1>();
-      case 2: return f.template operator()<Metric, 2>();
-      case 3: return f.template operator()<Metric, 3>();
-      case 4: return f.template operator()<Metric, 4>();
-      case 5: return f.template operator()<Metric, 5>();
-      case 6: return f.template operator()<Metric, 6>();
-      case 7: return f.template operator()<Metric, 7>();
-      case 8: return f.template operator()<Metric, 8>();
-      default: return f.template operator()<Metric, 0>();
-    }
-  }
-
   template <class F>
   auto with_query(std::size_t i, F&& f) const {
-    if (i >= points.size())
-      throw InvalidInput(ErrorCode::invalid_parameter, "neighbour query for point " + std::to_string(i) +
-                                                           " but the embedding has only " +
-                                                           std::to_string(points.size()) + " points");
-    constexpr std::size_t stack_dim = 32;  // the query's coordinates, on the stack for usual dimensions
-    double stack[stack_dim];
-    std::vector<double> heap;
-    double* q = stack;
-    if (dim > stack_dim) {
-      heap.resize(dim);
-      q = heap.data();
-    }
-    for (std::size_t k = 0; k < dim; ++k) q[k] = points(i, k);
-    return f(static_cast<const double*>(q));
+    return detail::with_point(points, i, f);
   }
 };
 

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "chaos/error.hpp"
+#include "metric_dispatch.hpp"
 
 // Layout of the kd-tree. The embedding itself is only a view (x[i + k tau]), so reading a point
 // touches `dimension` cache lines far apart. The tree therefore keeps, besides its nodes:
@@ -59,21 +60,9 @@ void check_radius(double radius) {
     throw InvalidInput(ErrorCode::invalid_parameter, "neighbour count radius is NaN");
 }
 
-// The two norms as small policies so the inner loops are specialised at compile time. `add`
-// accumulates one coordinate difference in the order DelayEmbedding::distance uses, `finish` turns
-// the accumulator into the distance. For the maximum norm the accumulator is already a lower bound
-// of the distance after any prefix of coordinates, so a loop may stop as soon as it exceeds the
-// best distance; for the Euclidean norm that would need the square root, so it runs to the end.
-struct MaxMetric {
-  static constexpr bool early_exit = true;
-  static double add(double acc, double d) noexcept { return std::max(acc, d); }
-  static double finish(double acc) noexcept { return acc; }
-};
-struct EuclideanMetric {
-  static constexpr bool early_exit = false;
-  static double add(double acc, double d) noexcept { return acc + d * d; }
-  static double finish(double acc) noexcept { return std::sqrt(acc); }
-};
+// The two norms as compile-time policies (metric_dispatch.hpp).
+using detail::EuclideanMetric;
+using detail::MaxMetric;
 
 constexpr std::size_t not_found = std::numeric_limits<std::size_t>::max();
 
@@ -377,41 +366,13 @@ struct KdTree::Impl {
   // Runs f.template operator()<Metric, D>() with the norm and, for common dimensions, D = dim.
   template <class F>
   auto dispatch(F&& f) const {
-    if (norm == Norm::max) return dispatch_dim<MaxMetric>(f);
-    return dispatch_dim<EuclideanMetric>(f);
-  }
-  template <class Metric, class F>
-  auto dispatch_dim(F& f) const {
-    switch (dim) {
-      case 1: return f.template operator()<Metric, 1>();
-      case 2: return f.template operator()<Metric, 2>();
-      case 3: return f.template operator()<Metric, 3>();
-      case 4: return f.template operator()<Metric, 4>();
-      case 5: return f.template operator()<Metric, 5>();
-      case 6: return f.template operator()<Metric, 6>();
-      case 7: return f.template operator()<Metric, 7>();
-      case 8: return f.template operator()<Metric, 8>();
-      case 9: return f.template operator()<Metric, 9>();
-      case 10: return f.template operator()<Metric, 10>();
-      case 11: return f.template operator()<Metric, 11>();
-      case 12: return f.template operator()<Metric, 12>();
-      default: return f.template operator()<Metric, 0>();
-    }
+    return detail::dispatch_metric<12>(norm, dim, f);
   }
 
   // The query point's coordinates, read once from the view; on the stack for usual dimensions.
   template <class F>
   auto with_query(std::size_t i, F&& f) const {
-    constexpr std::size_t stack_dim = 32;
-    double stack[stack_dim];
-    std::vector<double> heap;
-    double* q = stack;
-    if (dim > stack_dim) {
-      heap.resize(dim);
-      q = heap.data();
-    }
-    for (std::size_t k = 0; k < dim; ++k) q[k] = points(i, k);
-    return f(static_cast<const double*>(q));
+    return detail::with_point(points, i, f);
   }
 };
 
