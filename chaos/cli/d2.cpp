@@ -60,7 +60,7 @@ void run(D2Args& args) {
   // Exact sums over many points take minutes to hours (the pairs grow as N^2): the user is told
   // before the wait, with the option that shortens it.
   Progress progress(args.quiet);
-  if (sums_options.reference_points == 0 && sums_options.pairs_per_radius == 0)
+  if (sums_options.reference_points == 0 && sums_options.pairs_per_radius == 0 && !args.params.fast)
     progress.hint("d2", x.size(),
                   "the exact correlation sums count about " +
                       number(0.5 * static_cast<double>(x.size()) * static_cast<double>(x.size())) +
@@ -68,7 +68,7 @@ void run(D2Args& args) {
                       "reference points in a fraction of the time");
   D2Params params = args.params;
   params.sums.progress = progress.callback("correlation sums");
-  auto [sums, d2, report] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
+  auto [sums, d2, report, run_fast] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
   report.open(args.output);
   std::ostream& out = report.stream();
@@ -80,6 +80,14 @@ void run(D2Args& args) {
   out << "# status = " << to_string(d2.status) << ": " << d2.explanation << "\n";
   out << "# d2 = " << (d2.d2 ? number(*d2.d2) : "none") << "  interval " << interval_text(d2.d2_interval)
       << "  scaling region eps in " << interval_text(d2.scaling_region) << "\n";
+  for (const auto& p : d2.other_plateaus)
+    out << "# other_plateau = " << number(p.slope) << " for eps in " << interval_text(p.radii)
+        << " (another reading of the same dimensions, not judged)\n";
+  if (run_fast)
+    out << "# fast: " << run_fast->explanation << "\n";
+  if (d2.d2_standard_error)
+    out << "# d2_standard_error = " << number(*d2.d2_standard_error) << " (jackknife over " << sums.group_pairs.size()
+        << " groups of reference points)\n";
   if (d2.takens_theiler)
     out << "# takens_theiler = " << number(*d2.takens_theiler) << " +- " << number(*d2.takens_theiler_error) << "\n";
   out << "# eckmann_ruelle_limit = " << number(d2.eckmann_ruelle_limit) << (d2.exceeds_eckmann_ruelle ? " (exceeded)" : "")
@@ -121,6 +129,14 @@ void register_d2(CLI::App& app) {
   command->add_option("--reference-points", args->params.sums.reference_points, "random subset of reference points (0: all)")
       ->capture_default_str();
   command->add_option("--seed", args->params.sums.seed, "seed of the reference order and subset")->capture_default_str();
+  command->add_flag("--fast", args->params.fast,
+                    "choose the reference subset from the data: it doubles (from --fast-start points) until two disjoint "
+                    "subsets agree on D2 within --fast-target, else the exact counts are used");
+  command->add_option("--fast-target", args->params.adaptive.target, "--fast: agreement of two disjoint subsets' D2")
+      ->capture_default_str();
+  command->add_option("--fast-start", args->params.adaptive.initial_reference_points,
+                      "--fast: reference points in each subset of the first round")
+      ->capture_default_str();
   command->add_option("--threads", args->params.sums.threads, "threads (results identical for any number)")->capture_default_str();
   command->add_option("--tolerance", args->params.dimension.region.tolerance, "relative flatness of the local slopes in the region")
       ->capture_default_str();

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "chaos/adaptive_d2.hpp"
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/autocorrelation.hpp"
 #include "chaos/bifurcation.hpp"
@@ -94,11 +95,15 @@ struct D2Params {
   std::string norm = "max";
   std::string search = "box";
   bool halves = false;
+  // --fast: the reference subset grows until two disjoint subsets agree (adaptive_d2.hpp).
+  bool fast = false;
+  AdaptiveD2Options adaptive;
 };
 struct D2Run {
   CorrelationSumResult sums;
   CorrelationDimensionResult d2;
   Report report;
+  std::optional<AdaptiveD2Result> fast;  // with --fast: the budget chosen and the rounds (its sums and d2 moved out)
 };
 D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output = {});
 CorrelationSearch parse_search(const std::string& name);

@@ -41,8 +41,17 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   const double r_min = params.r_min.value_or(range / 1000.0);
   params.sums.radii = params.radius_list.empty() ? log_radii(r_min, r_max, params.radii) : params.radius_list;
 
-  CorrelationSumResult sums = correlation_sum(x, params.sums);
-  CorrelationDimensionResult d2 = correlation_dimension(sums, params.dimension);
+  std::optional<AdaptiveD2Result> fast;
+  if (params.fast) {
+    if (params.sums.reference_points != 0 || params.sums.pairs_per_radius != 0)
+      throw InvalidInput(ErrorCode::invalid_parameter,
+                         "--fast chooses the reference subset itself: it cannot be combined with --reference-points or -N "
+                         "(got --reference-points " + std::to_string(params.sums.reference_points) + ", -N " +
+                             std::to_string(params.sums.pairs_per_radius) + ")");
+    fast = adaptive_correlation_dimension(x, params.sums, params.dimension, params.adaptive);
+  }
+  CorrelationSumResult sums = fast ? std::move(fast->sums) : correlation_sum(x, params.sums);
+  CorrelationDimensionResult d2 = fast ? std::move(fast->d2) : correlation_dimension(sums, params.dimension);
   if (params.halves) {
     // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
     CorrelationSumOptions halves = params.sums;
@@ -64,7 +73,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
       .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)
-      .parameter("points", sums.points);
+      .parameter("points", sums.points)
+      .parameter("fast", params.fast);
   auto& j = report.json();
   j["dimension"] = sums.dimension;
   j["radius"] = sums.radius;
@@ -77,6 +87,17 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
     slopes.push_back(line);
   }
   j["local_slope"] = slopes;
+  if (!d2.local_slope_error.empty()) {
+    auto errors = nlohmann::ordered_json::array();
+    for (const auto& row : d2.local_slope_error) {
+      auto line = nlohmann::ordered_json::array();
+      for (const auto& v : row) line.push_back(optional_json(v));
+      errors.push_back(line);
+    }
+    j["local_slope_error"] = errors;
+    j["slopes_too_uncertain"] = d2.slopes_too_uncertain;
+    j["jackknife_groups"] = sums.group_pairs.size();
+  }
   auto by_m = nlohmann::ordered_json::array(), by_m_interval = nlohmann::ordered_json::array();
   for (std::size_t d = 0; d < sums.dimension.size(); ++d) {
     by_m.push_back(optional_json(d2.d2_by_dimension[d]));
@@ -86,11 +107,16 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   j["d2_by_dimension_interval"] = by_m_interval;
   j["d2"] = optional_json(d2.d2);
   j["d2_interval"] = interval_json(d2.d2_interval);
+  j["d2_standard_error"] = optional_json(d2.d2_standard_error);
   j["scaling_region"] = interval_json(d2.scaling_region);
   auto plateaus = nlohmann::ordered_json::array();
   for (const auto& p : d2.plateaus)
     plateaus.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
   j["plateaus"] = plateaus;
+  auto others = nlohmann::ordered_json::array();
+  for (const auto& p : d2.other_plateaus)
+    others.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
+  j["other_plateaus"] = others;
   if (d2.first_half_status) {
     j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
     j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};
@@ -102,7 +128,21 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   j["takens_theiler_error"] = optional_json(d2.takens_theiler_error);
   j["eckmann_ruelle_limit"] = d2.eckmann_ruelle_limit;
   j["exceeds_eckmann_ruelle"] = d2.exceeds_eckmann_ruelle;
-  return {std::move(sums), std::move(d2), std::move(report)};
+  if (fast) {
+    auto rounds = nlohmann::ordered_json::array();
+    for (const auto& r : fast->rounds)
+      rounds.push_back({{"reference_points", r.reference_points},
+                        {"status_a", to_string(r.status_a)}, {"d2_a", optional_json(r.d2_a)},
+                        {"status_b", to_string(r.status_b)}, {"d2_b", optional_json(r.d2_b)},
+                        {"status_merged", to_string(r.status_merged)}, {"d2_merged", optional_json(r.d2_merged)},
+                        {"agreed", r.agreed}, {"stable", r.stable}, {"competing_plateau", optional_json(r.competing)}});
+    j["fast"] = {{"target", params.adaptive.target},
+                 {"reference_points", fast->exact ? nlohmann::ordered_json("exact") : nlohmann::ordered_json(fast->reference_points)},
+                 {"exact", fast->exact},
+                 {"explanation", fast->explanation},
+                 {"rounds", rounds}};
+  }
+  return {std::move(sums), std::move(d2), std::move(report), std::move(fast)};
 }
 
 namespace {

@@ -25,6 +25,10 @@ void CorrelationDimensionOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the largest scaling-region radius, as a fraction of the range, must be positive (got " +
                            std::to_string(max_region_fraction) + ")");
+  if (!(slope_error_fraction > 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the largest local-slope error, as a fraction of the tolerance band, must be positive (got " +
+                           std::to_string(slope_error_fraction) + ")");
   if (saturation_dimensions < 1)
     throw InvalidInput(ErrorCode::invalid_parameter, "saturation needs at least 1 dimension (got 0)");
 }
@@ -49,6 +53,53 @@ std::optional<std::pair<double, double>> takens_theiler(const std::vector<double
   const double d = c[k] / integral;
   return std::make_pair(d, d / std::sqrt(static_cast<double>(std::max<std::uint64_t>(pairs_at_k, 1))));
 }
+
+namespace {
+
+// The delete-a-group jackknife standard error of an estimate from its G leave-one-group-out values
+// (Efron & Tibshirani 1993, Eq. 11.5): sqrt((G - 1) / G * sum (v_g - mean)^2).
+double jackknife_error(const std::vector<double>& leave_out) {
+  const double g = static_cast<double>(leave_out.size());
+  double mean = 0.0;
+  for (const double v : leave_out) mean += v;
+  mean /= g;
+  double sum = 0.0;
+  for (const double v : leave_out) sum += (v - mean) * (v - mean);
+  return std::sqrt((g - 1.0) / g * sum);
+}
+
+// ln C and the local slopes with each group of reference points left out in turn
+// ([group][m index][radius index]); empty for exact counts (no groups). A radius is defined in a
+// leave-out curve where it is in the full curve and the remaining groups still have pairs there.
+struct JackknifeCurves {
+  std::vector<std::vector<std::vector<std::optional<double>>>> log_c, local_slope;
+};
+
+JackknifeCurves jackknife_curves(const CorrelationSumResult& sums, const std::vector<double>& log_r,
+                                 const std::vector<std::vector<std::optional<double>>>& log_c, std::size_t half_width) {
+  JackknifeCurves out;
+  const std::size_t groups = sums.group_pairs.size();
+  if (groups < 2 || sums.group_examined.size() != groups) return out;
+  for (std::size_t b = 0; b < groups; ++b) {
+    std::vector<std::vector<std::optional<double>>> group_log_c(log_c.size());
+    std::vector<std::vector<std::optional<double>>> group_slopes;
+    for (std::size_t d = 0; d < log_c.size(); ++d) {
+      group_log_c[d].resize(log_c[d].size());
+      for (std::size_t k = 0; k < log_c[d].size(); ++k) {
+        const std::uint64_t pairs = sums.pairs[d][k] - sums.group_pairs[b][d][k];
+        const std::uint64_t examined = sums.examined[d][k] - sums.group_examined[b][d][k];
+        if (log_c[d][k] && pairs > 0 && examined > 0)
+          group_log_c[d][k] = std::log(static_cast<double>(pairs) / static_cast<double>(examined));
+      }
+      group_slopes.push_back(local_slopes(log_r, group_log_c[d], half_width));
+    }
+    out.log_c.push_back(std::move(group_log_c));
+    out.local_slope.push_back(std::move(group_slopes));
+  }
+  return out;
+}
+
+}  // namespace
 
 CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,
                                                  const CorrelationDimensionOptions& options) {
@@ -95,7 +146,28 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           sums.pairs[d][k] < sums.examined[d][k])
         log_c[d][k] = std::log(sums.correlation_sum[d][k]);
     out.local_slope.push_back(local_slopes(log_r, log_c[d], options.region.half_width));
-    const auto region = find_scaling_region(log_r, {searchable(out.local_slope[d])}, options.region, support[d]);
+  }
+  // The slopes a region may use: without the statistically unsupported ones (reference subsets).
+  std::vector<std::vector<std::optional<double>>> usable = out.local_slope;
+  const JackknifeCurves jackknife = jackknife_curves(sums, log_r, log_c, options.region.half_width);
+  if (!jackknife.log_c.empty()) {
+    out.local_slope_error.assign(dims, std::vector<std::optional<double>>(radii));
+    for (std::size_t d = 0; d < dims; ++d)
+      for (std::size_t k = 0; k < radii; ++k) {
+        if (!out.local_slope[d][k]) continue;
+        std::vector<double> leave_out;
+        for (const auto& slopes : jackknife.local_slope)
+          if (slopes[d][k]) leave_out.push_back(*slopes[d][k]);
+        if (leave_out.size() == jackknife.local_slope.size()) out.local_slope_error[d][k] = jackknife_error(leave_out);
+        const double allowed = options.slope_error_fraction * options.region.tolerance * std::abs(*out.local_slope[d][k]);
+        if (!out.local_slope_error[d][k] || !(*out.local_slope_error[d][k] <= allowed)) {
+          usable[d][k].reset();
+          if (k < searched) ++out.slopes_too_uncertain;
+        }
+      }
+  }
+  for (std::size_t d = 0; d < dims; ++d) {
+    const auto region = find_scaling_region(log_r, {searchable(usable[d])}, options.region, support[d]);
     if (region) {
       out.d2_by_dimension.push_back(fit_slope(log_r, log_c[d], region->first, region->last));
       out.d2_by_dimension_interval.push_back(Interval{region->slope_min, region->slope_max});
@@ -132,11 +204,11 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
         << " are needed to judge saturation (" << list_d2() << ")";
   } else {
     std::vector<std::vector<std::optional<double>>> curves;
-    for (const auto d : top) curves.push_back(searchable(out.local_slope[d]));
+    for (const auto d : top) curves.push_back(searchable(usable[d]));
     // The highest dimension has the fewest pairs: its count is the shared region's support.
     const auto shared = find_scaling_region(log_r, curves, options.region, support[top.back()]);
     // Step 4 (small-scale limit): a second plateau at smaller radii, searched below the first.
-    std::optional<ScalingRegion> below;
+    std::optional<ScalingRegion> below, lacunar_below;
     if (shared && shared->first >= options.region.min_points) {
       const std::size_t n = shared->first;
       std::vector<std::vector<std::optional<double>>> lower;
@@ -149,12 +221,35 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
       // slopes average 1.13 over eps in [0.006, 0.014] and 1.23 over [0.019, 0.053], around its D2 of
       // 1.22).
       if (below && std::abs(below->slope - shared->slope) <=
-                       options.region.tolerance * (std::abs(below->slope) + std::abs(shared->slope)))
+                       options.region.tolerance * (std::abs(below->slope) + std::abs(shared->slope))) {
+        lacunar_below = below;
         below.reset();
+      }
     }
     const auto plateau = [&](const ScalingRegion& r) {
       return D2Plateau{Interval{sums.radius[r.first], sums.radius[r.last]}, r.slope, Interval{r.slope_min, r.slope_max}};
     };
+    // Other readings of a saturated D2, reported, not judged: the plateau below that step 4 took for
+    // the same scaling (within the allowances), and the best one above the region, before the slopes
+    // fall towards 0 at the attractor's size. Henon, N = 10^5: 1.23 is chosen, 1.13 lies below and
+    // 1.19 above; which one wins is a near-tie in support (docs/correlation_dimension.md, step 7).
+    if (shared && !below) {
+      if (lacunar_below) out.other_plateaus.push_back(plateau(*lacunar_below));
+      const std::size_t begin = shared->last + 1;
+      if (searched > begin && searched - begin >= options.region.min_points) {
+        std::vector<std::vector<std::optional<double>>> upper;
+        for (const auto& curve : curves)
+          upper.emplace_back(curve.begin() + static_cast<std::ptrdiff_t>(begin), curve.begin() + static_cast<std::ptrdiff_t>(searched));
+        if (const auto above = find_scaling_region(std::span<const double>(log_r).subspan(begin, searched - begin), upper,
+                                                   options.region,
+                                                   std::span<const double>(support[top.back()]).subspan(begin, searched - begin))) {
+          ScalingRegion shifted = *above;
+          shifted.first += begin;
+          shifted.last += begin;
+          out.other_plateaus.push_back(plateau(shifted));
+        }
+      }
+    }
     if (!shared) {
       out.status = D2Status::not_saturated;
       why << "the highest dimensions share no plateau; D2(m) by dimension: " << list_d2();
@@ -180,6 +275,21 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
       }
       out.d2 = sum / static_cast<double>(top.size());
       out.d2_interval = Interval{lo, hi};
+      if (!jackknife.log_c.empty()) {
+        // D2 with each group left out, over the same region and dimensions.
+        std::vector<double> leave_out;
+        for (const auto& group_log_c : jackknife.log_c) {
+          double group_sum = 0.0;
+          std::size_t fitted = 0;
+          for (const auto d : top)
+            if (const auto fit = fit_slope(log_r, group_log_c[d], shared->first, shared->last)) {
+              group_sum += *fit;
+              ++fitted;
+            }
+          if (fitted == top.size()) leave_out.push_back(group_sum / static_cast<double>(fitted));
+        }
+        if (leave_out.size() == jackknife.log_c.size()) out.d2_standard_error = jackknife_error(leave_out);
+      }
       out.scaling_region = Interval{sums.radius[shared->first], sums.radius[shared->last]};
       out.saturation_dimensions_used.clear();
       for (const auto d : top) out.saturation_dimensions_used.push_back(out.dimension[d]);
@@ -205,6 +315,10 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
       k = end;
     }
   }
+  if (out.slopes_too_uncertain > 0)
+    why << "; " << out.slopes_too_uncertain << " local slope(s) left out of the search: their jackknife error over "
+        << sums.group_pairs.size() << " groups of reference points exceeds " << options.slope_error_fraction
+        << " of the tolerance band (more reference points make them usable)";
   if (out.finite_set_below)
     why << "; below eps = " << *out.finite_set_below << " the pair counts stop changing over consecutive radii: at "
         << "those scales the data are a finite set of points (periodic with a rational period, or quantised), "

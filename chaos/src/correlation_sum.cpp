@@ -980,7 +980,14 @@ Count admissible_partners(std::size_t i, std::size_t points, std::size_t w) {
 
 struct Totals {
   std::vector<std::vector<Count>> pairs, examined;
+  std::vector<std::vector<std::vector<Count>>> group_pairs, group_examined;  // reference walks only
 };
+
+// The jackknife group of position u of `size` reference points in the seeded order: `groups`
+// consecutive stretches of (nearly) equal length.
+std::size_t group_of(std::size_t u, std::size_t size, std::size_t groups) noexcept {
+  return u * groups / size;  // groups <= 1024 (validated) and u < size < 2^40: no overflow
+}
 
 // Reference points in `order`. Without a cap, all of them are counted, split over the workers.
 // With a cap the points are taken in waves, the per-point counts merged in `order`: after each
@@ -989,32 +996,47 @@ struct Totals {
 // ones and need[mi] (the number still open) describes them. The merge is sequential and per
 // point, so the outcome does not depend on the wave size or the number of threads.
 Totals reference_walk(const Problem& pb, const ReferenceCounter& counter, const std::vector<std::size_t>& order,
-                      std::uint64_t cap) {
+                      std::uint64_t cap, std::size_t groups) {
   const std::size_t nm = pb.nm, nr = pb.nr, stride = nm * nr;
-  Totals out{std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0)),
-             std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0))};
+  const auto table = [&] { return std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0)); };
+  Totals out{table(), table()};
+  groups = order.size() >= 2 ? std::min(groups, order.size()) : 0;  // one group has nothing to leave out
+  for (std::size_t b = 0; b < groups; ++b) {
+    out.group_pairs.push_back(table());
+    out.group_examined.push_back(table());
+  }
   std::vector<std::size_t> need(nm, nr);
   if (cap == 0) {
+    // Integer sums per worker and group: the same totals for any number of threads.
     const std::size_t tasks = (order.size() + chunk_points - 1) / chunk_points;
     const std::size_t workers = worker_count(pb.threads, tasks);
-    std::vector<Histogram> sums(workers, Histogram(stride, 0));
+    const std::size_t slots = std::max<std::size_t>(groups, 1);
+    std::vector<Histogram> sums(workers, Histogram(slots * stride, 0));
     std::vector<Histogram> scratch(workers, Histogram(stride, 0));
     std::vector<std::vector<Count>> cum(workers, std::vector<Count>(stride, 0));
     parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
       const std::size_t end = std::min(order.size(), (t + 1) * chunk_points);
       for (std::size_t u = t * chunk_points; u < end; ++u) {
         counter.count(order[u], need, cum[worker].data(), scratch[worker]);
-        for (std::size_t k = 0; k < stride; ++k) sums[worker][k] += cum[worker][k];
+        Count* sum = sums[worker].data() + (groups > 0 ? group_of(u, order.size(), groups) : 0) * stride;
+        for (std::size_t k = 0; k < stride; ++k) sum[k] += cum[worker][k];
       }
     }, pb.progress);
     const Histogram total = sum_histograms(sums);
-    Count examined = 0;
-    for (const std::size_t i : order) examined += admissible_partners(i, pb.points, pb.w);
-    for (std::size_t mi = 0; mi < nm; ++mi)
-      for (std::size_t k = 0; k < nr; ++k) {
-        out.pairs[mi][k] = total[mi * nr + k];
-        out.examined[mi][k] = examined;
-      }
+    std::vector<Count> examined(slots, 0);
+    for (std::size_t u = 0; u < order.size(); ++u)
+      examined[groups > 0 ? group_of(u, order.size(), groups) : 0] += admissible_partners(order[u], pb.points, pb.w);
+    for (std::size_t b = 0; b < slots; ++b)
+      for (std::size_t mi = 0; mi < nm; ++mi)
+        for (std::size_t k = 0; k < nr; ++k) {
+          const Count pairs = total[b * stride + mi * nr + k];
+          out.pairs[mi][k] += pairs;
+          out.examined[mi][k] += examined[b];
+          if (groups > 0) {
+            out.group_pairs[b][mi][k] = pairs;
+            out.group_examined[b][mi][k] = examined[b];
+          }
+        }
     return out;
   }
 
@@ -1032,10 +1054,15 @@ Totals reference_walk(const Problem& pb, const ReferenceCounter& counter, const 
     });
     for (std::size_t u = 0; u < wave; ++u) {
       const Count partners = admissible_partners(order[start + u], pb.points, pb.w);
+      const std::size_t b = groups > 0 ? group_of(start + u, order.size(), groups) : 0;
       for (std::size_t mi = 0; mi < nm; ++mi) {
         for (std::size_t k = 0; k < need[mi]; ++k) {
           out.pairs[mi][k] += cum[u * stride + mi * nr + k];
           out.examined[mi][k] += partners;
+          if (groups > 0) {
+            out.group_pairs[b][mi][k] += cum[u * stride + mi * nr + k];
+            out.group_examined[b][mi][k] += partners;
+          }
         }
         while (need[mi] > 0 && out.pairs[mi][need[mi] - 1] >= cap) --need[mi];
       }
@@ -1068,17 +1095,22 @@ Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
     }
     const std::size_t span = pb.points - pb.w - 1;  // validated: P >= w + 2
     const Count all = static_cast<Count>(span) * static_cast<Count>(span + 1) / 2;
-    return {std::move(pairs), std::vector<std::vector<Count>>(pb.nm, std::vector<Count>(pb.nr, all))};
+    Totals exact_totals;
+    exact_totals.pairs = std::move(pairs);
+    exact_totals.examined.assign(pb.nm, std::vector<Count>(pb.nr, all));
+    return exact_totals;
   }
   const std::size_t count = options.reference_points > 0 ? options.reference_points : pb.points;
-  const std::vector<std::size_t> order = reference_order(pb.points, count, options.seed);
+  std::vector<std::size_t> order = reference_order(pb.points, options.reference_offset + count, options.seed);
+  order.erase(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(options.reference_offset));
   const std::uint64_t cap = options.pairs_per_radius;
+  const std::size_t groups = options.jackknife_groups;
   switch (options.search) {
-    case CorrelationSearch::brute_force: return reference_walk(pb, BruteCounter<N>(pb), order, cap);
-    case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap);
+    case CorrelationSearch::brute_force: return reference_walk(pb, BruteCounter<N>(pb), order, cap, groups);
+    case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap, groups);
     case CorrelationSearch::box_assisted: break;
   }
-  return reference_walk(pb, GridCounter<N>(pb), order, cap);
+  return reference_walk(pb, GridCounter<N>(pb), order, cap, groups);
 }
 
 }  // namespace
@@ -1102,6 +1134,8 @@ void CorrelationSumOptions::validate() const {
     refuse("minimum embedding dimension must not exceed the maximum (got min m = " + std::to_string(min_dimension) +
            " > max m = " + std::to_string(max_dimension) + ")");
   if (threads == 0) refuse("the number of threads must be at least 1 (got 0)");
+  if (jackknife_groups < 2 || jackknife_groups > 1024)
+    refuse("the jackknife needs 2 to 1024 groups of reference points (got " + std::to_string(jackknife_groups) + ")");
   if (norm != Norm::max && norm != Norm::euclidean) refuse("unknown norm");
   if (search != CorrelationSearch::brute_force && search != CorrelationSearch::kd_tree &&
       search != CorrelationSearch::box_assisted)
@@ -1167,6 +1201,13 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "correlation sum: reference_points must not exceed the " + std::to_string(points) +
                            " embedded points N - (m-1)*tau (got " + std::to_string(options.reference_points) + ")");
+  if (options.reference_offset > 0 && (options.reference_points == 0 || options.reference_offset > points ||
+                                       options.reference_points > points - options.reference_offset))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "correlation sum: a reference offset needs a subset that fits after it: offset + reference_points "
+                       "<= the " + std::to_string(points) + " embedded points (got offset " +
+                           std::to_string(options.reference_offset) + ", reference_points " +
+                           std::to_string(options.reference_points) + ")");
 
   // For the Euclidean norm the series and radii are multiplied by a power of two that brings
   // max |x| into [0.5, 1): exact, so every comparison d < r keeps its outcome, while squares can
@@ -1224,6 +1265,8 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
             static_cast<double>(totals.pairs[mi][k]) / static_cast<double>(totals.examined[mi][k]);
   result.pairs = std::move(totals.pairs);
   result.examined = std::move(totals.examined);
+  result.group_pairs = std::move(totals.group_pairs);
+  result.group_examined = std::move(totals.group_examined);
   result.points = options.reference_points > 0 ? options.reference_points : points;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   result.range = *hi - *lo;

@@ -261,6 +261,9 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);
   get(p, "inclusive", params.sums.inclusive);
+  get(p, "fast", params.fast);
+  get(p, "fast_target", params.adaptive.target);
+  get(p, "fast_start", params.adaptive.initial_reference_points);
   params.sums.progress = progress_hook(std::move(progress));
   return call([&] { return run_d2(in, params).report.json(); });
 }

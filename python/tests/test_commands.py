@@ -45,6 +45,8 @@ def test_d2_the_issue_bar(lorenz_file):
     (["-d", 8, "-M", 4, "--reference-points", 500, "--seed", 3, "-r", 0.5, "-R", 10],
      dict(delay=8, max_dimension=4, reference_points=500, seed=3, min_radius=0.5, max_radius=10)),
     (["-d", 8, "-M", 3, "--inclusive"], dict(delay=8, max_dimension=3, inclusive=True)),
+    (["-d", 8, "-M", 4, "--fast", "--fast-start", 100, "--fast-target", 0.05],
+     dict(delay=8, max_dimension=4, fast=True, fast_start=100, fast_target=0.05)),
 ])
 def test_d2(lorenz_file, cli_args, kwargs):
     check(chaos.d2, lorenz_file, ["d2", *cli_args], **kwargs)

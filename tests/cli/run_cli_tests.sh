@@ -101,6 +101,16 @@ want=$(awk '{ x[NR] = $1 } END {
 got="$("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --json | jq -c '[.pairs, .parameters.inclusive]') $("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --inclusive --json | jq -c '[.pairs, .parameters.inclusive]')"
 [[ $got == "$want" ]] && pass || fail "d2 pairs without and with --inclusive: $got, expected $want"
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
+# --fast (adaptive_d2.hpp): on 3000 points the first round would count more than an eighth of
+# them, so the exact counts are used and said so; with a small first round the rounds are reported.
+f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --fast --json | jq -c '[.fast.exact, .fast.reference_points, (.fast.explanation | test("exact counts")), .parameters.fast]')
+[[ $f == '[true,"exact",true,true]' ]] && pass || fail "d2 --fast on 3000 Hénon points gave $f"
+f=$("$CHAOS" d2 "$work/lorenz.dat" -d 17 -t 100 -M 5 --fast --fast-start 50 --json | jq -c '
+  [(.fast.rounds | length > 0), (.fast.exact or (.fast.reference_points == 2 * .fast.rounds[-1].reference_points)),
+   (.fast.exact or .fast.rounds[-1].stable), (.fast.exact or (.d2_standard_error != null) or (.status != "saturated"))]')
+[[ $f == '[true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f"
+expect_error 3 "cannot be combined with --reference-points or -N \\(got --reference-points 100, -N 0\\)" -- d2 --fast --reference-points 100 "$work/henon.dat"
+expect_error 3 "target agreement must be positive" -- d2 --fast --fast-target 0 "$work/lorenz.dat"
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
 

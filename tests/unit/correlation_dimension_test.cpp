@@ -48,6 +48,7 @@ TEST(CorrelationDimension, ExactPowerLawSaturates) {
   EXPECT_NEAR(*r.takens_theiler, 2.3, 1e-9);
   EXPECT_FALSE(r.exceeds_eckmann_ruelle);
   EXPECT_NEAR(r.eckmann_ruelle_limit, 10.0, 1e-12);  // 2 log10(1e5)
+  EXPECT_TRUE(r.other_plateaus.empty());  // the region is the whole grid: nothing above or below
 }
 
 // A finite set of points at small scales: below eps = 0.05 no pair enters (the counts stay at
@@ -117,6 +118,30 @@ TEST(CorrelationDimension, APlateauAtSmallerScalesWithAnotherSlopeIsScaleDepende
   const auto same = chaos::correlation_dimension(broken_power_law(5, 0.05, 2.6, 2.4));
   EXPECT_EQ(same.status, chaos::D2Status::saturated) << same.explanation;
   ASSERT_EQ(same.plateaus.size(), 1u);
+
+  // The same two slopes with a bump of 3.2 between them (as Henon's lacunar slopes have) are two
+  // plateaus: 2.4 over the most radii is D2, and 2.6 below is reported beside it, not judged.
+  auto bumped = broken_power_law(5, 0.05, 2.6, 2.4);
+  for (std::size_t d = 0; d < bumped.dimension.size(); ++d) {
+    const std::size_t n = bumped.radius.size();
+    std::vector<double> log_c(n);
+    log_c[n - 1] = std::log(1e-2);
+    for (std::size_t k = n - 1; k-- > 0;) {  // slope by interval: 2.6, then 3.2 for 4 intervals, then 2.4
+      const double slope = k < 9 ? 2.6 : k < 13 ? 3.2 : 2.4;
+      log_c[k] = log_c[k + 1] - slope * std::log(bumped.radius[k + 1] / bumped.radius[k]);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      bumped.correlation_sum[d][k] = std::exp(log_c[k]);
+      bumped.pairs[d][k] = static_cast<std::uint64_t>(std::llround(std::exp(log_c[k]) * 1e16));
+      bumped.examined[d][k] = 10'000'000'000'000'000ull;
+    }
+  }
+  const auto two = chaos::correlation_dimension(bumped);
+  ASSERT_EQ(two.status, chaos::D2Status::saturated) << two.explanation;
+  EXPECT_NEAR(*two.d2, 2.4, 0.01);
+  ASSERT_EQ(two.other_plateaus.size(), 1u);
+  EXPECT_NEAR(two.other_plateaus[0].slope, 2.6, 0.01);
+  EXPECT_LT(two.other_plateaus[0].radii.high, two.scaling_region->low);
 
   // A different slope only at larger scales (the attractor's edge) leaves the small-scale plateau
   // alone when that one is chosen: here the small-scale stretch has the larger support.
@@ -240,6 +265,68 @@ TEST(TakensTheiler, ExactForAPowerLawAndUndefinedWithoutPairs) {
   EXPECT_NEAR(tt->first, 1.7, 1e-12);
   EXPECT_NEAR(tt->second, 1.7 / 20.0, 1e-12);  // D / sqrt(pairs)
   EXPECT_FALSE(chaos::takens_theiler(radius, std::vector<double>(20, 0.0), 0, 19).has_value());
+}
+
+// The counts of `sums` split into `groups` jackknife groups of reference points (as a subset walk
+// reports them): group g gets share[g] of every pair count and of every examined count.
+void split_into_groups(chaos::CorrelationSumResult& sums, const std::vector<double>& share) {
+  sums.group_pairs.assign(share.size(), sums.pairs);
+  sums.group_examined.assign(share.size(), sums.examined);
+  for (std::size_t g = 0; g < share.size(); ++g)
+    for (std::size_t d = 0; d < sums.pairs.size(); ++d)
+      for (std::size_t k = 0; k < sums.pairs[d].size(); ++k) {
+        sums.group_pairs[g][d][k] = static_cast<std::uint64_t>(std::llround(share[g] * static_cast<double>(sums.pairs[d][k])));
+        sums.group_examined[g][d][k] =
+            static_cast<std::uint64_t>(std::llround(share[g] * static_cast<double>(sums.examined[d][k])));
+      }
+}
+
+TEST(CorrelationDimension, GroupsThatAgreeGiveJackknifeErrorsOfZero) {
+  // Four groups with a quarter of every count each: every leave-one-out curve is the full curve
+  // (C is a ratio of counts that all shrink by 3/4), so every local slope and D2 have a jackknife
+  // error of 0 (Efron & Tibshirani's formula with identical replicates), no slope is left out, and
+  // D2 is the exact power law's 2.3 as without groups.
+  auto sums = power_law(6, [](std::size_t m) { return m < 3 ? double(m) : 2.3; }, 4'000'000'000);
+  split_into_groups(sums, {0.25, 0.25, 0.25, 0.25});
+  const auto r = chaos::correlation_dimension(sums);
+  ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
+  EXPECT_NEAR(*r.d2, 2.3, 1e-9);
+  ASSERT_TRUE(r.d2_standard_error.has_value());
+  EXPECT_NEAR(*r.d2_standard_error, 0.0, 1e-6);
+  EXPECT_EQ(r.slopes_too_uncertain, 0u);
+  ASSERT_EQ(r.local_slope_error.size(), 6u);
+  for (const auto& row : r.local_slope_error)
+    for (const auto& e : row)
+      if (e) {
+        EXPECT_NEAR(*e, 0.0, 1e-6);
+      }
+  // Exact counts (no groups): no jackknife at all.
+  const auto exact = chaos::correlation_dimension(power_law(6, [](std::size_t m) { return m < 3 ? double(m) : 2.3; }));
+  EXPECT_TRUE(exact.local_slope_error.empty());
+  EXPECT_FALSE(exact.d2_standard_error.has_value());
+}
+
+TEST(CorrelationDimension, SlopesOneGroupCarriesAreLeftOut) {
+  // Below eps = 0.1 every pair comes from group 0 (one reference point's neighbourhood, say); the
+  // other three groups have none there. Leaving group 0 out empties those radii, so their slopes
+  // have no jackknife error and cannot be trusted: they are left out of the search, and the
+  // region starts where all four groups contribute (the local slope at 0.1's grid point still
+  // leans on the radius below it, so the region starts one grid point higher). D2 is still 2.3.
+  auto sums = power_law(6, [](std::size_t m) { return m < 3 ? double(m) : 2.3; }, 4'000'000'000);
+  split_into_groups(sums, {0.25, 0.25, 0.25, 0.25});
+  std::size_t first_shared = 0;
+  while (sums.radius[first_shared] < 0.1) ++first_shared;
+  for (std::size_t d = 0; d < sums.pairs.size(); ++d)
+    for (std::size_t k = 0; k < first_shared; ++k) {
+      sums.group_pairs[0][d][k] = sums.pairs[d][k];
+      for (std::size_t g = 1; g < 4; ++g) sums.group_pairs[g][d][k] = 0;
+    }
+  const auto r = chaos::correlation_dimension(sums);
+  ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
+  EXPECT_NEAR(*r.d2, 2.3, 1e-9);
+  EXPECT_GE(r.slopes_too_uncertain, 3 * first_shared);  // at least those radii in the three top dimensions
+  EXPECT_GT(r.scaling_region->low, sums.radius[first_shared - 1]);
+  EXPECT_NE(r.explanation.find("jackknife"), std::string::npos) << r.explanation;
 }
 
 TEST(CorrelationDimension, RefusesTooFewRadii) {

@@ -362,16 +362,36 @@ std::vector<std::size_t> reference_order(std::size_t points, std::size_t count, 
 // The reference walk by the documented rules: each reference point i in order, with its partners
 // j on both sides (|i - j| > w); after each point, a radius whose count has reached the cap is
 // closed for that dimension, and its `examined` stops growing.
+// A refusal (InvalidInput, invalid_parameter) whose message contains `fragment`.
+bool refused_with(const std::vector<double>& x, const CorrelationSumOptions& o, const std::string& fragment) {
+  try {
+    (void)chaos::correlation_sum(x, o);
+  } catch (const chaos::InvalidInput& e) {
+    return e.code() == chaos::ErrorCode::invalid_parameter && std::string(e.what()).find(fragment) != std::string::npos;
+  }
+  return false;
+}
+
+// The jackknife groups (correlation_sum.hpp): position u of the R reference points in the order is
+// in group u * G / R, so the groups are G consecutive stretches of the order.
 struct Walk {
   Counts pairs, examined;
+  std::vector<Counts> group_pairs, group_examined;
 };
 Walk reference_walk(const std::vector<double>& x, const CorrelationSumOptions& o) {
   const std::size_t tau = o.delay, points = x.size() - (o.max_dimension - 1) * tau;
   const std::size_t nm = o.max_dimension - o.min_dimension + 1, nr = o.radii.size();
-  Walk walk{Counts(nm, std::vector<std::uint64_t>(nr, 0)), Counts(nm, std::vector<std::uint64_t>(nr, 0))};
+  const Counts zero(nm, std::vector<std::uint64_t>(nr, 0));
+  Walk walk{zero, zero, {}, {}};
   std::vector<std::vector<bool>> closed(nm, std::vector<bool>(nr, false));
   const std::size_t count = o.reference_points > 0 ? o.reference_points : points;
-  for (const std::size_t i : reference_order(points, count, o.seed)) {
+  std::vector<std::size_t> order = reference_order(points, o.reference_offset + count, o.seed);
+  order.erase(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(o.reference_offset));
+  const std::size_t groups = std::min(o.jackknife_groups, order.size());
+  walk.group_pairs.assign(groups, zero);
+  walk.group_examined.assign(groups, zero);
+  for (std::size_t u = 0; u < order.size(); ++u) {
+    const std::size_t i = order[u], g = u * groups / order.size();
     std::uint64_t partners = 0;
     Counts found(nm, std::vector<std::uint64_t>(nr, 0));
     for (std::size_t j = 0; j < points; ++j) {
@@ -387,6 +407,8 @@ Walk reference_walk(const std::vector<double>& x, const CorrelationSumOptions& o
         if (closed[mi][k]) continue;
         walk.pairs[mi][k] += found[mi][k];
         walk.examined[mi][k] += partners;
+        walk.group_pairs[g][mi][k] += found[mi][k];
+        walk.group_examined[g][mi][k] += partners;
       }
     for (std::size_t mi = 0; mi < nm; ++mi)
       for (std::size_t k = 0; k < nr; ++k)
@@ -415,6 +437,62 @@ TEST(CorrelationSum, ReferenceSubsetFollowsTheDocumentedWalk) {
   auto other = o;
   other.seed = 12;
   EXPECT_NE(chaos::correlation_sum(x, other).pairs, want.pairs);
+}
+
+TEST(CorrelationSum, JackknifeGroupsSplitTheReferenceWalk) {
+  // Expected: the documented walk above, split into its groups (consecutive stretches of the
+  // order), with and without a cap, 16 and 5 groups, 1 and 3 threads; exact counts have no groups.
+  const auto x = chaos::henon(900).components[0];
+  auto o = options(1, 1, 3, 5, chaos::log_radii(0.01, 0.5, 10));
+  o.reference_points = 120;
+  o.seed = 11;
+  for (const std::size_t groups : {16u, 5u})
+    for (const std::uint64_t cap : {0u, 4000u})
+      for (const std::size_t threads : {1u, 3u}) {
+        o.jackknife_groups = groups;
+        o.pairs_per_radius = cap;
+        o.threads = threads;
+        const Walk want = reference_walk(x, o);
+        const auto r = chaos::correlation_sum(x, o);
+        const std::string what = "groups " + std::to_string(groups) + " cap " + std::to_string(cap) + " threads " +
+                                 std::to_string(threads);
+        EXPECT_EQ(r.group_pairs, want.group_pairs) << what;
+        EXPECT_EQ(r.group_examined, want.group_examined) << what;
+        EXPECT_EQ(r.pairs, want.pairs) << what;
+      }
+  auto exact = options(1, 1, 3, 5, chaos::log_radii(0.01, 0.5, 10));
+  const auto r = chaos::correlation_sum(x, exact);
+  EXPECT_TRUE(r.group_pairs.empty());
+  EXPECT_TRUE(r.group_examined.empty());
+  exact.jackknife_groups = 1;
+  EXPECT_TRUE(refused_with(x, exact, "2 to 1024 groups of reference points (got 1)"));
+}
+
+TEST(CorrelationSum, ReferenceOffsetCountsTheNextPointsOfTheOrder) {
+  // Two calls with the same seed and consecutive offsets count disjoint stretches of one order, so
+  // their counts add up exactly to those of the stretch they cover together (integer counts; the
+  // walk above reproduces each).
+  const auto x = chaos::lorenz(1500).components[0];
+  auto o = options(17, 1, 4, 30, chaos::log_radii(0.3, 5.0, 12));
+  o.seed = 4;
+  o.reference_points = 200;
+  const auto both = chaos::correlation_sum(x, o);
+  o.reference_points = 80;
+  const auto first = chaos::correlation_sum(x, o);
+  o.reference_offset = 80;
+  o.reference_points = 120;
+  const auto second = chaos::correlation_sum(x, o);
+  EXPECT_EQ(second.pairs, reference_walk(x, o).pairs);
+  for (std::size_t mi = 0; mi < both.pairs.size(); ++mi)
+    for (std::size_t k = 0; k < both.pairs[mi].size(); ++k) {
+      EXPECT_EQ(first.pairs[mi][k] + second.pairs[mi][k], both.pairs[mi][k]);
+      EXPECT_EQ(first.examined[mi][k] + second.examined[mi][k], both.examined[mi][k]);
+    }
+  const std::size_t points = x.size() - 3 * 17;  // P = N - (max - 1) tau = 1449
+  o.reference_points = 0;
+  EXPECT_TRUE(refused_with(x, o, "got offset 80, reference_points 0"));
+  o.reference_points = points - 79;
+  EXPECT_TRUE(refused_with(x, o, "offset + reference_points <= the 1449 embedded points (got offset 80, reference_points 1370)"));
 }
 
 TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {

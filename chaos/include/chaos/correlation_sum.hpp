@@ -48,7 +48,15 @@ struct CorrelationSumOptions {
   // so `pairs` and `examined` count ordered pairs: with all P points as reference points and no
   // cap reached, both are exactly twice the exact counts and C is the same.
   std::size_t reference_points = 0;
+  // With a subset: skip this many points of the seeded order first, so that calls with the same
+  // seed and consecutive offsets count disjoint subsets (an adaptive budget adds them up).
+  std::size_t reference_offset = 0;
   std::uint64_t seed = 1;
+  // With a cap or a subset, the counts are also kept in this many groups of reference points
+  // (consecutive in the seeded order), so that the statistical error of C and of its local slopes
+  // can be estimated by leaving one group out (a delete-a-group jackknife): the pairs around one
+  // reference point are not independent, so the pair count alone overstates the evidence.
+  std::size_t jackknife_groups = 16;
   std::size_t threads = 1;  // results are identical for any thread count
   // Called from the calling thread with the fraction of the counting done (in thousandths, below
   // 1), for a progress display; the counts do not depend on it. Not called under a pairs cap.
@@ -62,6 +70,9 @@ struct CorrelationSumResult {
   std::vector<std::vector<double>> correlation_sum; // [m index][radius index], in [0, 1]
   std::vector<std::vector<std::uint64_t>> pairs;    // pairs closer than the radius
   std::vector<std::vector<std::uint64_t>> examined; // admissible pairs examined (all of them without a cap)
+  // A cap or a subset only (empty for exact counts): pairs and examined split by group of
+  // reference points, [group][m index][radius index]; the groups add up to `pairs` and `examined`.
+  std::vector<std::vector<std::vector<std::uint64_t>>> group_pairs, group_examined;
   std::size_t points = 0;                           // embedded points in the reference set
   double range = 0.0;  // max - min of the series: the max-norm diameter of the embedded points is at most this
 };

@@ -189,7 +189,8 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_pairs=100, max_region_fraction=None,
-       halves=False, inclusive=False, progress=None, dt=None, column=1, skip=0, length=None):
+       halves=False, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
+       skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
 
@@ -204,11 +205,19 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
 
+    ``fast=True`` (``--fast``) chooses the reference subset from the data: it doubles from
+    ``fast_start`` points until two disjoint subsets agree on one unambiguous plateau within
+    ``fast_target``, else the exact counts are used; the result's ``fast`` key gives the budget and
+    the rounds (docs/correlation_dimension.md). With a subset or a cap the result also has
+    local_slope_error, d2_standard_error and slopes_too_uncertain (jackknife over groups of
+    reference points).
+
     ``threads`` gives identical results for any number. ``progress=True`` draws a bar on stderr (or
     pass a callable taking the fraction done); Ctrl-C stops the sums within a thousandth of the work.
 
     Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
-    d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, scaling_region, plateaus, saturated,
+    d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
+    other_plateaus, saturated,
     status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
     exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``).
     """
@@ -218,7 +227,8 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
                   search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
                   threads=threads, tolerance=tolerance, min_points=min_points,
                   saturation_dimensions=saturation_dimensions, min_pairs=min_pairs,
-                  max_region_fraction=max_region_fraction, halves=halves, inclusive=inclusive)
+                  max_region_fraction=max_region_fraction, halves=halves, inclusive=inclusive, fast=fast,
+                  fast_target=fast_target, fast_start=fast_start)
     bar = _progress_bar(progress, "correlation sums")
     try:
         return _make(_core.d2(values, file, column, dt, params, bar))

@@ -1,0 +1,72 @@
+#pragma once
+// D2 at a budget chosen by the data (`chaos d2 --fast`): correlation sums from a random subset of
+// reference points that doubles until two disjoint subsets agree on one unambiguous plateau.
+//
+// A subset of R reference points estimates C(eps) without bias (each point's partner fraction is
+// an unbiased sample of it), at about 2R/P of the exact cost (its pairs are counted from both
+// ends), but a small subset can choose another plateau than the exact counts would: Henon's local
+// slopes oscillate in scale by about +-6% around 1.2 (lacunarity), with plateaus near 1.13, 1.23
+// and 1.19 at successive scales, and with 1024 reference points two seeds of five read 1.14-1.15
+// "saturated", against 1.234 from the exact counts (N = 10^5, m = 1..4). So the budget is not
+// fixed in advance. Round k compares the D2 of the T reference points counted so far with that of
+// the next T points of the same seeded order (disjoint, equally many, hence equally precise), then
+// merges them. A round is accepted when
+//   - both subsets and the merged counts saturate, the two D2 agree within `target`, and the
+//     merged plateau overlaps both subsets' plateaus (the same scales, not another phase);
+//   - the merged counts keep that plateau, within target / 2, with any one of their jackknife
+//     groups of reference points left out;
+//   - no other admissible plateau of the saturating dimensions, above or below, reads a slope more
+//     than `target` away. Two readings of one set of counts mean that a near-tie in support picks
+//     the answer: two disjoint subsets of 8000 Henon points (seed 2) both read 1.13 at eps
+//     0.005-0.015, where the exact counts choose 1.234 at 0.019-0.053, and only this test sees it.
+// The merged D2, from 2T points, is then within about target / 2 of the large-budget limit: the
+// difference of two independent estimates has sqrt(2) times the spread of one, the merge
+// 1/sqrt(2). When the next round would count more than an eighth of the points, the exact counts
+// are used instead: a budget that has not settled by then saves little, and the rounds already
+// spent cost at most about a quarter of the exact job on top of it.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/correlation_sum.hpp"
+
+namespace chaos {
+
+struct AdaptiveD2Options {
+  double target = 0.02;                     // two disjoint subsets' D2 must agree within this
+  std::size_t initial_reference_points = 500;  // T of the first round (each subset)
+  void validate() const;
+};
+
+// One comparison: the points counted so far (a) against the next equally many (b), and the merge.
+struct AdaptiveD2Round {
+  std::size_t reference_points = 0;  // in each of a and b
+  D2Status status_a = D2Status::no_scaling_region, status_b = D2Status::no_scaling_region,
+           status_merged = D2Status::no_scaling_region;
+  std::optional<double> d2_a, d2_b, d2_merged;
+  bool agreed = false;  // a and b saturate and agree within the target on overlapping plateaus
+  bool stable = false;  // and the merged plateau survives leaving out any jackknife group, with no
+                        // competing plateau (accepted)
+  std::optional<double> competing;  // the slope of another plateau more than the target from D2
+};
+
+struct AdaptiveD2Result {
+  CorrelationSumResult sums;         // the counts the final D2 comes from
+  CorrelationDimensionResult d2;
+  std::size_t reference_points = 0;  // reference points behind `sums`; 0 when the counts are exact
+  bool exact = false;                // the subsets never agreed before half the points: exact counts
+  std::vector<AdaptiveD2Round> rounds;
+  std::string explanation;           // how the budget was chosen, one sentence
+};
+
+// `sums` gives the delay, dimensions, window, radii, norm, search, seed and threads; its
+// reference_points, reference_offset and pairs_per_radius must be 0 (the budget is chosen here).
+AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, CorrelationSumOptions sums,
+                                                const CorrelationDimensionOptions& dimension = {},
+                                                const AdaptiveD2Options& options = {});
+
+}  // namespace chaos

@@ -1,0 +1,185 @@
+#include "chaos/adaptive_d2.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "chaos/error.hpp"
+
+namespace chaos {
+
+void AdaptiveD2Options::validate() const {
+  if (!(target > 0.0) || !std::isfinite(target))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the fast D2's target agreement must be positive and finite (got " + std::to_string(target) + ")");
+  if (initial_reference_points < 2)
+    throw InvalidInput(ErrorCode::invalid_parameter, "the fast D2 needs at least 2 initial reference points (got " +
+                                                         std::to_string(initial_reference_points) + ")");
+}
+
+namespace {
+
+using Table = std::vector<std::vector<std::uint64_t>>;
+
+void add(Table& into, const Table& from) {
+  for (std::size_t d = 0; d < into.size(); ++d)
+    for (std::size_t k = 0; k < into[d].size(); ++k) into[d][k] += from[d][k];
+}
+
+// The counts of two disjoint, equally large reference sets added up. Their jackknife groups are
+// equally large too; adjacent ones are joined so the merged counts keep the same number of groups.
+CorrelationSumResult merge(CorrelationSumResult a, const CorrelationSumResult& b) {
+  add(a.pairs, b.pairs);
+  add(a.examined, b.examined);
+  std::vector<Table> pairs = a.group_pairs, examined = a.group_examined;
+  pairs.insert(pairs.end(), b.group_pairs.begin(), b.group_pairs.end());
+  examined.insert(examined.end(), b.group_examined.begin(), b.group_examined.end());
+  a.group_pairs.clear();
+  a.group_examined.clear();
+  for (std::size_t g = 0; g + 1 < pairs.size(); g += 2) {
+    add(pairs[g], pairs[g + 1]);
+    add(examined[g], examined[g + 1]);
+    a.group_pairs.push_back(std::move(pairs[g]));
+    a.group_examined.push_back(std::move(examined[g]));
+  }
+  for (std::size_t d = 0; d < a.pairs.size(); ++d)
+    for (std::size_t k = 0; k < a.pairs[d].size(); ++k)
+      a.correlation_sum[d][k] =
+          a.examined[d][k] > 0 ? static_cast<double>(a.pairs[d][k]) / static_cast<double>(a.examined[d][k]) : 0.0;
+  a.points += b.points;
+  return a;
+}
+
+bool overlap(const std::optional<Interval>& a, const std::optional<Interval>& b) {
+  return a && b && std::max(a->low, b->low) <= std::min(a->high, b->high);
+}
+
+// The counts with jackknife group g left out (no groups of their own).
+CorrelationSumResult without_group(const CorrelationSumResult& sums, std::size_t g) {
+  CorrelationSumResult out = sums;
+  out.group_pairs.clear();
+  out.group_examined.clear();
+  for (std::size_t d = 0; d < out.pairs.size(); ++d)
+    for (std::size_t k = 0; k < out.pairs[d].size(); ++k) {
+      out.pairs[d][k] -= sums.group_pairs[g][d][k];
+      out.examined[d][k] -= sums.group_examined[g][d][k];
+      out.correlation_sum[d][k] =
+          out.examined[d][k] > 0 ? static_cast<double>(out.pairs[d][k]) / static_cast<double>(out.examined[d][k]) : 0.0;
+    }
+  return out;
+}
+
+// Whether the plateau choice survives leaving out each group of reference points in turn: every
+// leave-out saturates on a plateau overlapping the full one, within half the target of its D2.
+// Where several plateaus are nearly tied in support (Henon's lacunar local slopes), a few reference
+// points decide which wins, and a D2 that hinges on them is not an estimate of the exact one.
+bool stable_choice(const CorrelationSumResult& sums, const CorrelationDimensionResult& d2,
+                   const CorrelationDimensionOptions& dimension, double target) {
+  if (!d2.d2) return false;
+  for (std::size_t g = 0; g < sums.group_pairs.size(); ++g) {
+    const CorrelationDimensionResult left = correlation_dimension(without_group(sums, g), dimension);
+    if (!left.d2 || !overlap(left.scaling_region, d2.scaling_region) || std::abs(*left.d2 - *d2.d2) > target / 2.0)
+      return false;
+  }
+  return true;
+}
+
+// Another admissible plateau of the saturating dimensions (CorrelationDimensionResult::
+// other_plateaus) whose slope differs from D2 by more than the target: the counts support two
+// readings at this precision, and which one wins is a near-tie in support, not the attractor.
+std::optional<double> competing_plateau(const CorrelationDimensionResult& d2, double target) {
+  if (!d2.d2) return std::nullopt;
+  for (const D2Plateau& other : d2.other_plateaus)
+    if (std::abs(other.slope - *d2.d2) > target) return other.slope;
+  return std::nullopt;
+}
+
+}  // namespace
+
+AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, CorrelationSumOptions sums,
+                                                const CorrelationDimensionOptions& dimension,
+                                                const AdaptiveD2Options& options) {
+  options.validate();
+  sums.validate();
+  if (sums.reference_points != 0 || sums.reference_offset != 0 || sums.pairs_per_radius != 0)
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the fast D2 chooses its own reference subset: reference_points, reference_offset and "
+                       "pairs_per_radius must be 0 (got " + std::to_string(sums.reference_points) + ", " +
+                           std::to_string(sums.reference_offset) + ", " + std::to_string(sums.pairs_per_radius) + ")");
+  sums.progress = nullptr;  // many short counts: a progress line would restart at each
+  const std::size_t span = (sums.max_dimension - 1) * sums.delay;
+  const std::size_t points = x.size() > span ? x.size() - span : 0;
+
+  AdaptiveD2Result out;
+  std::ostringstream why;
+  const auto exact = [&] {
+    CorrelationSumOptions all = sums;
+    all.reference_points = 0;
+    out.sums = correlation_sum(x, all);
+    out.d2 = correlation_dimension(out.sums, dimension);
+    out.reference_points = 0;
+    out.exact = true;
+  };
+  std::size_t counted = options.initial_reference_points;  // T: points behind `total`
+  if (16 * counted > points) {  // the first round would already count more than an eighth of the points
+    exact();
+    why << "exact counts: one round needs 2 x " << counted << " reference points, more than an eighth of the "
+        << points;
+    out.explanation = why.str();
+    return out;
+  }
+  CorrelationSumOptions first = sums;
+  first.reference_points = counted;
+  CorrelationSumResult total = correlation_sum(x, first);
+  CorrelationDimensionResult total_d2 = correlation_dimension(total, dimension);
+  for (;;) {
+    if (16 * counted > points) {  // the next round would count more than an eighth of the points
+      exact();
+      why << "the subsets did not agree within " << options.target << " on one unambiguous plateau that leaving out "
+          << "any group of reference points keeps, up to " << counted << " reference points; exact counts instead "
+          << "(the next round would count more than an eighth of the " << points << " points)";
+      break;
+    }
+    CorrelationSumOptions next = sums;
+    next.reference_offset = counted;
+    next.reference_points = counted;
+    const CorrelationSumResult other = correlation_sum(x, next);
+    const CorrelationDimensionResult other_d2 = correlation_dimension(other, dimension);
+    CorrelationSumResult merged = merge(std::move(total), other);
+    CorrelationDimensionResult merged_d2 = correlation_dimension(merged, dimension);
+    AdaptiveD2Round round;
+    round.reference_points = counted;
+    round.status_a = total_d2.status;
+    round.status_b = other_d2.status;
+    round.status_merged = merged_d2.status;
+    round.d2_a = total_d2.d2;
+    round.d2_b = other_d2.d2;
+    round.d2_merged = merged_d2.d2;
+    round.agreed = total_d2.d2 && other_d2.d2 && merged_d2.d2 && std::abs(*total_d2.d2 - *other_d2.d2) <= options.target &&
+                   overlap(merged_d2.scaling_region, total_d2.scaling_region) &&
+                   overlap(merged_d2.scaling_region, other_d2.scaling_region);
+    round.stable = round.agreed && stable_choice(merged, merged_d2, dimension, options.target);
+    if (round.stable) {
+      round.competing = competing_plateau(merged_d2, options.target);
+      round.stable = !round.competing;
+    }
+    out.rounds.push_back(round);
+    total = std::move(merged);
+    total_d2 = std::move(merged_d2);
+    counted *= 2;
+    if (round.stable) {
+      out.sums = std::move(total);
+      out.d2 = std::move(total_d2);
+      out.reference_points = counted;
+      why << "two disjoint subsets of " << round.reference_points << " reference points agree (D2 " << *round.d2_a
+          << " and " << *round.d2_b << ", within " << options.target << ", on overlapping plateaus), leaving out "
+          << "any group of them keeps the plateau, and no other plateau reads another D2; D2 from all " << counted
+          << " of them";
+      break;
+    }
+  }
+  out.explanation = why.str();
+  return out;
+}
+
+}  // namespace chaos

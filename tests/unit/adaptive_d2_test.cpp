@@ -1,0 +1,96 @@
+// The fast D2 (adaptive_d2.hpp): its promise is checked against the exact counts of the same
+// series. Either the rounds were accepted and D2 lies within the target of the exact D2, or the
+// exact counts were used; a confident answer further from the exact one is the failure this
+// guards against. Also the bookkeeping of the rounds and the refusals.
+#include "chaos/adaptive_d2.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "chaos/error.hpp"
+#include "chaos/systems.hpp"
+
+namespace {
+
+chaos::CorrelationSumOptions lorenz_options() {
+  chaos::CorrelationSumOptions o;  // the issue-15 Lorenz job (docs/performance-d2.md) at N = 2*10^4
+  o.delay = 17;
+  o.min_dimension = 1;
+  o.max_dimension = 6;
+  o.theiler = 200;
+  o.radii = chaos::log_radii(0.25, 5.0, 40);
+  return o;
+}
+
+chaos::CorrelationSumOptions henon_options() {
+  chaos::CorrelationSumOptions o;  // the issue-15 Henon job at N = 2*10^4
+  o.delay = 1;
+  o.min_dimension = 1;
+  o.max_dimension = 4;
+  o.theiler = 10;
+  o.radii = chaos::log_radii(0.005, 0.4, 40);
+  return o;
+}
+
+void expect_promise_kept(const std::vector<double>& x, chaos::CorrelationSumOptions o, std::size_t start,
+                         const std::string& what) {
+  const auto exact = chaos::correlation_dimension(chaos::correlation_sum(x, o));
+  ASSERT_TRUE(exact.d2.has_value()) << what << ": the exact counts must saturate for this check";
+  chaos::AdaptiveD2Options fast;
+  fast.initial_reference_points = start;
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    o.seed = seed;
+    const auto r = chaos::adaptive_correlation_dimension(x, o, {}, fast);
+    const std::string tag = what + " seed " + std::to_string(seed) + ": " + r.explanation;
+    if (r.exact) {
+      EXPECT_EQ(r.reference_points, 0u) << tag;
+      EXPECT_EQ(r.d2.d2, exact.d2) << tag;  // the exact counts, hence the exact D2
+      continue;
+    }
+    ASSERT_FALSE(r.rounds.empty()) << tag;
+    EXPECT_TRUE(r.rounds.back().stable) << tag;
+    for (std::size_t k = 0; k + 1 < r.rounds.size(); ++k) EXPECT_FALSE(r.rounds[k].stable) << tag;
+    EXPECT_EQ(r.reference_points, 2 * r.rounds.back().reference_points) << tag;
+    EXPECT_EQ(r.sums.points, r.reference_points) << tag;
+    ASSERT_TRUE(r.d2.d2.has_value()) << tag;
+    EXPECT_LE(std::abs(*r.d2.d2 - *exact.d2), fast.target) << tag << " (exact " << *exact.d2 << ")";
+  }
+}
+
+TEST(AdaptiveD2, AcceptedBudgetsLandWithinTheTargetOfTheExactD2) {
+  expect_promise_kept(chaos::lorenz(20'000).components[0], lorenz_options(), 250, "Lorenz x");
+  expect_promise_kept(chaos::henon(20'000).components[0], henon_options(), 250, "Henon x");
+}
+
+TEST(AdaptiveD2, ShortSeriesGoStraightToTheExactCounts) {
+  // The default first round (2 x 500 points) fits in an eighth of the embedded points only from
+  // P = 8000 on: at N = 8000 (P = 7915) the exact counts are used at once.
+  const auto x = chaos::lorenz(8'000).components[0];
+  const auto r = chaos::adaptive_correlation_dimension(x, lorenz_options());
+  EXPECT_TRUE(r.exact);
+  EXPECT_TRUE(r.rounds.empty());
+  EXPECT_NE(r.explanation.find("exact counts"), std::string::npos) << r.explanation;
+}
+
+TEST(AdaptiveD2, RefusesAFixedBudgetAndImpossibleTargets) {
+  const auto x = chaos::henon(5'000).components[0];
+  auto o = henon_options();
+  o.reference_points = 100;
+  EXPECT_THROW(chaos::adaptive_correlation_dimension(x, o), chaos::InvalidInput);
+  o = henon_options();
+  o.pairs_per_radius = 1000;
+  EXPECT_THROW(chaos::adaptive_correlation_dimension(x, o), chaos::InvalidInput);
+  chaos::AdaptiveD2Options bad;
+  bad.target = 0.0;
+  EXPECT_THROW(chaos::adaptive_correlation_dimension(x, henon_options(), {}, bad), chaos::InvalidInput);
+  bad.target = std::nan("");
+  EXPECT_THROW(chaos::adaptive_correlation_dimension(x, henon_options(), {}, bad), chaos::InvalidInput);
+  bad = {};
+  bad.initial_reference_points = 1;
+  EXPECT_THROW(chaos::adaptive_correlation_dimension(x, henon_options(), {}, bad), chaos::InvalidInput);
+}
+
+}  // namespace
