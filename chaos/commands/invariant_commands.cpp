@@ -80,21 +80,19 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   j["radius"] = sums.radius;
   j["correlation_sum"] = sums.correlation_sum;
   j["pairs"] = sums.pairs;
-  auto slopes = nlohmann::ordered_json::array();
-  for (const auto& row : d2.local_slope) {
-    auto line = nlohmann::ordered_json::array();
-    for (const auto& v : row) line.push_back(optional_json(v));
-    slopes.push_back(line);
-  }
-  j["local_slope"] = slopes;
-  if (!d2.local_slope_error.empty()) {
-    auto errors = nlohmann::ordered_json::array();
-    for (const auto& row : d2.local_slope_error) {
+  // [m index][radius index] of optional values: null where undefined.
+  const auto table_json = [](const std::vector<std::vector<std::optional<double>>>& table) {
+    auto rows = nlohmann::ordered_json::array();
+    for (const auto& row : table) {
       auto line = nlohmann::ordered_json::array();
       for (const auto& v : row) line.push_back(optional_json(v));
-      errors.push_back(line);
+      rows.push_back(line);
     }
-    j["local_slope_error"] = errors;
+    return rows;
+  };
+  j["local_slope"] = table_json(d2.local_slope);
+  if (!d2.local_slope_error.empty()) {
+    j["local_slope_error"] = table_json(d2.local_slope_error);
     j["slopes_too_uncertain"] = d2.slopes_too_uncertain;
     j["jackknife_groups"] = sums.group_pairs.size();
   }
@@ -109,14 +107,14 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   j["d2_interval"] = interval_json(d2.d2_interval);
   j["d2_standard_error"] = optional_json(d2.d2_standard_error);
   j["scaling_region"] = interval_json(d2.scaling_region);
-  auto plateaus = nlohmann::ordered_json::array();
-  for (const auto& p : d2.plateaus)
-    plateaus.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
-  j["plateaus"] = plateaus;
-  auto others = nlohmann::ordered_json::array();
-  for (const auto& p : d2.other_plateaus)
-    others.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
-  j["other_plateaus"] = others;
+  const auto plateaus_json = [](const std::vector<D2Plateau>& list) {
+    auto out = nlohmann::ordered_json::array();
+    for (const auto& p : list)
+      out.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
+    return out;
+  };
+  j["plateaus"] = plateaus_json(d2.plateaus);
+  j["other_plateaus"] = plateaus_json(d2.other_plateaus);
   if (d2.first_half_status) {
     j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
     j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};
