@@ -121,7 +121,8 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     out.exact = true;
   };
   std::size_t counted = options.initial_reference_points;  // T: points behind `total`
-  if (16 * counted > points) {  // the first round would already count more than an eighth of the points
+  // (counted > points / 16, not 16 * counted > points: a huge --fast-start must not wrap around)
+  if (counted > points / 16) {  // the first round would already count more than an eighth of the points
     exact();
     why << "exact counts: one round needs 2 x " << counted << " reference points, more than an eighth of the "
         << points;
@@ -133,7 +134,7 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
   CorrelationSumResult total = correlation_sum(x, first);
   CorrelationDimensionResult total_d2 = correlation_dimension(total, dimension);
   for (;;) {
-    if (16 * counted > points) {  // the next round would count more than an eighth of the points
+    if (counted > points / 16) {  // the next round would count more than an eighth of the points
       exact();
       why << "the subsets did not agree within " << options.target << " on one unambiguous plateau that leaving out "
           << "any group of reference points keeps, up to " << counted << " reference points; exact counts instead "

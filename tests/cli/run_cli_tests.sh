@@ -111,6 +111,8 @@ f=$("$CHAOS" d2 "$work/lorenz.dat" -d 17 -t 100 -M 5 --fast --fast-start 50 --js
 [[ $f == '[true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f"
 expect_error 3 "cannot be combined with --reference-points or -N \\(got --reference-points 100, -N 0\\)" -- d2 --fast --reference-points 100 "$work/henon.dat"
 expect_error 3 "target agreement must be positive" -- d2 --fast --fast-target 0 "$work/lorenz.dat"
+f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --fast --fast-start 4611686018427387904 --json | jq -c '[.fast.exact, (.fast.rounds | length)]')
+[[ $f == '[true,0]' ]] && pass || fail "d2 --fast with a first round of 2^62 points gave $f (expected the exact counts at once)"
 expect_error 3 "search must be" -- d2 --search fast "$work/henon.dat"
 expect_error 3 "png or .svg" -- d2 "$work/henon.dat" -M 3 --plot "$work/plot.gif"
 

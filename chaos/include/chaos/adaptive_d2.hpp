@@ -23,7 +23,7 @@
 // difference of two independent estimates has sqrt(2) times the spread of one, the merge
 // 1/sqrt(2). When the next round would count more than an eighth of the points, the exact counts
 // are used instead: a budget that has not settled by then saves little, and the rounds already
-// spent cost at most about a quarter of the exact job on top of it.
+// spent cost about a third of the exact job on top of it (Henon, N = 10^5: 1.3 times the exact job).
 
 #include <cstddef>
 #include <optional>
