@@ -26,6 +26,16 @@ void add(Table& into, const Table& from) {
     for (std::size_t k = 0; k < into[d].size(); ++k) into[d][k] += from[d][k];
 }
 
+// C = pairs / examined again after the counts changed (0 where nothing was examined, as in
+// correlation_sum).
+void recompute_correlation_sum(CorrelationSumResult& sums) {
+  for (std::size_t d = 0; d < sums.pairs.size(); ++d)
+    for (std::size_t k = 0; k < sums.pairs[d].size(); ++k)
+      sums.correlation_sum[d][k] = sums.examined[d][k] > 0 ? static_cast<double>(sums.pairs[d][k]) /
+                                                                 static_cast<double>(sums.examined[d][k])
+                                                           : 0.0;
+}
+
 // The counts of two disjoint, equally large reference sets added up. Their jackknife groups are
 // equally large too; adjacent ones are joined so the merged counts keep the same number of groups.
 CorrelationSumResult merge(CorrelationSumResult a, const CorrelationSumResult& b) {
@@ -42,10 +52,7 @@ CorrelationSumResult merge(CorrelationSumResult a, const CorrelationSumResult& b
     a.group_pairs.push_back(std::move(pairs[g]));
     a.group_examined.push_back(std::move(examined[g]));
   }
-  for (std::size_t d = 0; d < a.pairs.size(); ++d)
-    for (std::size_t k = 0; k < a.pairs[d].size(); ++k)
-      a.correlation_sum[d][k] =
-          a.examined[d][k] > 0 ? static_cast<double>(a.pairs[d][k]) / static_cast<double>(a.examined[d][k]) : 0.0;
+  recompute_correlation_sum(a);
   a.points += b.points;
   return a;
 }
@@ -63,9 +70,8 @@ CorrelationSumResult without_group(const CorrelationSumResult& sums, std::size_t
     for (std::size_t k = 0; k < out.pairs[d].size(); ++k) {
       out.pairs[d][k] -= sums.group_pairs[g][d][k];
       out.examined[d][k] -= sums.group_examined[g][d][k];
-      out.correlation_sum[d][k] =
-          out.examined[d][k] > 0 ? static_cast<double>(out.pairs[d][k]) / static_cast<double>(out.examined[d][k]) : 0.0;
     }
+  recompute_correlation_sum(out);
   return out;
 }
 
