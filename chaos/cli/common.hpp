@@ -98,6 +98,7 @@ void register_analyze(CLI::App& app);
 void register_validate(CLI::App& app);
 void register_zoo(CLI::App& app);
 void register_lyapunov(CLI::App& app);
+void register_lyapunov_maps(CLI::App& app);
 void register_spectrum(CLI::App& app);
 void register_section(CLI::App& app);
 void register_density(CLI::App& app);

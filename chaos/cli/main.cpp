@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   register_d2(app);
   register_analyze(app);
   register_lyapunov(app);
+  register_lyapunov_maps(app);
   register_neighbors(app);
   register_spectrum(app);
   register_surrogates(app);

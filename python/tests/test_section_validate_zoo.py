@@ -224,8 +224,8 @@ def test_zoo_equals_the_command():
     assert henon["d2"]["status"] in line and henon["rosenstein"]["status"] in line
     # The verdicts follow the bands' rule: a confident value is in band or wrong, anything else unsure.
     for row in r.rows:
-        for estimate in (row["d2"], row["rosenstein"], row["kantz"]):
-            confident = estimate["status"] in ("saturated", "linear_region")
+        for estimate in (row["d2"], row["rosenstein"], row["kantz"], row["local_maps"]):
+            confident = estimate["status"] in ("saturated", "linear_region", "consistent")
             assert (estimate["verdict"] != "unsure") == confident
 
 

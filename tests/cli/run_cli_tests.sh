@@ -147,6 +147,25 @@ expect_error 3 "too short.*N = 5.*steps = 20" -- lyapunov "$work/five.dat"
 expect_error 3 "eps must be positive.*-1" -- lyapunov --method kantz -r -1 "$work/henon.dat"
 expect_error 3 "m = 0" -- lyapunov -m 0 "$work/henon.dat"
 expect_error 3 "constant" -- lyapunov "$work/constant.dat"
+# chaos lyapunov-maps: the JSON contract; a value only when every variant agrees (Henon at N = 2 10^4,
+# lambda_1 = 0.4192, Sprott 2003), none for white noise (not_deterministic) or for 3000 Henon points,
+# whose variants disagree; per time unit with --dt; refusals name the rule and the numbers.
+"$CHAOS" generate henon -l 20000 --components x > "$work/henon20k.dat" || fail "generate henon 20000"
+expect_json_keys lyapunov-maps "$work/henon20k.dat" -m 2 -- lambda lambda_interval per status explanation variants median_residual poor_fits
+l=$("$CHAOS" lyapunov-maps "$work/henon20k.dat" -m 2 --json | jq -c '[.status, .per, (.lambda > 0.3983 and .lambda < 0.4402), (.variants | length), .variants[0].name, .parameters.step, .parameters.neighbours]')
+[[ $l == '["consistent","sample",true,8,"base",1,10]' ]] && pass || fail "lyapunov-maps henon gave $l"
+l=$("$CHAOS" lyapunov-maps "$work/henon20k.dat" -m 2 --dt 0.5 --json | jq -c '[.per, (.lambda == .lambda_per_sample / 0.5)]')
+[[ $l == '["time",true]' ]] && pass || fail "lyapunov-maps --dt gave $l"
+l=$("$CHAOS" lyapunov-maps "$work/henon.dat" -m 2 --json | jq -c '[.status, .lambda]')
+[[ $l == '["inconsistent",null]' ]] && pass || fail "lyapunov-maps on 3000 henon points gave $l"
+l=$("$CHAOS" lyapunov-maps "$work/noise.dat" -m 2 --json | jq -c '[.status, .lambda, .lambda_interval]')
+[[ $l == '["not_deterministic",null,null]' ]] && pass || fail "lyapunov-maps on white noise gave $l"
+"$CHAOS" lyapunov-maps "$work/noise.dat" | grep -q "^# lambda = none" && pass || fail "lyapunov-maps text output for noise lacks 'lambda = none'"
+expect_error 3 "too short.*N = 5.*k = 10" -- lyapunov-maps "$work/five.dat"
+expect_error 3 "needs at least m \+ 1 = 3 neighbours \(got k = 2\)" -- lyapunov-maps -k 2 "$work/henon.dat"
+expect_error 3 "cutoff must lie in \(0, 1\) \(got 1\)" -- lyapunov-maps --cutoff 1 "$work/henon.dat"
+expect_error 3 "constant" -- lyapunov-maps "$work/constant.dat"
+expect_error 3 "m = 0" -- lyapunov-maps -m 0 "$work/henon.dat"
 "$CHAOS" lyapunov "$work/henon.dat" --plot "$work/lyap.png" > /dev/null
 head -c 8 "$work/lyap.png" | od -An -c | grep -q "P   N   G" && pass || fail "lyapunov --plot made no PNG"
 expect_error 3 "png or .svg" -- lyapunov "$work/henon.dat" --plot "$work/lyap.pdf"

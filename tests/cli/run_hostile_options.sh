@@ -53,7 +53,7 @@ without() {
 declare -A base=(
   [mutual]="$work/x.dat" [autocorrelation]="$work/x.dat" [cao]="$work/x.dat -M 4" [fnn]="$work/x.dat -M 4"
   [d2]="$work/x.dat -M 3 --reference-points 300" [analyze]="$work/x.dat --surrogates 3 -M 4"
-  [lyapunov]="$work/x.dat -m 3 --reference-points 200" [surrogates]="$work/x.dat -n 2"
+  [lyapunov]="$work/x.dat -m 3 --reference-points 200" [lyapunov-maps]="$work/x.dat -m 3 -d 5" [surrogates]="$work/x.dat -n 2"
   [nonlinearity]="$work/x.dat -n 3" [density]="$work/pv.dat -v 2" [section]="$work/xyz.dat --hyperplane 1"
   [neighbors]="$work/x.dat -r 1 -k 2 --check-points 100 --norm euclidean"
   [generate]="henon -l 100" [spectrum]="henon --iterations 2000"

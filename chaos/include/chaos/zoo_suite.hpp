@@ -85,6 +85,7 @@ struct ZooRow {
   std::size_t theiler = 0, delay = 0, dimension = 0;  // dimension: m of the grid point (0: none)
   bool automatic = true;                              // the automatic choices, not a neighbour
   ZooEstimate d2, rosenstein, kantz;
+  ZooEstimate local_maps;  // lambda_1 from local linear maps (lyapunov_local_maps.hpp), confident when consistent
   std::string note;  // why the pipeline stopped, when it did
 };
 

@@ -1,0 +1,308 @@
+#include "chaos/lyapunov_local_maps.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "chaos/embedding.hpp"
+#include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
+#include "chaos/series.hpp"
+#include "numeric.hpp"
+
+namespace chaos {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
+
+// The chain's maps are fitted in rounds of this many (in parallel, each map on its own), then the
+// tangent vector goes through them in order on one thread: the fits do not depend on the thread
+// count and the product is sequential, so the result is the same for any thread count. A round
+// bounds the memory of the stored maps (m^2 doubles each).
+constexpr std::size_t round_maps = 16384;
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+struct FittedMap {
+  Matrix map;            // m x m
+  double residual = 0.0;
+  std::size_t rank = 0;
+};
+
+// Fits the map of a chain point from its neighbours X_j and their images X_{j+s} (both read from
+// `e`, which holds the s further points) into `out`; a and b are work space.
+void fit_map(const DelayEmbedding& e, const std::vector<Neighbor>& neighbours, std::size_t s, double cutoff,
+             FittedMap& out, Matrix& a, Matrix& b) {
+  const std::size_t m = e.dimension(), k = neighbours.size();
+  a.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
+  b.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
+  for (std::size_t r = 0; r < k; ++r) {
+    const std::size_t j = neighbours[r].index;
+    for (std::size_t c = 0; c < m; ++c) {
+      a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j, c);
+      b(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j + s, c);
+    }
+  }
+  // Affine fit: centre both clouds on their means, then fit the linear part.
+  a.rowwise() -= a.colwise().mean();
+  b.rowwise() -= b.colwise().mean();
+  const Eigen::JacobiSVD<Matrix> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Vector& sigma = svd.singularValues();
+  out.map.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  out.rank = 0;
+  if (sigma.size() == 0 || !(sigma(0) > 0.0)) {
+    out.residual = 1.0;
+    return;
+  }
+  // M^T = V_r S_r^-1 U_r^T B over the kept directions; M maps a displacement to its image.
+  Matrix mt = Matrix::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  for (Eigen::Index d = 0; d < sigma.size(); ++d) {
+    if (!(sigma(d) >= cutoff * sigma(0))) break;  // descending
+    mt += svd.matrixV().col(d) * ((svd.matrixU().col(d).transpose() * b) / sigma(d));
+    ++out.rank;
+  }
+  out.map = mt.transpose();
+  const double spread = b.squaredNorm();
+  out.residual = spread > 0.0 ? std::sqrt((b - a * mt).squaredNorm() / spread) : 0.0;
+}
+
+}  // namespace
+
+const char* to_string(LocalMapStatus status) noexcept {
+  switch (status) {
+    case LocalMapStatus::consistent: return "consistent";
+    case LocalMapStatus::inconsistent: return "inconsistent";
+    case LocalMapStatus::not_deterministic: return "not_deterministic";
+    case LocalMapStatus::not_positive: return "not_positive";
+  }
+  return "unknown";
+}
+
+void LocalMapOptions::validate() const {
+  if (dimension < 1) refuse("Lyapunov exponent (local maps): embedding dimension m must be at least 1 (got m = 0)");
+  if (delay < 1) refuse("Lyapunov exponent (local maps): delay tau must be at least 1 sample (got tau = 0)");
+  if (threads < 1) refuse("Lyapunov exponent (local maps): threads must be at least 1 (got 0)");
+  if (neighbours != 0 && neighbours < detail::add_sat(dimension, 1))
+    refuse("Lyapunov exponent (local maps): an affine map in m = " + std::to_string(dimension) +
+           " dimensions needs at least m + 1 = " + std::to_string(dimension + 1) + " neighbours (got k = " +
+           std::to_string(neighbours) + ")");
+  if (!(max_residual > 0.0 && max_residual <= 1.0))
+    refuse("Lyapunov exponent (local maps): the residual threshold must lie in (0, 1] (got " +
+           detail::format_number(max_residual) + ")");
+  if (!(cutoff > 0.0 && cutoff < 1.0))
+    refuse("Lyapunov exponent (local maps): the singular-value cutoff must lie in (0, 1) (got " +
+           detail::format_number(cutoff) + ")");
+}
+
+LocalMapEstimate local_map_exponent(std::span<const double> x, const LocalMapOptions& options) {
+  options.validate();
+  const std::string what = "largest Lyapunov exponent (local maps)";
+  require_finite(x, what);
+  require_not_constant(x, what);
+  const std::size_t m = options.dimension, tau = options.delay, w = options.theiler;
+  const std::size_t s = options.step != 0 ? options.step : std::max<std::size_t>(1, (tau + 1) / 2);
+  const std::size_t k = options.neighbours != 0 ? options.neighbours : detail::mul_sat(5, m);
+  const std::size_t span = detail::mul_sat(m - 1, tau);
+  const std::size_t minimum =
+      detail::add_sat(detail::add_sat(span, s), detail::add_sat(detail::mul_sat(2, w), detail::add_sat(k, 2)));
+  require_length(x, minimum, what,
+                 "N >= (m-1) tau + s + 2 w + k + 2 with m = " + std::to_string(m) + ", tau = " + std::to_string(tau) +
+                     ", s = " + std::to_string(s) + ", w = " + std::to_string(w) + ", k = " + std::to_string(k) +
+                     ", so that every point of the chain has k neighbours outside its Theiler window");
+
+  // The exact power-of-two rescaling keeps the fits' sums of squares finite for any magnitude; the
+  // maps do not depend on the scale.
+  const int exponent = detail::scale_exponent(x);
+  const std::vector<double> y = detail::scaled_by_power_of_two(x, exponent);
+  const std::size_t points = x.size() - span - s;  // points whose image X_{j+s} exists
+  const DelayEmbedding candidates(y, m, tau, points);
+  const DelayEmbedding images(y, m, tau);  // the same coordinates, with the s further points
+  const KdTree tree(candidates, options.norm);
+  const NeighborQuery query{w, true};
+
+  LocalMapEstimate out;
+  out.step = s;
+  out.neighbours = k;
+  const std::size_t chain = (points + s - 1) / s;  // chain points 0, s, 2s, ... < points
+  std::vector<double> logs;
+  logs.reserve(chain);
+  std::vector<double> residuals;
+  residuals.reserve(chain);
+  double rank_sum = 0.0;
+  Vector v = Vector::Constant(static_cast<Eigen::Index>(m), 1.0 / std::sqrt(static_cast<double>(m)));
+  std::vector<FittedMap> fitted(std::min(chain, round_maps));
+
+  for (std::size_t first = 0; first < chain; first += round_maps) {
+    const std::size_t count = std::min(round_maps, chain - first);
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    const auto run = [&] {
+      try {
+        std::vector<Neighbor> found;
+        Matrix a, b;
+        for (std::size_t r; (r = next.fetch_add(1)) < count;) {
+          const std::size_t i = (first + r) * s;
+          tree.k_nearest(i, k, found, query);
+          if (found.size() < m + 1) {
+            fitted[r].map.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+            fitted[r].rank = 0;
+            fitted[r].residual = 1.0;
+            continue;
+          }
+          fit_map(images, found, s, options.cutoff, fitted[r], a, b);
+        }
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_lock);
+        if (!failure) failure = std::current_exception();
+        next.store(count);
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < std::min(options.threads, count); ++t) pool.emplace_back(run);
+    run();
+    for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+
+    for (std::size_t r = 0; r < count; ++r) {
+      const FittedMap& f = fitted[r];
+      residuals.push_back(f.residual);
+      rank_sum += static_cast<double>(f.rank);
+      if (f.rank == 0) {  // a neighbourhood with no extent: nothing to learn, the vector goes on
+        ++out.restarts;
+        continue;
+      }
+      Vector image = f.map * v;
+      double growth = image.norm();
+      if (!(growth > 0.0) || !std::isfinite(growth)) {
+        // The vector lies outside the directions this map was fitted on (the previous image left
+        // the local tangent space). It restarts along the map's strongest direction; this step is
+        // not averaged.
+        ++out.restarts;
+        const Eigen::JacobiSVD<Matrix> svd(f.map, Eigen::ComputeFullV);
+        v = svd.matrixV().col(0);
+        continue;
+      }
+      v = image / growth;
+      if (f.residual > options.max_residual) {
+        // The linear model does not describe this neighbourhood (a fold or a discontinuity inside
+        // it: on the cat map, neighbourhoods across the wrap stretched by their split image and
+        // read 16% high). The vector goes on in the map's direction; its growth is not averaged.
+        ++out.poor_fits;
+        continue;
+      }
+      logs.push_back(std::log(growth));
+    }
+  }
+  out.maps = logs.size();  // 0 when no map fitted well: lambda stays 0 and the checks refuse it
+  const auto mean = [](auto begin, auto end) {
+    double sum = 0.0;
+    for (auto it = begin; it != end; ++it) sum += *it;
+    return end == begin ? 0.0 : sum / static_cast<double>(end - begin);
+  };
+  const double per_step = 1.0 / static_cast<double>(s);
+  out.lambda = mean(logs.begin(), logs.end()) * per_step;
+  const auto half = logs.begin() + static_cast<std::ptrdiff_t>(logs.size() / 2);
+  out.first_half = mean(logs.begin(), half) * per_step;
+  out.second_half = mean(half, logs.end()) * per_step;
+  std::sort(residuals.begin(), residuals.end());
+  out.median_residual = residuals[residuals.size() / 2];
+  out.residual_q90 = residuals[residuals.size() * 9 / 10];
+  out.residual_q99 = residuals[residuals.size() * 99 / 100];
+  out.mean_rank = rank_sum / static_cast<double>(chain);
+  return out;
+}
+
+LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const LocalMapOptions& options,
+                                           std::optional<double> dt, double tolerance) {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    refuse("Lyapunov exponent (local maps): the agreement tolerance must be positive and finite (got " +
+           detail::format_number(tolerance) + ")");
+  if (dt && !(std::isfinite(*dt) && *dt > 0.0))
+    refuse("Lyapunov exponent (local maps): the sampling interval must be positive and finite (got " +
+           detail::format_number(*dt) + ")");
+  LocalMapResult result;
+  result.dt = dt;
+  result.tolerance = tolerance;
+  const double max_residual = options.max_residual;
+  const std::size_t m = options.dimension;
+  result.base = local_map_exponent(x, options);
+  const std::size_t k = result.base.neighbours;
+  result.variants.push_back({"base", m, k, result.base.lambda});
+
+  // The variants use the base's step, so they estimate the same quantity. A variant the series is
+  // too short for (one more dimension, more neighbours) is a variant that cannot confirm the base.
+  std::string missing;
+  const auto add = [&](const char* name, std::size_t dimension, std::size_t neighbours, double cutoff) {
+    LocalMapOptions variant = options;
+    variant.step = result.base.step;
+    variant.dimension = dimension;
+    variant.neighbours = neighbours;
+    variant.cutoff = cutoff;
+    try {
+      result.variants.push_back({name, dimension, neighbours, local_map_exponent(x, variant).lambda});
+    } catch (const InvalidInput& e) {
+      if (missing.empty()) missing = std::string("the variant '") + name + "' could not be computed: " + e.what();
+    }
+  };
+  const double c = options.cutoff;
+  add("k = 3m", m, 3 * m, c);  // 3m >= m + 1; the base refused any m too large for the series
+  add("k = 8m", m, 8 * m, c);
+  add("m + 1", m + 1, 5 * (m + 1), c);
+  add("cutoff / 2", m, k, c / 2.0);
+  add("cutoff x 2", m, k, std::min(2.0 * c, (1.0 + c) / 2.0));
+  result.variants.push_back({"first half", m, k, result.base.first_half});
+  result.variants.push_back({"second half", m, k, result.base.second_half});
+
+  const double base = result.base.lambda;
+  double low = base, high = base;
+  const LocalMapVariant* worst = &result.variants.front();
+  for (const auto& v : result.variants) {
+    low = std::min(low, v.lambda);
+    high = std::max(high, v.lambda);
+    if (std::abs(v.lambda - base) > std::abs(worst->lambda - base)) worst = &v;
+  }
+  std::ostringstream why;
+  why.precision(4);
+  if (result.base.median_residual > max_residual || result.base.maps == 0) {
+    result.status = LocalMapStatus::not_deterministic;
+    why << "the local linear maps leave a median " << result.base.median_residual * 100.0
+        << "% of the neighbourhoods' image spread unexplained (at most " << max_residual * 100.0
+        << "% allowed): at this scale the series does not behave as a deterministic map";
+  } else if (!(base > 0.0)) {
+    result.status = LocalMapStatus::not_positive;
+    why << "the mean log growth of the tangent vector is " << base
+        << " per sample, not positive: no exponential divergence";
+  } else if (!missing.empty()) {
+    result.status = LocalMapStatus::inconsistent;
+    why << missing;
+  } else if (std::abs(worst->lambda - base) > tolerance * base) {
+    result.status = LocalMapStatus::inconsistent;
+    why << "the variant '" << worst->name << "' gives " << worst->lambda << " per sample against the base's " << base
+        << " (" << (worst->lambda / base - 1.0) * 100.0 << "%; at most " << tolerance * 100.0
+        << "% allowed): the estimate depends on the estimator's choices";
+  } else {
+    result.status = LocalMapStatus::consistent;
+    result.lambda = base;
+    result.lambda_interval = Interval{low, high};
+    why << "all " << result.variants.size() - 1
+        << " variants (neighbourhood size, m + 1, singular-value cutoff, halves of the chain) lie within "
+        << tolerance * 100.0 << "% of the base estimate, and the maps explain the neighbourhoods' images";
+    if (dt) {
+      result.lambda_per_time = base / *dt;
+      result.lambda_per_time_interval = Interval{low / *dt, high / *dt};
+    }
+  }
+  result.explanation = why.str();
+  return result;
+}
+
+}  // namespace chaos
