@@ -194,6 +194,21 @@ void run(AnalyzeArgs& args) {
   };
   lambda_text(a.rosenstein, "rosenstein");
   lambda_text(a.kantz, "kantz");
+  out << "largest_lyapunov_exponent_local_maps\t";
+  if (a.local_maps) {
+    const LocalMapResult& l = *a.local_maps;
+    const auto lambda = per_time ? l.lambda_per_time : l.lambda;
+    const auto range = per_time ? l.lambda_per_time_interval : l.lambda_interval;
+    if (lambda)
+      out << number(*lambda) << " in [" << number(range->low) << ", " << number(range->high) << "] per "
+          << (per_time ? "time unit" : "sample");
+    else
+      out << "none";
+    out << "\t[m = " << l.variants.front().dimension << ", s = " << l.base.step << ", k = " << l.base.neighbours << "; "
+        << to_string(l.status) << ": " << l.explanation << "]\n";
+  } else {
+    out << "not run\t[" << (a.local_maps_refusal.empty() ? not_run : a.local_maps_refusal) << "]\n";
+  }
   if (nonlinear)
     out << "nonlinearity\t" << (nonlinear->test.rejected ? "rejected" : "not rejected") << ": rank "
         << nonlinear->test.rank << " of " << nonlinear->surrogate_statistics.size() + 1 << ", significance "

@@ -381,6 +381,18 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   lambda_json(a.rosenstein, "lambda");  // Rosenstein, the key earlier versions reported
   j["lambda_per"] = per_time ? "time" : "sample";
   lambda_json(a.kantz, "lambda_kantz");
+  if (a.local_maps) {
+    const LocalMapResult& l = *a.local_maps;
+    j["lambda_local_maps"] = optional_json(per_time ? l.lambda_per_time : l.lambda);
+    j["lambda_local_maps_interval"] = interval_json(per_time ? l.lambda_per_time_interval : l.lambda_interval);
+    j["lambda_local_maps_status"] = to_string(l.status);
+    j["lambda_local_maps_explanation"] = l.explanation;
+  } else {
+    j["lambda_local_maps"] = nullptr;
+    j["lambda_local_maps_interval"] = nullptr;
+    j["lambda_local_maps_status"] = "not_run";
+    j["lambda_local_maps_explanation"] = a.local_maps_refusal.empty() ? a.stopped : a.local_maps_refusal;
+  }
   if (nonlinear)
     j["nonlinearity"] = {{"statistic", nonlinear->data_statistic}, {"rank", nonlinear->test.rank},
                          {"count", nonlinear->surrogate_statistics.size()}, {"rejected", nonlinear->test.rejected},

@@ -76,6 +76,14 @@ LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales) {
   return fit;
 }
 
+LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t delay, std::size_t theiler) {
+  LocalMapOptions options;
+  options.dimension = dimension;
+  options.delay = delay;
+  options.theiler = theiler;
+  return options;
+}
+
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
                                  const AutomaticAnalysisOptions& options) {
   require_finite(x, "automatic analysis");
@@ -155,6 +163,17 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   } catch (const InvalidInput& e) {
     // Too short for the curve's steps in m + 2 dimensions: the exponent is not estimated.
     a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
+  }
+  if (options.local_maps) {
+    LocalMapOptions l = automatic_local_map_options(*a.dimension, *a.delay, a.theiler);
+    l.threads = options.threads;
+    if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.0);
+    try {
+      a.local_maps = largest_lyapunov_local_maps(x, l, dt);
+    } catch (const InvalidInput& e) {
+      a.local_maps_refusal = e.what();
+    }
+    if (options.progress) options.progress("Lyapunov exponent (local maps)", 1.0);
   }
   return a;
 }

@@ -287,25 +287,26 @@ ZooEstimate lambda_estimate(const LyapunovFit& fit, std::optional<double> dt, co
   return e;
 }
 
-// lambda_1 from local linear maps at (m, tau, w), with the estimator's own defaults; a refusal (a
-// series too short for the embedding) is reported as not_run.
+ZooEstimate local_maps_estimate(const LocalMapResult& r, const ZooBand& band) {
+  ZooEstimate e;
+  e.value = r.dt ? r.lambda_per_time : r.lambda;
+  e.interval = r.dt ? r.lambda_per_time_interval : r.lambda_interval;
+  e.status = to_string(r.status);
+  e.verdict = judge(e.value, r.status == LocalMapStatus::consistent, band);
+  return e;
+}
+
+// lambda_1 from local linear maps at (m, tau, w) with the pipeline's settings; a refusal (a series
+// too short for the embedding) is reported as not_run.
 ZooEstimate local_maps_estimate(std::span<const double> x, std::size_t m, std::size_t tau, std::size_t w,
                                 std::optional<double> dt, const ZooBand& band) {
-  ZooEstimate e;
   try {
-    LocalMapOptions options;
-    options.dimension = m;
-    options.delay = tau;
-    options.theiler = w;
-    const LocalMapResult r = largest_lyapunov_local_maps(x, options, dt);
-    e.value = dt ? r.lambda_per_time : r.lambda;
-    e.interval = dt ? r.lambda_per_time_interval : r.lambda_interval;
-    e.status = to_string(r.status);
-    e.verdict = judge(e.value, r.status == LocalMapStatus::consistent, band);
+    return local_maps_estimate(largest_lyapunov_local_maps(x, automatic_local_map_options(m, tau, w), dt), band);
   } catch (const InvalidInput& error) {
+    ZooEstimate e;
     e.status = std::string("not_run: ") + error.what();
+    return e;
   }
-  return e;
 }
 
 ZooEstimate not_run(const std::string& why) {
@@ -349,9 +350,9 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       base.d2 = a.d2 ? d2_estimate(*a.d2, c.d2_band) : not_run("not_run");
       base.rosenstein = a.rosenstein ? lambda_estimate(a.rosenstein->fit, c.dt, c.lambda_band) : not_run("not_run");
       base.kantz = a.kantz ? lambda_estimate(a.kantz->fit, c.dt, c.lambda_band) : not_run("not_run");
-      base.local_maps = a.dimension && a.delay && *a.dimension > 0 && *a.delay > 0
-                            ? local_maps_estimate(x, *a.dimension, *a.delay, a.theiler, c.dt, c.lambda_band)
-                            : not_run("not_run");
+      base.local_maps = a.local_maps                   ? local_maps_estimate(*a.local_maps, c.lambda_band)
+                        : !a.local_maps_refusal.empty() ? not_run("not_run: " + a.local_maps_refusal)
+                                                        : not_run("not_run");
       result.rows.push_back(base);
       if (!grid || !a.dimension || !a.delay) continue;
 

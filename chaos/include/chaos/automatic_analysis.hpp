@@ -29,6 +29,7 @@
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/time_scales.hpp"
 
 namespace chaos {
@@ -43,6 +44,7 @@ struct AutomaticAnalysisOptions {
   bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
   bool rosenstein = true, kantz = true;
   bool cross_check = true;           // with both methods: a lambda_1 only one of them supports is unconfirmed
+  bool local_maps = true;            // lambda_1 from local linear maps too (lyapunov_local_maps.hpp)
   std::size_t threads = 1;           // results identical for any number
   // Called with the step running ("Cao's method", "correlation sums", ...) and its fraction done,
   // for a progress display; the analysis does not depend on it.
@@ -58,6 +60,10 @@ struct AutomaticAnalysis {
   std::optional<CaoResult> cao;
   std::optional<CorrelationDimensionResult> d2;
   std::optional<LyapunovResult> rosenstein, kantz;
+  // lambda_1 from local linear maps at (m, tau, w) with the estimator's defaults; empty when not run
+  // or refused (local_maps_refusal says why).
+  std::optional<LocalMapResult> local_maps;
+  std::string local_maps_refusal;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };
 
@@ -87,6 +93,8 @@ std::pair<std::span<const double>, std::span<const double>> record_halves(std::s
 LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
                                            std::size_t delay, std::size_t theiler, LyapunovMethod method);
 LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales);
+// The local-maps settings the pipeline uses at (m, tau, w): the estimator's own defaults otherwise.
+LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t delay, std::size_t theiler);
 
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt = std::nullopt,
                                  const AutomaticAnalysisOptions& options = {});

@@ -27,7 +27,7 @@
 //
 // An estimate alone is not trusted. largest_lyapunov_local_maps re-estimates it over a neighbourhood
 // of the estimator's own choices (fewer and more neighbours, one more embedding dimension, half and
-// twice the cutoff, each half of the chain) and reports a value only when all of them agree and the
+// twice the cutoff, twice the residual limit, each half of the chain) and reports a value only when all of them agree and the
 // local maps explain the data (status `consistent`); otherwise it says why not, with no value.
 // Measured on the zoo (docs/lyapunov-maps.md, scripts/measure_lyapunov_maps.sh).
 
@@ -91,7 +91,7 @@ enum class LocalMapStatus {
 const char* to_string(LocalMapStatus status) noexcept;
 
 struct LocalMapVariant {
-  std::string name;         // "base", "k = 3m", "k = 8m", "m + 1", "cutoff / 2", "cutoff x 2", "first half", ...
+  std::string name;         // "base", "k = 3m", "k = 8m", "m + 1", "cutoff / 2", "cutoff x 2", "residual limit x 2", "first half", ...
   std::size_t dimension = 0, neighbours = 0;
   double lambda = 0.0;      // per sample
 };
@@ -111,7 +111,8 @@ struct LocalMapResult {
 
 // The checked estimate. Variants: k = 3m and 8m (the neighbourhood's size), m + 1 (the exponent does
 // not depend on m, a fit to empty directions does), half and twice the cutoff (the directions
-// fitted), and the two halves of the base chain (the average has converged). `consistent` needs
+// fitted), twice the residual limit (which maps are averaged), and the two halves of the base chain
+// (the average has converged). `consistent` needs
 // every variant within tolerance * |base| of the base, a positive base, and a median fit residual of
 // at most options.max_residual (white noise leaves about 90% of the image spread unexplained). A
 // variant the series is too short for makes the result `inconsistent`.
