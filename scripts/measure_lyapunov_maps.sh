@@ -9,7 +9,9 @@
 #
 # Prints three Markdown tables. A confident value is status `consistent`; every other status is unsure.
 # Usage: scripts/measure_lyapunov_maps.sh [build-dir]
-# Environment: ONLY (comma list of zoo case names; default all), JOBS (2), GRID (1; 0 skips the grid).
+# Environment: ONLY (comma list of zoo case names; default all), JOBS (2), GRID (1; 0 skips the grid),
+# DELAYS (0; 1 adds the delay neighbourhood: at N = 10^5, the automatic m and w with the delay at
+# tau/2, 3 tau/2 and 2 tau, as a fourth table).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -18,6 +20,7 @@ chaos="$build/chaos/chaos"
 command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
 jobs=${JOBS:-2}
 grid=${GRID:-1}
+delays=${DELAYS:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -58,9 +61,14 @@ case_rows() {  # name N tau m w lambda_1 -> $work/rows.name.N
       done
     done
   fi
+  if [[ $delays == 1 && $n == 100000 ]]; then
+    for t in $(((tau + 1) / 2)) $(((3 * tau + 1) / 2)) $((2 * tau)); do
+      [[ $t == "$tau" ]] || echo "delay $t $w $(estimate "$name" "$n" "$t" "$m" "$w" "$dt") $lam" >> "$out"
+    done
+  fi
 }
 export -f series estimate case_rows
-export chaos work grid
+export chaos work grid delays
 
 while read -r name n tau m w lam; do
   if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $n $tau $m $w $lam"; fi
@@ -94,6 +102,23 @@ done < "$work/systems"
 echo
 echo "Automatic choices at N = 10^5: $auto_in of $auto_total analysed systems confident and in band; confident and wrong at either N: $auto_wrong."
 [[ $grid == 1 ]] && echo "Grid, all systems: $grid_in in band, $grid_unsure unsure, $grid_wrong wrong."
+
+if [[ $delays == 1 ]]; then
+  echo
+  echo "| system | tau (automatic) | tau | m | w | status | lambda | lambda_1 (equations) | verdict |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  di=0 du=0 dw=0
+  while read -r name n tau m w lam; do
+    [[ $n == 100000 && ( -z ${ONLY:-} || ,$ONLY, == *,$name,* ) ]] || continue
+    while read -r _ t _ s l _; do
+      v=$(verdict "$s" "$l" "$lam")
+      case $v in in_band) di=$((di + 1)) ;; unsure) du=$((du + 1)) ;; wrong) dw=$((dw + 1)) ;; esac
+      echo "| $name | $tau | $t | $m | $w | $s | $l | $lam | $v |"
+    done < <(grep '^delay ' "$work/rows.$name.$n")
+  done < "$work/systems"
+  echo
+  echo "Delay neighbourhood (tau/2, 3 tau/2, 2 tau at N = 10^5): $di in band, $du unsure, $dw wrong."
+fi
 
 echo
 echo "| control | (m, tau) = (2, 1) | (3, 1) | (4, 5) | (5, 10) |"

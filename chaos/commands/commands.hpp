@@ -25,6 +25,7 @@
 #include "chaos/fnn.hpp"
 #include "chaos/generate.hpp"
 #include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/lyapunov_spectrum.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"
@@ -127,6 +128,20 @@ struct LyapunovRun {
   Report report;
 };
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});
+
+// chaos lyapunov-maps: lambda_1 from local linear maps, checked over the estimator's own choices
+// (lyapunov_local_maps.hpp). The Theiler window defaults to the data's correlation time, as in lyapunov.
+struct LyapunovMapsParams {
+  LocalMapOptions options;
+  std::optional<std::size_t> theiler;
+  std::string norm = "max";
+  double tolerance = 0.05;
+};
+struct LyapunovMapsRun {
+  LocalMapResult result;
+  Report report;
+};
+LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams params, const OutputOptions& output = {});
 
 // chaos neighbors: a benchmark of the neighbour searches on the user's series and embedding
 struct NeighborsParams {

@@ -263,6 +263,51 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   return {std::move(r), std::move(check), std::move(report)};
 }
 
+LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams params, const OutputOptions& output) {
+  const std::span<const double> x = in.values;
+  require_not_constant(x, in.file);
+  params.options.norm = parse_norm(params.norm);
+  std::string theiler_source = "given (-t)";
+  if (params.theiler) {
+    params.options.theiler = *params.theiler;
+  } else {
+    const CorrelationTime correlation = correlation_time(x);
+    params.options.theiler = correlation.samples;
+    theiler_source = correlation.source;
+  }
+  LocalMapResult r = largest_lyapunov_local_maps(x, params.options, in.dt, params.tolerance);
+  const bool per_time = r.dt.has_value();
+  Report report("lyapunov-maps", output);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
+      .parameter("dt", in.dt).parameter("dimension", params.options.dimension)
+      .parameter("delay", params.options.delay).parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", theiler_source).parameter("step", r.base.step)
+      .parameter("neighbours", r.base.neighbours).parameter("cutoff", params.options.cutoff)
+      .parameter("norm", params.norm).parameter("tolerance", r.tolerance)
+      .parameter("max_residual", params.options.max_residual).parameter("threads", params.options.threads);
+  auto& j = report.json();
+  const double scale = per_time ? 1.0 / *r.dt : 1.0;
+  j["lambda"] = optional_json(per_time ? r.lambda_per_time : r.lambda);
+  j["lambda_interval"] = interval_json(per_time ? r.lambda_per_time_interval : r.lambda_interval);
+  j["per"] = per_time ? "time" : "sample";
+  j["lambda_per_sample"] = optional_json(r.lambda);
+  j["status"] = to_string(r.status);
+  j["explanation"] = r.explanation;
+  auto variants = nlohmann::ordered_json::array();
+  for (const auto& v : r.variants)
+    variants.push_back({{"name", v.name}, {"dimension", v.dimension}, {"neighbours", v.neighbours},
+                        {"lambda", v.lambda * scale}});
+  j["variants"] = variants;
+  j["median_residual"] = r.base.median_residual;
+  j["residual_q90"] = r.base.residual_q90;
+  j["residual_q99"] = r.base.residual_q99;
+  j["mean_rank"] = r.base.mean_rank;
+  j["maps"] = r.base.maps;
+  j["restarts"] = r.base.restarts;
+  j["poor_fits"] = r.base.poor_fits;
+  return {std::move(r), std::move(report)};
+}
+
 const char* const builtin_series_name = "(built-in Lorenz x: sigma=10 rho=28 beta=8/3, RK4 h=0.001, dt=0.01)";
 
 Series builtin_series(std::size_t length) {

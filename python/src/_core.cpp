@@ -300,6 +300,23 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   return call([&] { return run_lyapunov(in, params).report.json(); });
 }
 
+py::object lyapunov_maps(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
+                         const py::dict& p) {
+  const SeriesInput in = series(x, file, column, dt);
+  LyapunovMapsParams params;
+  get(p, "dimension", params.options.dimension);
+  get(p, "delay", params.options.delay);
+  get(p, "theiler", params.theiler);
+  get(p, "step", params.options.step);
+  get(p, "neighbours", params.options.neighbours);
+  get(p, "cutoff", params.options.cutoff);
+  get(p, "max_residual", params.options.max_residual);
+  get(p, "tolerance", params.tolerance);
+  get(p, "norm", params.norm);
+  get(p, "threads", params.options.threads);
+  return call([&] { return run_lyapunov_maps(in, params).report.json(); });
+}
+
 py::tuple analyze(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt,
                    const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
@@ -800,6 +817,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("fnn", &fnn);
   m.def("d2", &d2);
   m.def("lyapunov", &lyapunov);
+  m.def("lyapunov_maps", &lyapunov_maps);
   m.def("analyze", &analyze);
   m.def("surrogates", &surrogates);
   m.def("generate", &generate);

@@ -5,7 +5,15 @@
 # stderr when it refuses, and no NaN in what it writes. The options are read from each command's
 # --help (CLI11 prints UINT, INT or FLOAT after a numeric option), so a new option is covered too.
 # `chaos zoo` and `chaos validate` run whole catalogues and are left out.
+# Usage: run_hostile_options.sh [SHARD COUNT]: only the commands whose place in the sorted list,
+# modulo COUNT, is SHARD (CTest runs the shards side by side); all commands without arguments.
 set -u
+shard=${1:-0}
+count=${2:-1}
+if ! [[ $shard =~ ^[0-9]+$ && $count =~ ^[1-9][0-9]*$ && $shard -lt $count ]]; then
+  echo "usage: $0 [SHARD COUNT] with 0 <= SHARD < COUNT (got '$shard' '$count')" >&2
+  exit 2
+fi
 : "${CHAOS:?set CHAOS to the chaos executable}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -58,7 +66,10 @@ declare -A base=(
   [neighbors]="$work/x.dat -r 1 -k 2 --check-points 100 --norm euclidean"
   [generate]="henon -l 100" [spectrum]="henon --iterations 2000"
 )
-for command in "${!base[@]}"; do
+mapfile -t commands < <(printf '%s\n' "${!base[@]}" | sort)
+for i in "${!commands[@]}"; do
+  (( i % count == shard )) || continue
+  command=${commands[$i]}
   options=$(numeric_options "$command")
   [[ -n $options ]] || fail "chaos $command --help lists no numeric option"
   while read -r names type; do
@@ -74,5 +85,5 @@ for command in "${!base[@]}"; do
   done <<<"$options"
 done
 
-echo "hostile options: $passed passed, $failed failed"
+echo "hostile options (shard $shard of $count): $passed passed, $failed failed"
 [[ $failed -eq 0 ]]

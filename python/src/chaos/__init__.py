@@ -28,7 +28,7 @@ import numpy as np
 from . import _core
 from ._results import Result, make as _make
 
-__all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "analyze", "surrogates",
+__all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d2", "correlation_sum", "lyapunov", "lyapunov_maps", "analyze", "surrogates",
            "nonlinearity", "density", "section", "validate", "validation_cases", "zoo", "zoo_series", "embed",
            "read", "builtin_lorenz", "Result"]
 __version__ = "0.1.0"
@@ -269,6 +269,33 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
                      min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
                      threads=threads, tolerance=tolerance, half_width=half_width,
                      min_steps=min_steps, min_rise=min_rise, cross_check=cross_check))
+
+
+def lyapunov_maps(x, *, dimension=2, delay=1, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
+                  max_residual=0.25, norm="max", threads=1, dt=None, column=1, skip=0, length=None):
+    """The largest Lyapunov exponent from local linear maps (``chaos lyapunov-maps``).
+
+    At points X_0, X_s, X_2s, ... of the delay embedding, an affine map from the ``neighbours``
+    nearest neighbours (0: 5 m; outside the Theiler window) to their images ``step`` samples later
+    (0: half the delay, at least 1), fitted on the neighbourhood's directions whose singular values
+    are at least ``cutoff`` times the largest; a tangent vector goes through the maps and lambda is
+    its mean log growth per sample (per time unit with ``dt``). Maps leaving more than
+    ``max_residual`` of their image spread unexplained are not averaged. J.-P. Eckmann & D. Ruelle,
+    Rev. Mod. Phys. 57, 617 (1985); M. Sano & Y. Sawada, Phys. Rev. Lett. 55, 1082 (1985).
+    docs/lyapunov-maps.md.
+
+    A value is given only with status ``consistent``: eight variants of the estimator's own choices
+    (k = 3m and 8m, m + 1, half and twice the cutoff, twice the residual limit, the chain's halves)
+    all lie within ``tolerance`` of the base (listed under ``variants``). Otherwise ``lambda`` is
+    None and ``status`` (not_deterministic, not_positive, inconsistent) and ``explanation`` say why.
+
+    The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
+    """
+    values, file, column, dt = _series(x, dt, column, skip, length)
+    return _make(_core.lyapunov_maps(values, file, column, dt,
+                                     dict(dimension=dimension, delay=delay, theiler=theiler, step=step,
+                                          neighbours=neighbours, cutoff=cutoff, tolerance=tolerance,
+                                          max_residual=max_residual, norm=norm, threads=threads)))
 
 
 def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,

@@ -122,7 +122,7 @@ class Result:
 
 
 def make(json, arrays=None, evidence=None):
-    name = "".join(part.capitalize() for part in json["command"].split("_")) + "Result"
+    name = "".join(part.capitalize() for part in json["command"].replace("-", "_").split("_")) + "Result"
     cls = _classes.get(name)
     if cls is None:
         cls = _classes[name] = type(name, (Result,), {"__slots__": ()})
