@@ -62,8 +62,11 @@ case_rows() {  # name N tau m w lambda_1 -> $work/rows.name.N
     done
   fi
   if [[ $delays == 1 && $n == 100000 ]]; then
+    local done_delays=" $tau "
     for t in $(((tau + 1) / 2)) $(((3 * tau + 1) / 2)) $((2 * tau)); do
-      [[ $t == "$tau" ]] || echo "delay $t $w $(estimate "$name" "$n" "$t" "$m" "$w" "$dt") $lam" >> "$out"
+      [[ $done_delays == *" $t "* ]] && continue  # tau = 1: 3 tau/2 and 2 tau are both 2
+      done_delays+="$t "
+      echo "delay $t $w $(estimate "$name" "$n" "$t" "$m" "$w" "$dt") $lam" >> "$out"
     done
   fi
 }

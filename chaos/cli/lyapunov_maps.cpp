@@ -38,9 +38,9 @@ void run(const LyapunovMapsArgs& args) {
       << "  per " << (per_time ? "time unit" : "sample") << "\n";
   out << "# median_residual = " << number(r.base.median_residual) << "  mean_rank = " << number(r.base.mean_rank)
       << "  maps = " << r.base.maps << "  poor_fits = " << r.base.poor_fits << "  restarts = " << r.base.restarts << "\n";
-  out << "# variant\tdimension\tneighbours\tlambda (per " << (per_time ? "time unit" : "sample") << ")\n";
+  out << "# variant\tdimension\tdelay\tneighbours\tlambda (per " << (per_time ? "time unit" : "sample") << ")\n";
   for (const auto& v : r.variants)
-    out << v.name << "\t" << v.dimension << "\t" << v.neighbours << "\t" << number(v.lambda * scale) << "\n";
+    out << v.name << "\t" << v.dimension << "\t" << v.delay << "\t" << v.neighbours << "\t" << number(v.lambda * scale) << "\n";
 }
 
 }  // namespace

@@ -295,7 +295,7 @@ LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams para
   j["explanation"] = r.explanation;
   auto variants = nlohmann::ordered_json::array();
   for (const auto& v : r.variants)
-    variants.push_back({{"name", v.name}, {"dimension", v.dimension}, {"neighbours", v.neighbours},
+    variants.push_back({{"name", v.name}, {"dimension", v.dimension}, {"delay", v.delay}, {"neighbours", v.neighbours},
                         {"lambda", v.lambda * scale}});
   j["variants"] = variants;
   j["median_residual"] = r.base.median_residual;

@@ -27,8 +27,8 @@
 //
 // An estimate alone is not trusted. largest_lyapunov_local_maps re-estimates it over a neighbourhood
 // of the estimator's own choices (fewer and more neighbours, one more embedding dimension, half and
-// twice the cutoff, twice the residual limit, each half of the chain) and reports a value only when all of them agree and the
-// local maps explain the data (status `consistent`); otherwise it says why not, with no value.
+// twice the cutoff, twice the residual limit, the delay -+ a quarter, each half of the chain) and
+// reports a value only when all of them agree and the local maps explain the data (status `consistent`); otherwise it says why not, with no value.
 // Measured on the zoo (docs/lyapunov-maps.md, scripts/measure_lyapunov_maps.sh).
 
 #include <cstddef>
@@ -91,8 +91,9 @@ enum class LocalMapStatus {
 const char* to_string(LocalMapStatus status) noexcept;
 
 struct LocalMapVariant {
-  std::string name;         // "base", "k = 3m", "k = 8m", "m + 1", "cutoff / 2", "cutoff x 2", "residual limit x 2", "first half", ...
-  std::size_t dimension = 0, neighbours = 0;
+  std::string name;         // "base", "k = 3m", "k = 8m", "m + 1", "cutoff / 2", "cutoff x 2", "residual limit x 2",
+                            // "delay - tau/4", "delay + tau/4" (tau >= 2 only), "first half", "second half"
+  std::size_t dimension = 0, delay = 0, neighbours = 0;
   double lambda = 0.0;      // per sample
 };
 
