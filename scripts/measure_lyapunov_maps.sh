@@ -82,6 +82,11 @@ verdict() {  # status lambda lambda_1 -> in_band | unsure | wrong
     if (s != "consistent") print "unsure"; else if (l >= 0.9 * t && l <= 1.1 * t) print "in_band"; else print "wrong" }'
 }
 
+echo "# lambda_1 from local linear maps on the zoo"
+echo
+echo "Written by \`DELAYS=$delays GRID=$grid scripts/measure_lyapunov_maps.sh\` (the method and what these tables show: docs/lyapunov-maps.md)."
+echo "A confident value is status \`consistent\`; the band is lambda_1 from the equations +- 10%; lambda per time unit for flows, per iteration for maps."
+echo
 echo "| system | N | tau | m | w | status | lambda | lambda_1 (equations) | verdict | grid: in band / unsure / wrong |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 auto_in=0 auto_wrong=0 auto_total=0 grid_in=0 grid_unsure=0 grid_wrong=0
