@@ -17,8 +17,7 @@ struct LyapunovMapsArgs {
 };
 
 void run(const LyapunovMapsArgs& args) {
-  const Series series = load_series(args.input);
-  check_series(series.values, args.input.file);
+  const Series series = load_series(args.input);  // checked there: finite, with a scale
   auto [r, report] =
       run_lyapunov_maps({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   report.open(args.output);

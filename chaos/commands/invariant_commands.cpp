@@ -17,6 +17,21 @@ CorrelationSearch parse_search(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "search must be box, kd or brute (got '" + name + "')");
 }
 
+namespace {
+
+// The Theiler window: the user's (-t), else the data's correlation time. Returns where it came from.
+std::string choose_theiler(const std::optional<std::size_t>& given, std::span<const double> x, std::size_t& window) {
+  if (given) {
+    window = *given;
+    return "given (-t)";
+  }
+  const CorrelationTime correlation = correlation_time(x);
+  window = correlation.samples;
+  return correlation.source;
+}
+
+}  // namespace
+
 D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output) {
   const std::span<const double> x = in.values;
   require_not_constant(x, in.file);
@@ -25,14 +40,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
 
   // Theiler window: given, or the autocorrelation's 1/e time (pairs closer in time than the
   // correlation time would otherwise pose as neighbours and bias D2 low).
-  std::string theiler_source = "given (-t)";
-  if (params.theiler) {
-    params.sums.theiler = *params.theiler;
-  } else {
-    const CorrelationTime t = correlation_time(x);
-    params.sums.theiler = t.samples;
-    theiler_source = t.source;
-  }
+  const std::string theiler_source = choose_theiler(params.theiler, x, params.sums.theiler);
   // Radii: given, or from the data's range (TISEAN's -r range/1000; -R a quarter of the range,
   // beyond which C is near 1 and carries no scaling).
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
@@ -267,14 +275,7 @@ LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams para
   const std::span<const double> x = in.values;
   require_not_constant(x, in.file);
   params.options.norm = parse_norm(params.norm);
-  std::string theiler_source = "given (-t)";
-  if (params.theiler) {
-    params.options.theiler = *params.theiler;
-  } else {
-    const CorrelationTime correlation = correlation_time(x);
-    params.options.theiler = correlation.samples;
-    theiler_source = correlation.source;
-  }
+  const std::string theiler_source = choose_theiler(params.theiler, x, params.options.theiler);
   LocalMapResult r = largest_lyapunov_local_maps(x, params.options, in.dt, params.tolerance);
   const bool per_time = r.dt.has_value();
   Report report("lyapunov-maps", output);
