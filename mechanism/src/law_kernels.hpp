@@ -11,15 +11,25 @@
 
 namespace mechanism::detail {
 
+// x^p for x >= 0. The contact exponents in use are 1 and 1.5 (and the line contact's moments add
+// 1 and 2 to them): those powers are products and one square root, within an ulp or two of pow,
+// which is the costliest call in the simulator's right-hand side.
+inline double power(double x, double p) {
+  if (p == 1.0) return x;
+  if (p == 2.0) return x * x;
+  if (p == 3.0) return x * x * x;
+  if (p == 1.5) return x * std::sqrt(x);
+  if (p == 2.5) return x * x * std::sqrt(x);
+  if (p == 3.5) return x * x * x * std::sqrt(x);
+  return std::pow(x, p);
+}
+
 // F = K d^n (1 + chi d_rate / max(|v_impact|, floor)), clamped at 0 (contact_law.hpp); chi from
 // hysteresis_factor.
 inline double normal_force_kernel(double chi, double exponent, double velocity_floor, double stiffness,
                                   double penetration, double penetration_rate, double impact_velocity) {
   if (penetration <= 0.0) return 0.0;  // NaN goes on and comes out as NaN
-  // n = 1.5 (metal on metal) is by far the common case: d sqrt(d) is exact and pow is the
-  // costliest call in the simulator's right-hand side.
-  const double elastic =
-      stiffness * (exponent == 1.5 ? penetration * std::sqrt(penetration) : std::pow(penetration, exponent));
+  const double elastic = stiffness * power(penetration, exponent);
   // Hertz or e = 1 has no rate term; a zero (or underflowed) elastic part makes the product 0 and
   // must not meet an overflowed rate ratio (0 * inf).
   if (chi == 0.0 || elastic == 0.0) return elastic;
@@ -59,6 +69,12 @@ inline void linear_power_moments(double p, double a, double b, double& i0, doubl
     return;
   }
   if (a > 0.0 && b > 0.0) {
+    if (p == 1.0) {
+      // Linear (Eq. 11 read as N/m): the integrals of a + (b - a) t and t (a + (b - a) t).
+      i0 = 0.5 * (a + b);
+      i1 = (a + 2.0 * b) / 6.0;
+      return;
+    }
     // About the mean c: d = c (1 + r tau), tau = 2t - 1 in [-1, 1], |r| < 1;
     //   j0 = (1/2) integral (1 + r tau)^p dtau,  j1 = (1/2) integral tau (1 + r tau)^p dtau,
     //   i0 = c^p j0,  i1 = c^p (j0 + j1) / 2.
@@ -77,25 +93,25 @@ inline void linear_power_moments(double p, double a, double b, double& i0, doubl
     } else {
       // v = 1 + r tau: the closed forms lose at most log10(1 / r^2) < 3 digits here.
       const double up = 1.0 + r, um = 1.0 - r;
-      const double d1 = std::pow(up, p + 1.0) - std::pow(um, p + 1.0);
-      const double d2 = std::pow(up, p + 2.0) - std::pow(um, p + 2.0);
+      const double d1 = power(up, p + 1.0) - power(um, p + 1.0);
+      const double d2 = power(up, p + 2.0) - power(um, p + 2.0);
       j0 = d1 / (2.0 * r * (p + 1.0));
       j1 = (d2 / (p + 2.0) - d1 / (p + 1.0)) / (2.0 * r * r);
     }
-    const double cp = std::pow(c, p);
+    const double cp = power(c, p);
     i0 = cp * j0;
     i1 = cp * 0.5 * (j0 + j1);
     return;
   }
   if (a > 0.0) {
     // Only the left part [0, t0] penetrates, d = a (1 - t / t0); a - b >= a > 0.
-    const double t0 = a / (a - b), ap = std::pow(a, p);
+    const double t0 = a / (a - b), ap = power(a, p);
     i0 = ap * t0 / (p + 1.0);
     i1 = ap * t0 * t0 / ((p + 1.0) * (p + 2.0));
     return;
   }
   // Only the right part [1 - l, 1] penetrates (or a NaN, which propagates).
-  const double l = b / (b - a), bp = std::pow(b, p);
+  const double l = b / (b - a), bp = power(b, p);
   i0 = bp * l / (p + 1.0);
   i1 = bp * ((1.0 - l) * l / (p + 1.0) + l * l / (p + 2.0));
 }

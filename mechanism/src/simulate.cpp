@@ -26,12 +26,47 @@ const char* to_string(SimulationStatus status) noexcept {
 
 namespace {
 
+// The slider-crank as the adaptive stepper sees it, keeping the evaluation of each attempt's last
+// stage: at (t_new, x_new), the step end, which the stepper evaluates for its error weights and
+// the next step's first stage. After an accepted step the loop reads the contacts and energies
+// there from it instead of evaluating the equations once more (one evaluation in seven).
+class RecordingSystem {
+ public:
+  explicit RecordingSystem(const SliderCrank& system) : sys_(system) {}
+  void rhs(double t, const State& x, State& dxdt) const { sys_.rhs(t, x, dxdt); }
+  void error_weights(double t, const State& x, State& w) const { sys_.error_weights(t, x, w); }
+  void rhs_and_error_weights(double t, const State& x, State& dxdt, State& w) const {
+    sys_.rhs_and_error_weights(t, x, dxdt, w, last_);
+    last_t_ = t;
+    last_x_ = x;
+    recorded_ = true;
+  }
+  // The recorded evaluation if it was made at exactly (t, x) with the memory the system has now.
+  const Evaluation* recorded(double t, const State& x) const {
+    return recorded_ && t == last_t_ && detail::same_state(x, last_x_) ? &last_ : nullptr;
+  }
+  // The system's memory is about to change (commit): the record no longer describes it.
+  void forget() { recorded_ = false; }
+
+ private:
+  const SliderCrank& sys_;
+  // The stepper holds the system by const reference; the record is this adapter's own state,
+  // used by one loop on one thread.
+  mutable Evaluation last_;
+  mutable State last_x_;
+  mutable double last_t_ = 0.0;
+  mutable bool recorded_ = false;
+};
+
 // Everything that happens between two accepted steps, for either stepper.
 template <class Stepper>
 class HybridLoop {
  public:
-  HybridLoop(SliderCrank& system, Stepper& stepper, const SimulationObserver& observer, SimulationSummary& summary)
-      : sys_(system), stepper_(stepper), obs_(observer), sum_(summary) {
+  // recorder: the adaptive stepper's view of the system, whose step-end evaluations after_step
+  // reuses (null for RK4, whose last stage is not at the step end).
+  HybridLoop(SliderCrank& system, Stepper& stepper, const SimulationObserver& observer, SimulationSummary& summary,
+             RecordingSystem* recorder = nullptr)
+      : sys_(system), stepper_(stepper), obs_(observer), sum_(summary), rec_(recorder) {
     const Scene& s = sys_.scene();
     t_end_ = s.run.transient + s.run.duration;
     transient_ = s.run.transient;
@@ -59,7 +94,11 @@ class HybridLoop {
   // After an accepted step from t0 to t1 (x is the state at t1).
   void after_step(double t0, double t1, State& x) {
     emit_due(t1, x, false);
-    sys_.evaluate(t1, x, ev_);
+    const Evaluation* recorded = rec_ ? rec_->recorded(t1, x) : nullptr;
+    if (recorded)
+      ev_ = *recorded;
+    else
+      sys_.evaluate(t1, x, ev_);
     const int n = sys_.coordinate_count();
     const double balance =
         std::abs(ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1]);
@@ -77,6 +116,7 @@ class HybridLoop {
       }
       penetration_prev_[i] = now;
     }
+    if (rec_) rec_->forget();
     const bool changed = sys_.commit(ev_, onset_rate_, x);
     if (onset || changed) stepper_.invalidate();
   }
@@ -158,6 +198,7 @@ class HybridLoop {
   Stepper& stepper_;
   const SimulationObserver& obs_;
   SimulationSummary& sum_;
+  RecordingSystem* rec_;
   double t_end_ = 0, transient_ = 0, out_dt_ = 0, period_ = 0;
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
@@ -260,7 +301,8 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     opt.max_steps = static_cast<std::size_t>(scene.integrator.max_steps);
     opt.validate();
     DormandPrince54 stepper(opt);
-    HybridLoop<DormandPrince54> loop(system, stepper, observer, sum);
+    RecordingSystem recorder(system);
+    HybridLoop<DormandPrince54> loop(system, stepper, observer, sum, &recorder);
     loop.start(x);
     const double t_end = loop.end_time();
     double h = std::min(opt.max_step, t_end);
@@ -276,7 +318,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       const bool last = 1.01 * h >= t_end - t;
       double trial = last ? t_end - t : h;
       const double t0 = t;
-      const StepOutcome outcome = stepper.try_step(system, t, x, trial);
+      const StepOutcome outcome = stepper.try_step(recorder, t, x, trial);
       if (outcome == StepOutcome::rejected) {
         h = trial;
         continue;

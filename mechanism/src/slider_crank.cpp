@@ -181,20 +181,34 @@ struct SliderCrank::Result {
 
 namespace {
 
-// sin a and cos a. The slider's angle stays within a few milliradians (its corners are at most
-// the clearance plus a penetration away from the guide): there the Taylor series through a^9 and
-// a^10 are accurate to an ulp (the first omitted terms, a^11/11! and a^12/12!, are under 3e-19
-// relative for |a| <= 0.1; measured against long double over 1e7 angles: at most 1 ulp, and equal
-// to libm's in 99.9 %) and cost a fraction of libm's sincos; larger angles take libm.
+// sin a and cos a for the angles that stay small: the slider's (a few milliradians: its corners are
+// at most the clearance plus a penetration away from the guide) and the conrod's (within
+// asin(l2 / l3) of level, 0.43 rad for the seed). For |a| <= 0.5 the Taylor series through a^15 and
+// a^16 are accurate to an ulp (the first omitted terms, a^17/17! and a^18/18!, are under 1e-19
+// relative; measured against long double over 1e7 angles: at most 0.61 ulp for sin and 0.68 for
+// cos, and equal to libm's in 99 % and 97 %) and cost a fraction of libm's sincos; larger angles
+// take libm.
 inline void small_angle_sincos(double a, double& s, double& c) {
-  if (!(std::fabs(a) <= 0.1)) {
+  if (!(std::fabs(a) <= 0.5)) {
     s = std::sin(a);
     c = std::cos(a);
     return;
   }
   const double a2 = a * a;
-  s = a + a * a2 * (-1.0 / 6 + a2 * (1.0 / 120 + a2 * (-1.0 / 5040 + a2 * (1.0 / 362880))));
-  c = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24 + a2 * (-1.0 / 720 + a2 * (1.0 / 40320 + a2 * (-1.0 / 3628800)))));
+  s = a + a * a2 *
+              (-1.0 / 6 +
+               a2 * (1.0 / 120 +
+                     a2 * (-1.0 / 5040 +
+                           a2 * (1.0 / 362880 +
+                                 a2 * (-1.0 / 39916800 + a2 * (1.0 / 6227020800.0 + a2 * (-1.0 / 1307674368000.0)))))));
+  c = 1.0 +
+      a2 * (-0.5 +
+            a2 * (1.0 / 24 +
+                  a2 * (-1.0 / 720 +
+                        a2 * (1.0 / 40320 +
+                              a2 * (-1.0 / 3628800 +
+                                    a2 * (1.0 / 479001600.0 +
+                                          a2 * (-1.0 / 87178291200.0 + a2 * (1.0 / 20922789888000.0))))))));
 }
 
 // Flores et al. 2008's configurations from the four corner penetrations (TL, TR, BL, BR).
@@ -328,7 +342,9 @@ void SliderCrank::compute_seed(double t, const State& x, Result& out) const {
   // Coordinates: theta_3 and, unless the slider's rotation is locked (then level: 0), theta_4.
   const bool turns = idx_slider_angle_ >= 0;
   const double th3 = x[0], th4 = turns ? x[1] : 0.0, w3 = x[n_], w4 = turns ? x[n_ + 1] : 0.0;
-  const double c2 = std::cos(th2), s2 = std::sin(th2), c3 = std::cos(th3), s3 = std::sin(th3);
+  const double c2 = std::cos(th2), s2 = std::sin(th2);
+  double c3, s3;
+  small_angle_sincos(th3, s3, c3);
   const double l2 = s.crank.length, a2 = s.crank.mass_centre * l2;
   const double l3 = s.conrod.length, a3 = s.conrod.mass_centre * l3;
   const double m2 = s.crank.mass, m3 = s.conrod.mass, m4 = s.slider.mass;
@@ -639,6 +655,10 @@ void SliderCrank::evaluate_with_jets(double t, const State& x, Evaluation& out) 
 void SliderCrank::rhs(double t, const State& x, State& dxdt) const {
   Result r;  // on the stack: no allocation, nothing shared between threads
   compute(t, x, r);
+  derivatives_of(r, x, dxdt);
+}
+
+void SliderCrank::derivatives_of(const Result& r, const State& x, State& dxdt) const {
   const int n = n_;
   dxdt.resize(state_size());  // a no-op at the right size (the steppers pass it sized)
   for (int i = 0; i < n; ++i) {
@@ -657,8 +677,30 @@ void SliderCrank::error_weights(double t, const State& x, State& weights) const 
   if (bristles_ == 0) return;
   Result r;
   compute(t, x, r);
+  weights_of(r, weights);
+}
+
+void SliderCrank::weights_of(const Result& r, State& weights) const {
   for (std::size_t i = 0; i < sites_.size(); ++i)
     if (sites_[i].state >= 0 && !(r.sites[i].penetration > 0.0)) weights[sites_[i].state] = 0.0;
+}
+
+void SliderCrank::rhs_and_error_weights(double t, const State& x, State& dxdt, State& weights) const {
+  Result r;
+  compute(t, x, r);
+  derivatives_of(r, x, dxdt);
+  weights.setOnes(x.size());
+  if (bristles_ > 0) weights_of(r, weights);
+}
+
+void SliderCrank::rhs_and_error_weights(double t, const State& x, State& dxdt, State& weights,
+                                        Evaluation& out) const {
+  Result r;
+  compute(t, x, r);
+  derivatives_of(r, x, dxdt);
+  weights.setOnes(x.size());
+  if (bristles_ > 0) weights_of(r, weights);
+  copy_result(r, n_, sites_.size(), journals_.size(), out);
 }
 
 void SliderCrank::set_memory(const std::vector<ContactMemory>& memory) {

@@ -187,7 +187,10 @@ inline void DormandPrince54::stages(const S& sys, double t, const State& x, doub
   ys_ = x + h * (a61 * k[0] + a62 * k[1] + a63 * k[2] + a64 * k[3] + a65 * k[4]);
   sys.rhs(t_new, ys_, k[5]);
   x_new_ = x + h * (b1 * k[0] + b3 * k[2] + b4 * k[3] + b5 * k[4] + b6 * k[5]);
-  sys.rhs(t_new, x_new_, k[6]);
+  if constexpr (WeightedRhsSystem<S>)
+    sys.rhs_and_error_weights(t_new, x_new_, k[6], weights_);  // controlled() reads weights_
+  else
+    sys.rhs(t_new, x_new_, k[6]);
   rhs_evaluations_ += 6;
 }
 
@@ -223,7 +226,7 @@ inline StepOutcome DormandPrince54::controlled(const S& sys, double& t, State& x
   stages(sys, t, x, h, t_new);
   double err = 0.0;
   if constexpr (ErrorWeightedSystem<S>) {
-    sys.error_weights(t_new, x_new_, weights_);
+    if constexpr (!WeightedRhsSystem<S>) sys.error_weights(t_new, x_new_, weights_);  // else stages() did
     err = error_norm(x, h, &weights_);
   } else {
     err = error_norm(x, h);

@@ -28,6 +28,16 @@ concept ErrorWeightedSystem = OdeSystem<S> && requires(const S& s, double t, con
   s.error_weights(t, x, w);
 };
 
+// Optional, for speed: an ErrorWeightedSystem that gives dx/dt and the weights at the same (t, x)
+// from one evaluation. The adaptive stepper weighs its error at the step end, where it also
+// evaluates dx/dt for the next step's first stage (FSAL), so this saves one evaluation per step.
+// Both outputs must equal what rhs() and error_weights() give at (t, x).
+template <class S>
+concept WeightedRhsSystem =
+    ErrorWeightedSystem<S> && requires(const S& s, double t, const State& x, State& dxdt, State& w) {
+      s.rhs_and_error_weights(t, x, dxdt, w);
+    };
+
 namespace detail {
 
 // Out of line (mechanism/src/integrators.cpp) so that the throwing path stays out of the inlined

@@ -129,6 +129,11 @@ class SliderCrank {
   // ErrorWeightedSystem: weight 0 for the bristle deflection of every LuGre site that is open at
   // (t, x) (commit() resets it to zero there, so its value at a step end is never used), else 1.
   void error_weights(double t, const State& x, State& weights) const;
+  // WeightedRhsSystem: rhs() and error_weights() at (t, x) from one evaluation of the equations.
+  void rhs_and_error_weights(double t, const State& x, State& dxdt, State& weights) const;
+  // The same and evaluate()'s output, from that one evaluation: what the simulation loop reads at
+  // a step's end, where the adaptive stepper evaluates anyway (simulate.cpp).
+  void rhs_and_error_weights(double t, const State& x, State& dxdt, State& weights, Evaluation& out) const;
 
   // Full evaluation at (t, x) with the current memory.
   void evaluate(double t, const State& x, Evaluation& out) const;
@@ -173,6 +178,9 @@ class SliderCrank {
   // The slider's contact sites (the first slider_sites_ sites) at the slider's pose (x, y, angle)
   // and its rates: fills their SiteEvaluations, adds their force and moment about the slider's
   // centre to load, and returns the corner penetrations (TL, TR, BL, BR).
+  // dx/dt from an evaluation at (t, x), and the error weights' zeros (bristles of open sites).
+  void derivatives_of(const Result& r, const State& x, State& dxdt) const;
+  void weights_of(const Result& r, State& weights) const;
   void slider_contacts(const double pose[3], const double rate[3], const State& x, Result& r, double load[3],
                        double corner_pen[4]) const;
   // A revolute clearance joint, named by position rather than by pointer so that a copy of the

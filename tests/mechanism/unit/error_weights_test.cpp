@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 #include "mechanism/simulate.hpp"
 
@@ -39,6 +40,45 @@ TEST(ErrorWeights, OnlyOpenBristlesAreLeftOut) {
     touching += ev.sites[i].penetration > 0.0 ? 1 : 0;
   }
   EXPECT_EQ(touching, 2u);
+}
+
+// The adaptive stepper's step-end stage takes dx/dt, the weights and the full evaluation from one
+// evaluation of the equations (rhs_and_error_weights); each must be bit-identical to what rhs(),
+// error_weights() and evaluate() give on their own, or a run would depend on which path it took.
+TEST(ErrorWeights, OneEvaluationGivesWhatTheSeparateCallsGive) {
+  for (const char* law : {"lugre_normalised", "coulomb"}) {
+    const mechanism::Scene scene = mechanism::read_scene(
+        "", {std::string("joint.slider.friction.law=\"") + law + "\"", "joint.slider.model=\"line\""});
+    mechanism::SliderCrank system(scene);
+    mechanism::State x = system.initial_state();
+    const auto names = system.coordinate_names();
+    const auto angle = std::find(names.begin(), names.end(), "slider_angle") - names.begin();
+    for (double tilt : {0.0, 0.05}) {
+      x[angle] = tilt;  // 0.05 rad: both faces touch (see above)
+      mechanism::State f, w, f2, w2;
+      mechanism::Evaluation ev, ev2;
+      system.rhs(1e-3, x, f);
+      system.error_weights(1e-3, x, w);
+      system.evaluate(1e-3, x, ev);
+      f2.setConstant(x.size(), -1.0);
+      system.rhs_and_error_weights(1e-3, x, f2, w2, ev2);
+      EXPECT_EQ(f2, f) << law << " tilt " << tilt;
+      EXPECT_EQ(w2, w) << law << " tilt " << tilt;
+      ASSERT_EQ(ev2.sites.size(), ev.sites.size());
+      for (std::size_t i = 0; i < ev.sites.size(); ++i) {
+        EXPECT_EQ(ev2.sites[i].normal_force, ev.sites[i].normal_force);
+        EXPECT_EQ(ev2.sites[i].friction_force, ev.sites[i].friction_force);
+        EXPECT_EQ(ev2.sites[i].penetration, ev.sites[i].penetration);
+      }
+      EXPECT_EQ(ev2.q_ddot, ev.q_ddot);
+      EXPECT_EQ(ev2.kinetic_energy, ev.kinetic_energy);
+      EXPECT_EQ(ev2.driving_torque, ev.driving_torque);
+      mechanism::State f3, w3;
+      system.rhs_and_error_weights(1e-3, x, f3, w3);
+      EXPECT_EQ(f3, f);
+      EXPECT_EQ(w3, w);
+    }
+  }
 }
 
 TEST(ErrorWeights, NoBristlesAllOnes) {
