@@ -175,12 +175,12 @@ class SliderCrank {
   void compute(double t, const State& x, Result& r, bool jets_only = false) const;
   // The seed's topology (clearance only in the slider-guide joint) in closed form.
   void compute_seed(double t, const State& x, Result& r) const;
-  // The slider's contact sites (the first slider_sites_ sites) at the slider's pose (x, y, angle)
-  // and its rates: fills their SiteEvaluations, adds their force and moment about the slider's
-  // centre to load, and returns the corner penetrations (TL, TR, BL, BR).
   // dx/dt from an evaluation at (t, x), and the error weights' zeros (bristles of open sites).
   void derivatives_of(const Result& r, const State& x, State& dxdt) const;
   void weights_of(const Result& r, State& weights) const;
+  // The slider's contact sites (the first slider_sites_ sites) at the slider's pose (x, y, angle)
+  // and its rates: fills their SiteEvaluations, adds their force and moment about the slider's
+  // centre to load, and returns the corner penetrations (TL, TR, BL, BR).
   void slider_contacts(const double pose[3], const double rate[3], const State& x, Result& r, double load[3],
                        double corner_pen[4]) const;
   // A revolute clearance joint, named by position rather than by pointer so that a copy of the
