@@ -17,15 +17,7 @@ PERIODS=${PERIODS:-1000}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-ks() {  # FILE_A FILE_B COLUMN: the two-sample KS distance of a column (revolutions after 10)
-  awk -v c="$3" '!/^#/ && $1 > 10 {print $c}' "$1" | sort -g > "$work/a"
-  awk -v c="$3" '!/^#/ && $1 > 10 {print $c}' "$2" | sort -g > "$work/b"
-  awk 'NR == FNR {a[++na] = $1; next} {b[++nb] = $1}
-       END {i = j = 1; d = 0
-            while (i <= na && j <= nb) { if (a[i] <= b[j]) i++; else j++
-              x = (i - 1) / na - (j - 1) / nb; if (x < 0) x = -x; if (x > d) d = x }
-            printf "%.3f", d}' "$work/a" "$work/b"
-}
+source scripts/ks_distance.sh  # ks FILE_A FILE_B COLUMN
 
 duration=$(awk -v p="$PERIODS" 'BEGIN {printf "%.10g", (p + 10) * 60 / 5000}')
 common=(simulate -q "${SCENE_SETS[@]}" --set "joint.slider.clearance=$CLEARANCE" --set "run.duration=$duration"
