@@ -5,11 +5,11 @@
 # height over the last 500, and the mutual-information delay, Cao's E1/E2 and D2 of its last 5
 # periods. About a minute on 2 cores.
 #
-# Two settings differ from the scene as printed, both measured (docs/reproduction.md, docs/study.md):
-# LuGre's sigma1 fades with the sliding speed (the printed constant sigma1 = 400 N s/m pushes
-# the slider 0.3 mm into a steel guide, and no adaptive integrator gets through it), and
-# Dormand-Prince runs at rtol 1e-3 with steps up to 1e-4 s (the cheapest setting that keeps the
-# distribution of the stroboscopic samples). Extra arguments go to `study sweep`.
+# The built-in scene reads the seed's slider joint as the physics audit of issue 12 decided (line
+# contact, Eq. 11 with exponent 1, the normalised LuGre with sigma1 fading: docs/mechanism/scene.md).
+# One setting differs from it, measured (docs/mechanism/performance.md): Dormand-Prince at rtol 1e-3
+# with steps up to 1e-4 s instead of RK4 at 1e-6 s, a setting that keeps the distribution of the
+# stroboscopic samples. Extra arguments go to `study sweep`.
 # Writes build/demo/ (the result directory, docs/study.md) with four figures, then prints the
 # analysis of every tenth clearance.
 set -euo pipefail
@@ -20,7 +20,7 @@ cmake --build build -j"$(nproc 2>/dev/null || echo 2)" --target study_cli > /dev
 out=build/demo
 rm -rf "$out"
 # Exit 5 (some points' simulations did not complete) still assembles the tables; they say which.
-build/study/study sweep --set joint.slider.friction.sigma1_velocity=1e-3 \
+build/study/study sweep \
   --set 'integrator.method="dopri5"' --set integrator.relative_tolerance=1e-3 --set integrator.max_step=1e-4 \
   --axis joint.slider.clearance=1e-5:6e-4:120 --periods 1000 --keep 500 --analysis -o "$out" "$@" || [[ $? == 5 ]]
 mm=(--x-scale 1e3 --x-label 'clearance c_t (mm)')

@@ -116,7 +116,7 @@ void visit_contact(Visitor& v, const std::string& p, ContactLawParameters& c) {
   v.choice(p + "law", c.law, "normal contact law (force K d^n (1 + chi d_rate / d_rate_impact))");
   v.number(p + "restitution", c.restitution, Rule::restitution,
            "coefficient of restitution c_e (seed Eq. 10 leaves it open; Flores' benchmarks use 0.9)");
-  v.number(p + "exponent", c.exponent, Rule::positive, "n of seed Eq. 10 (1.5 for metal on metal)");
+  v.number(p + "exponent", c.exponent, Rule::positive, "n of seed Eq. 10 (Hertz's 1.5 for the journals; 1 for the slider, whose Eq. 11 stiffness is in N/m)");
   v.number(p + "velocity_floor", c.velocity_floor, Rule::positive,
            "m/s; smallest latched impact velocity (keeps the damping finite at grazing contact)");
 }
@@ -135,7 +135,7 @@ void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f, 
   v.number(p + "sigma1", f.sigma1, Rule::non_negative,
            "LuGre bristle damping (N s/m absolute form, s/m normalised form)");
   v.number(p + "sigma1_velocity", f.sigma1_velocity, Rule::non_negative,
-           "m/s; sigma1 fades as exp(-(v/this)^2) (Canudas de Wit 2003); 0: constant, as the seed");
+           "m/s; sigma1 fades as exp(-(v/this)^2) (Canudas de Wit 2003); 0: constant, as the seed prints");
   v.number(p + "sigma2", f.sigma2, Rule::non_negative, "LuGre viscous coefficient (same units as sigma1)");
   v.number(p + "ambrosio_v0", f.ambrosio_v0, Rule::positive, "m/s; Ambrosio's law: no friction below");
   v.number(p + "ambrosio_v1", f.ambrosio_v1, Rule::positive, "m/s; Ambrosio's law: full friction above");
@@ -194,8 +194,8 @@ void visit_fields(Visitor& v, Scene& s) {
   v.number(t + "clearance", s.slider_guide.clearance, Rule::positive,
            "m, gap per side: guide height = slider height + 2 clearance");
   v.choice(t + "model", s.slider_guide.model,
-           "face (seed Eq. 18-19: one force per surface at the contact centroid), corners (Flores 2008) or line "
-           "(a pressure along each face: conserves energy at any tilt)");
+           "line (a pressure along each face: conserves energy at any tilt), face (seed Eq. 18-19: one force per "
+           "surface at the contact centroid; not conservative once tilted) or corners (Flores 2008)");
   v.choice(t + "rotation", s.slider_guide.rotation,
            "free (the seed: the slider's angle is a coordinate) or locked (an ideal anti-rotation constraint keeps it "
            "level: one coordinate fewer)");
@@ -535,7 +535,10 @@ void check_run_size(const Scene& s) {
 std::string_view default_scene_toml() {
   static const std::string text =
       "# The seed paper's slider-crank (Tables 1 and 2) with a translational clearance joint.\n"
-      "# Keys the paper leaves open carry our choice; docs/mechanism/scene.md says why.\n\n" +
+      "# Keys the paper leaves open carry our choice; docs/mechanism/scene.md says why. The slider joint\n"
+      "# uses the reading that passes the physics audit (line contact, exponent 1, normalised LuGre with\n"
+      "# sigma1 fading); the printed reading is model = \"face\", exponent = 1.5, law = \"lugre_absolute\",\n"
+      "# sigma1_velocity = 0.\n\n" +
       write_scene(Scene{}, true);
   return text;
 }

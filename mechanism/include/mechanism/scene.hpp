@@ -85,13 +85,27 @@ enum class SliderStiffness { contact_length, flat_face, given };
 struct TranslationalJoint {
   JointKind kind = JointKind::clearance;
   double clearance = 0.5e-3;  // gap per side: guide height = slider height + 2 clearance
-  SliderContactModel model = SliderContactModel::face;
+  // The built-in reading of the seed's slider joint is the one that passes the physics audit
+  // (issue 12; docs/mechanism/scene.md): a line contact (conserves energy from any tilt), Eq. 11
+  // with exponent 1 (its stiffness is in N/m), and the normalised LuGre of Eqs. 14-15 with sigma1
+  // fading (bounded by mu F_N). The seed's printed reading is `model = "face"`, `exponent = 1.5`,
+  // `law = "lugre_absolute"`, `sigma1_velocity = 0`.
+  SliderContactModel model = SliderContactModel::line;
   SliderRotation rotation = SliderRotation::free;
   SliderStiffness stiffness_model = SliderStiffness::contact_length;
   double stiffness = 1e10;  // used only when stiffness_model = given
   Material guide;
-  ContactLawParameters contact;
-  FrictionLawParameters friction;
+  ContactLawParameters contact = [] {
+    ContactLawParameters c;
+    c.exponent = 1.0;
+    return c;
+  }();
+  FrictionLawParameters friction = [] {
+    FrictionLawParameters f;
+    f.law = FrictionLaw::lugre_normalised;
+    f.sigma1_velocity = 1e-3;
+    return f;
+  }();
   // LuGre only: the bristle deflection relaxes toward its steady value no faster than this (s).
   // The true rate sigma0 |v| / g(v) grows without bound as the normal force vanishes at contact
   // onset and release; an explicit integrator is stable on the bristle state only with

@@ -143,8 +143,10 @@ TEST(Scene, AcceptsEveryLawByItsOwnName) {
 }
 
 TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
-  // The seed prints mu_s = 0.1 < mu_k = 0.11 and a constant sigma1.
-  EXPECT_EQ(scene_warnings(read_scene("")).size(), 2u);
+  // The seed prints mu_s = 0.1 < mu_k = 0.11 (kept in the built-in scene, so it warns) and a
+  // constant sigma1 (the built-in scene fades it since issue 12; set back to 0 it warns too).
+  EXPECT_EQ(scene_warnings(read_scene("")).size(), 1u);
+  EXPECT_EQ(scene_warnings(read_scene("", {"joint.slider.friction.sigma1_velocity=0"})).size(), 2u);
   EXPECT_TRUE(scene_warnings(read_scene("", {"joint.slider.friction.static_coefficient=0.12",
                                              "joint.slider.friction.sigma1_velocity=1e-3"}))
                   .empty());
