@@ -9,6 +9,7 @@
 # Usage: scripts/measure_contact_energy.sh [build-dir]     Environment: DURATION (1.2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 duration=${DURATION:-1.2}
 mech="$build/mechanism/mechanism"
@@ -19,7 +20,8 @@ echo "| model | stiffness | contact-free samples | max abs W_contact there (J) |
 echo "|---|---|---|---|---|"
 for model in face corners line; do
   for stiffness in contact_length flat_face; do
-    "$mech" simulate -q --set joint.slider.model="$model" --set joint.slider.stiffness_model="$stiffness" \
+    # shellcheck disable=SC2086  # the printed reading is words
+    "$mech" simulate -q $printed_reading --set joint.slider.model="$model" --set joint.slider.stiffness_model="$stiffness" \
       --set joint.slider.contact.restitution=1 --set joint.slider.friction.law=none \
       --set initial.slider_angle=0.01 --set initial.slider_rate=20 --set run.duration="$duration" \
       --set run.output_interval=1e-5 --signals t,work_contact,slider_penetration -o "$tmp/run.tsv"

@@ -9,6 +9,7 @@
 # Usage: scripts/measure_friction_bound.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 mech="$build/mechanism/mechanism"
 [[ -x $mech ]] || { echo "no $mech: build first (cmake --build $build)" >&2; exit 2; }
@@ -16,7 +17,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 f=joint.slider.friction
 variants=(
-  "lugre_absolute, sigma1 = 400 (the built-in scene)|"
+  "lugre_absolute, sigma1 = 400 (as printed)|"
   "lugre_absolute, sigma1 fading (v_d = 1e-3)|--set $f.sigma1_velocity=1e-3"
   "lugre_absolute, sigma1 = 0|--set $f.sigma1=0"
   "lugre_normalised, sigma1 = 400|--set $f.law=lugre_normalised"
@@ -28,7 +29,7 @@ echo "| friction | contact samples | share with r > 1.01 | 99th percentile of r 
 echo "|---|---|---|---|---|---|"
 for v in "${variants[@]}"; do
   name=${v%%|*}
-  read -r -a sets <<< "${v#*|}"
+  read -r -a sets <<< "$printed_reading ${v#*|}"
   status=$("$mech" simulate -q "${sets[@]}" --set run.transient=0.06 --set run.duration=0.12 \
     --set run.output_interval=1e-6 --signals t,slider_normal_upper,slider_normal_lower,slider_friction \
     -o "$tmp/run.tsv" --json | sed -n 's/.*"status": *"\([a-z_]*\)".*/\1/p' | head -1)

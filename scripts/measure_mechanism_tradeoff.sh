@@ -18,6 +18,7 @@
 #   fading above 1 mm/s, Canudas de Wit 2003), coulomb (Coulomb friction), frictionless.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 m="$build/mechanism/mechanism"
 [[ -x $m ]] || { echo "build the mechanism command first: cmake --build $build --target mechanism_cli" >&2; exit 2; }
@@ -29,8 +30,9 @@ clearances=${CLEARANCES:-"0.5e-3 0.1e-3"}
 limit=${LIMIT:-300}
 variants=${VARIANTS:-"seed sigma1_fading"}
 
-# variant name -> its --set arguments
-variant_args() {
+# variant name -> its --set arguments, from the printed reading
+variant_args() { echo "$printed_reading $(variant_sets "$1")"; }
+variant_sets() {
   case $1 in
     seed) ;;
     sigma1_fading) echo "--set joint.slider.friction.sigma1_velocity=1e-3" ;;

@@ -7,6 +7,7 @@
 # Environment: PERIODS (200) periods averaged in the base runs; LONG (800) in the length check.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 m="$build/mechanism/mechanism"
 [[ -x $m ]] || { echo "build the mechanism command first: cmake --build $build --target mechanism_cli" >&2; exit 2; }
@@ -15,8 +16,9 @@ periods=${PERIODS:-200}
 long=${LONG:-800}
 out=docs/mechanism/lyapunov-convergence.md
 
-# The scene's readings (docs/mechanism/contact-and-friction.md).
-reading_args() {
+# The scene's readings (docs/mechanism/contact-and-friction.md), each from the printed one.
+reading_args() { echo "$printed_reading $(reading_sets "$1")"; }
+reading_sets() {
   case $1 in
     printed) ;;
     sigma1_fading) echo "--set joint.slider.friction.sigma1_velocity=1e-3" ;;
@@ -26,7 +28,7 @@ reading_args() {
     frictionless_tilted) echo "--set joint.slider.friction.law=none --set initial.slider_angle=0.01 --set initial.slider_rate=20" ;;
     printed_locked) echo "--set joint.slider.rotation=locked" ;;
     sigma1_fading_locked) echo "--set joint.slider.rotation=locked --set joint.slider.friction.sigma1_velocity=1e-3" ;;
-    candidate_locked) echo "--set joint.slider.rotation=locked $(reading_args candidate)" ;;
+    candidate_locked) echo "--set joint.slider.rotation=locked $(reading_sets candidate)" ;;
     frictionless_locked) echo "--set joint.slider.rotation=locked --set joint.slider.friction.law=none" ;;
     *) echo "unknown reading $1" >&2; exit 2 ;;
   esac

@@ -10,6 +10,7 @@
 #   dropped first), MAX_M (10), THREADS (2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 study="$build/study/study"
 chaos="$build/chaos/chaos"
@@ -27,7 +28,9 @@ trap 'rm -rf "$work"' EXIT
 out=docs/mechanism/section-d2.md
 
 variants=(printed printed_locked)
-variant_args() {
+# Each variant starts from the printed reading.
+variant_args() { echo "$printed_reading $(variant_sets "$1")"; }
+variant_sets() {
   case $1 in
     printed) ;;
     printed_locked) echo "--set joint.slider.rotation=locked" ;;

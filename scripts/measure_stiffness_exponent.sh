@@ -8,6 +8,7 @@
 # Environment: CLEARANCES ("0.01e-3 0.05e-3 0.1e-3 0.5e-3"), LAWS ("lugre_absolute none")
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 mech="$build/mechanism/mechanism"
 [[ -x $mech ]] || { echo "no $mech: build first (cmake --build $build)" >&2; exit 2; }
@@ -18,7 +19,8 @@ echo "|---|---|---|---|---|---|"
 for law in ${LAWS:-lugre_absolute none}; do
   for c in ${CLEARANCES:-0.01e-3 0.05e-3 0.1e-3 0.5e-3}; do
     for n in 1 1.5; do
-      "$mech" simulate -q --set joint.slider.clearance="$c" --set joint.slider.contact.exponent="$n" \
+      # shellcheck disable=SC2086  # the printed reading is words
+      "$mech" simulate -q $printed_reading --set joint.slider.clearance="$c" --set joint.slider.contact.exponent="$n" \
         --set joint.slider.friction.law="$law" --set run.transient=0.06 --set run.duration=0.12 \
         --set run.output_interval=1e-5 --signals t,slider_y,slider_penetration -o "$tmp/run.tsv"
       awk -v c="$c" -v n="$n" -v law="$law" '

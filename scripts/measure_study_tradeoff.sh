@@ -10,10 +10,11 @@
 # often than 5% of the time by runs that agree).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 M=${MECHANISM:-build/mechanism/mechanism}
 CLEARANCES=${CLEARANCES:-5e-4 1e-4}
 SETTINGS=${SETTINGS:-1e-4:1e-5 1e-4:3e-5 1e-4:5e-5 1e-4:1e-4 1e-3:3e-5 1e-3:5e-5 1e-3:1e-4}
-SCENE_SETS=(${SCENE_SETS:---set joint.slider.friction.sigma1_velocity=1e-3})
+SCENE_SETS=(${SCENE_SETS:-$printed_reading --set joint.slider.friction.sigma1_velocity=1e-3})
 PERIODS=${PERIODS:-1000}
 PHASES=${PHASES:-0}
 work=$(mktemp -d)

@@ -8,6 +8,7 @@
 #   RUN (50: revolutions simulated before the exponents start), THREADS (2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/printed_reading.sh
 build=${1:-build}
 study="$build/study/study"
 [[ -x $study ]] || { echo "build the study command first: cmake --build $build --target study_cli" >&2; exit 2; }
@@ -22,7 +23,9 @@ out=docs/mechanism/lyapunov-sweep.md
 png=docs/mechanism/lyapunov-sweep.png
 
 variants=(printed printed_locked sigma1_fading sigma1_fading_locked)
-variant_args() {
+# Each variant starts from the printed reading.
+variant_args() { echo "$printed_reading $(variant_sets "$1")"; }
+variant_sets() {
   case $1 in
     printed) ;;
     printed_locked) echo "--set joint.slider.rotation=locked" ;;
@@ -80,7 +83,7 @@ EOF
   echo "![lambda_1 and D_KY against the clearance](lyapunov-sweep.png)"
   echo
   for v in "${variants[@]}"; do
-    sets=$(variant_args "$v" | sed 's/--set //g')
+    sets=$(variant_sets "$v" | sed 's/--set //g')
     echo "## $v (${sets:-the scene as printed}; ${wall[$v]} s on $threads threads)"
     echo
     echo "| clearance (mm) | status | λ1 | λ2 | λ3 | λ4 | D_KY |"
