@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite from a clean checkout: install dependencies, build in Release, run every
 # tier (unit, property, reference, slow, command line), then rebuild the unit and property tiers
-# with AddressSanitizer + UndefinedBehaviorSanitizer and run them again.
+# with AddressSanitizer + UndefinedBehaviorSanitizer and run them again, with the hostile-input
+# command-line tests (the output tests of the commands run in Release only: tests/CMakeLists.txt).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)

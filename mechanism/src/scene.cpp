@@ -116,7 +116,8 @@ void visit_contact(Visitor& v, const std::string& p, ContactLawParameters& c) {
   v.choice(p + "law", c.law, "normal contact law (force K d^n (1 + chi d_rate / d_rate_impact))");
   v.number(p + "restitution", c.restitution, Rule::restitution,
            "coefficient of restitution c_e (seed Eq. 10 leaves it open; Flores' benchmarks use 0.9)");
-  v.number(p + "exponent", c.exponent, Rule::positive, "n of seed Eq. 10 (Hertz's 1.5 for the journals; 1 for the slider, whose Eq. 11 stiffness is in N/m)");
+  v.number(p + "exponent", c.exponent, Rule::positive,
+           "n of seed Eq. 10 (Hertz's 1.5 for the journals; 1 for the slider, whose Eq. 11 stiffness is in N/m)");
   v.number(p + "velocity_floor", c.velocity_floor, Rule::positive,
            "m/s; smallest latched impact velocity (keeps the damping finite at grazing contact)");
 }

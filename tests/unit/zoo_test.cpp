@@ -198,8 +198,19 @@ TEST(Zoo, DelaySchemeIsTheGeneratorsScheme) {
   }
 }
 
+// Under AddressSanitizer the two whole-catalogue integrations below run about 20 times slower than in
+// Release (124 s and 116 s of CI's sanitizer tier): that build checks every fourth system, the
+// Release build every one.
+#ifdef __SANITIZE_ADDRESS__
+constexpr std::size_t catalogue_stride = 4;
+#else
+constexpr std::size_t catalogue_stride = 1;
+#endif
+
 TEST(Zoo, EverySystemIsBoundedAndChaoticAtItsDefaults) {
-  for (const auto& e : chaos::zoo_systems()) {
+  const auto& systems = chaos::zoo_systems();
+  for (std::size_t i = 0; i < systems.size(); i += catalogue_stride) {
+    const auto& e = systems[i];
     SCOPED_TRACE(e.name);
     chaos::Trajectory t;
     ASSERT_NO_THROW(t = chaos::zoo_trajectory(e, 2000));  // refuses an escaping orbit
@@ -216,7 +227,9 @@ TEST(Zoo, EverySystemIsBoundedAndChaoticAtItsDefaults) {
 TEST(Zoo, SumOfExponentsObeysTheExactIdentities) {
   // Maps: sum = mean ln|det J| exactly (the QR factors multiply to the Jacobian product); flows:
   // sum = time average of trace J up to the RK4 error (the tangent map is the RK4 step's Jacobian).
-  for (const auto& e : chaos::zoo_systems()) {
+  const auto& systems = chaos::zoo_systems();
+  for (std::size_t i = 0; i < systems.size(); i += catalogue_stride) {
+    const auto& e = systems[i];
     if (e.delay || e.name == "logistic") continue;
     SCOPED_TRACE(e.name);
     const auto o = short_run(e);
