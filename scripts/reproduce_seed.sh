@@ -17,7 +17,16 @@ RUNS=${RUNS:-build/reproduction-runs}
 FIGURES=${FIGURES:-docs/reproduction}
 THREADS=${THREADS:-$(nproc 2>/dev/null || echo 2)}
 RTOL=${RTOL:-1e-4}
-SCENE_SETS=(${SCENE_SETS:-})  # extra --set arguments for every run, e.g. "--set joint.slider.friction.sigma1_velocity=1e-3"
+SCENE_SETS=(${SCENE_SETS:-})  # extra --set arguments for every run, e.g. "--set joint.slider.rotation=locked"
+# READING=printed starts every run from the seed's slider joint as printed (scripts/printed_reading.sh)
+# instead of the built-in reading; SCENE_SETS still come after it.
+if [[ ${READING:-built_in} == printed ]]; then
+  source scripts/printed_reading.sh
+  SCENE_SETS=($printed_reading "${SCENE_SETS[@]}")
+elif [[ ${READING:-built_in} != built_in ]]; then
+  echo "READING must be built_in or printed (got '$READING')" >&2
+  exit 2
+fi
 
 if [[ ${SIZE:-docs} == seed ]]; then
   : "${FIG4_CLEARANCES:=120}" "${FIG4_PERIODS:=1000}" "${FIG5_SPEEDS:=150}" "${FIG5_PERIODS:=1000}"
