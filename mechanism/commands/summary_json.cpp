@@ -14,6 +14,7 @@ nlohmann::ordered_json simulation_summary_json(const SimulationSummary& s, const
   j["wall_seconds"] = s.wall_seconds;
   j["max_penetration"] = s.max_penetration;
   j["contact_events"] = s.contact_events;
+  j["located_switches"] = s.located_switches;
   j["energy_balance_error"] = s.energy_balance_error;
   j["energy_balance_relative"] = s.energy_balance_relative;
   j["samples"] = s.samples;

@@ -221,6 +221,9 @@ void visit_fields(Visitor& v, Scene& s) {
            "s; dopri5 reports step_underflow when it needs a smaller step");
   v.number("integrator.max_steps", s.integrator.max_steps, Rule::positive,
            "steps (accepted and rejected) before a run stops with step_limit");
+  v.flag("integrator.locate_switches", s.integrator.locate_switches,
+         "end steps where a contact opens or closes (located on the step's dense output), so no step "
+         "integrates across the force's switch");
   v.number("run.duration", s.run.duration, Rule::positive, "s, simulated after the transient");
   v.number("run.transient", s.run.transient, Rule::non_negative, "s, simulated and not written");
   v.number("run.output_interval", s.run.output_interval, Rule::non_negative,

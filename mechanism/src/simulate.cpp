@@ -86,19 +86,50 @@ class HybridLoop {
     energy0_ = ev_.kinetic_energy + ev_.potential_energy;
     penetration_prev_.resize(sys_.site_count());
     for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
+    sys_.switching_functions(ev_, switch_prev_);
     emit_due(0.0, x, true);
     State x0 = x;
     sys_.commit(ev_, onset_rate_, x0);
   }
 
-  // After an accepted step from t0 to t1 (x is the state at t1).
-  void after_step(double t0, double t1, State& x) {
-    emit_due(t1, x, false);
+  // The evaluation at the end (t1, x) of the step just taken, which find_switch and after_step
+  // read: the adaptive stepper's record when it made one there, else one evaluation.
+  void evaluate_end(double t1, const State& x) {
     const Evaluation* recorded = rec_ ? rec_->recorded(t1, x) : nullptr;
     if (recorded)
       ev_ = *recorded;
     else
       sys_.evaluate(t1, x, ev_);
+  }
+
+  // After evaluate_end: whether a switching function (SliderCrank::switching_functions) changed
+  // sign inside the step [t0, t1] just taken, and then tc, the earliest such zero, located on the
+  // step's dense output to a millionth of the step (locate_crossing's `after` end: the first time
+  // at which the function has its new sign).
+  bool find_switch(double t0, double t1, double& tc) {
+    sys_.switching_functions(ev_, switch_now_);
+    bool found = false;
+    tc = t1;
+    for (std::size_t i = 0; i < switch_now_.size(); ++i) {
+      if ((switch_prev_[i] > 0.0) == (switch_now_[i] > 0.0)) continue;
+      auto g = [&](double t) {
+        stepper_.interpolate(t, scratch_);
+        sys_.evaluate(t, scratch_, probe_);
+        sys_.switching_functions(probe_, switch_probe_);
+        return switch_probe_[i];
+      };
+      const double tol = std::max(1e-15, 1e-6 * (t1 - t0));
+      const double ti = locate_crossing(g, t0, t1, switch_prev_[i], switch_now_[i], tol);
+      if (ti < tc) tc = ti;
+      found = true;
+    }
+    return found;
+  }
+
+  // After an accepted step from t0 to t1 (x is the state at t1, evaluate_end called there).
+  void after_step(double t0, double t1, State& x) {
+    emit_due(t1, x, false);
+    sys_.switching_functions(ev_, switch_prev_);
     const int n = sys_.coordinate_count();
     const double balance =
         std::abs(ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1]);
@@ -203,6 +234,8 @@ class HybridLoop {
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
   std::vector<double> penetration_prev_, onset_rate_;
+  // Switching functions at the last accepted step end, at the step end being checked, at a probe.
+  std::vector<double> switch_prev_, switch_now_, switch_probe_;
   Evaluation ev_, probe_;
   State scratch_;
 };
@@ -271,23 +304,48 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     // ends on t_end itself: total h can round below it (2 T + T at 5000 rpm is 0.036000000000000004
     // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution (issue 16).
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
+    const bool locate = scene.integrator.locate_switches;
+    State step_start;  // the state at the start of the current piece, kept while switches are located
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {
         sum.status = SimulationStatus::step_limit;
         sum.message = at_time("the step limit was reached", t);
         break;
       }
-      const double t0 = t;
       const double t1 = k == total ? t_end : std::min(static_cast<double>(k) * h, t_end);
-      stepper.step(system, t, x, t1 - t0);
-      t = t1;
-      if (!x.allFinite()) {
+      // The grid step [t, t1], in pieces when contacts switch inside it: each piece ends at the
+      // first switch located in what is left (a piece shorter than a thousandth of the step is
+      // not split again: the switch's error there is negligible and it could not end otherwise).
+      bool finite = true;
+      for (;;) {
+        const double t0 = t;
+        if (locate) step_start = x;
+        stepper.step(system, t, x, t1 - t0);
+        t = t1;
+        if (!(finite = x.allFinite())) break;
+        loop.evaluate_end(t1, x);
+        double tc = t1;
+        if (locate && loop.find_switch(t0, t1, tc) && tc - t0 > 1e-3 * h && t1 - tc > 1e-3 * h) {
+          t = t0;
+          x = step_start;
+          stepper.step(system, t, x, tc - t0);
+          t = tc;
+          if (!(finite = x.allFinite())) break;
+          loop.evaluate_end(tc, x);
+          ++sum.steps;
+          ++sum.located_switches;
+          loop.after_step(t0, tc, x);
+          continue;
+        }
+        ++sum.steps;
+        loop.after_step(t0, t1, x);
+        break;
+      }
+      if (!finite) {
         sum.status = SimulationStatus::non_finite;
         sum.message = at_time("the state became non-finite", t);
         break;
       }
-      ++sum.steps;
-      loop.after_step(t0, t1, x);
       report_progress(t, t_end);
     }
     sum.rhs_evaluations = stepper.rhs_evaluations();
@@ -308,6 +366,8 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     double h = std::min(opt.max_step, t_end);
     // Contacts make the first steps hard to guess; start small and let the controller grow it.
     h = std::min(h, 1e-6);
+    const bool locate = scene.integrator.locate_switches;
+    State step_start;  // the state at the start of the step being tried, kept while switches are located
     while (t < t_end) {
       if (stepper.accepted_steps() + stepper.rejected_steps() >= opt.max_steps) {
         sum.status = SimulationStatus::step_limit;
@@ -318,6 +378,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       const bool last = 1.01 * h >= t_end - t;
       double trial = last ? t_end - t : h;
       const double t0 = t;
+      if (locate) step_start = x;
       const StepOutcome outcome = stepper.try_step(recorder, t, x, trial);
       if (outcome == StepOutcome::rejected) {
         h = trial;
@@ -335,6 +396,25 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       }
       if (last) t = t_end;  // land exactly on the end
       h = std::min(trial, opt.max_step);
+      loop.evaluate_end(t, x);
+      double tc = t;
+      if (locate && loop.find_switch(t0, t, tc) && tc - t0 > 1e-3 * (t - t0) && t - tc > 1e-3 * (t - t0)) {
+        // A contact switched inside the accepted step: take it again up to the switch, with one
+        // step and no error control (it is shorter than the step the controller accepted and
+        // smoother), and go on from there with the controller's proposal.
+        t = t0;
+        x = step_start;
+        stepper.invalidate();
+        recorder.forget();
+        stepper.step_fixed_to(recorder, t, x, tc);
+        if (!x.allFinite()) {
+          sum.status = SimulationStatus::non_finite;
+          sum.message = at_time("the stages became non-finite", t);
+          break;
+        }
+        loop.evaluate_end(t, x);
+        ++sum.located_switches;
+      }
       ++sum.steps;
       loop.after_step(t0, t, x);
       report_progress(t, t_end);

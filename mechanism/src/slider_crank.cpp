@@ -177,6 +177,7 @@ struct SliderCrank::Result {
   double crank_angle, conrod_angle, conrod_rate;
   double driving_torque, drive_power, contact_power, kinetic_energy, potential_energy;
   SliderConfiguration configuration;
+  std::array<double, 4> corner_penetration;
 };
 
 namespace {
@@ -404,6 +405,7 @@ void SliderCrank::compute_seed(double t, const State& x, Result& out) const {
   out.slider_velocity = {slider_vx, slider_vy, w4};
   out.slider_acceleration = {slider_ax, slider_ay, qdd1};
   out.configuration = configuration_of(corner_pen);
+  std::copy(corner_pen, corner_pen + 4, out.corner_penetration.begin());
 }
 
 template <int C, int N>
@@ -595,6 +597,7 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
   out.potential_energy = potential;
 
   out.configuration = slider_clearance_ ? configuration_of(corner_pen) : SliderConfiguration::free_flight;
+  std::copy(corner_pen, corner_pen + 4, out.corner_penetration.begin());
   for (std::size_t j = 0; j < journals_.size(); ++j) {
     switch (journals_[j].which) {
       case 0: out.eccentricity[j] = {pivot.x.value, pivot.y.value}; break;
@@ -636,6 +639,7 @@ void copy_result(const auto& r, int n, std::size_t sites, std::size_t journals, 
   out.potential_energy = r.potential_energy;
   out.sites.assign(r.sites.begin(), r.sites.begin() + static_cast<std::ptrdiff_t>(sites));
   out.configuration = r.configuration;
+  out.corner_penetration = r.corner_penetration;
   out.eccentricity.assign(r.eccentricity.begin(), r.eccentricity.begin() + static_cast<std::ptrdiff_t>(journals));
 }
 }  // namespace
@@ -708,6 +712,12 @@ void SliderCrank::set_memory(const std::vector<ContactMemory>& memory) {
     throw InvalidParameter("memory", std::to_string(memory.size()) + " sites",
                            "must have one entry per contact site (" + std::to_string(memory_.size()) + ")");
   memory_ = memory;
+}
+
+void SliderCrank::switching_functions(const Evaluation& ev, std::vector<double>& g) const {
+  g.clear();
+  if (slider_clearance_) g.insert(g.end(), ev.corner_penetration.begin(), ev.corner_penetration.end());
+  for (std::size_t i = slider_sites_; i < sites_.size(); ++i) g.push_back(ev.sites[i].penetration);
 }
 
 bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {

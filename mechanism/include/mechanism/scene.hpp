@@ -152,6 +152,11 @@ struct IntegratorSettings {
   double max_step = 1e-5;
   double min_step = 1e-14;     // below this dopri5 reports step_underflow
   double max_steps = 1e9;      // accepted + rejected steps before a run reports step_limit
+  // End a step where a contact opens or closes (a zero of SliderCrank::switching_functions, located
+  // on the step's dense output) and take the rest of the step from there. The contact forces are
+  // smooth between those zeros but not across them (with Eq. 11's exponent 1 the force's slope
+  // jumps at onset), and a step across one loses the method's order.
+  bool locate_switches = true;
 };
 
 // Refused before a run starts (read_scene, check_run_size): more simulated steps, or more

@@ -39,6 +39,9 @@ struct SimulationSummary {
   double wall_seconds = 0.0;
   double max_penetration = 0.0;  // m, deepest penetration of any contact site at a step end
   std::size_t contact_events = 0;  // contact onsets
+  // Steps ended early at a contact switch located inside them (integrator.locate_switches), each
+  // followed by the rest of the step: the extra steps, counted in `steps` too.
+  std::size_t located_switches = 0;
   // max over step ends of |E(t) - E(0) - W_drive(t) - W_contact(t)| (J), E = kinetic + gravity;
   // and the same divided by the largest kinetic energy seen, a scale-free measure.
   double energy_balance_error = 0.0;

@@ -85,6 +85,9 @@ struct Evaluation {
   double potential_energy = 0.0;    // gravity
   std::vector<SiteEvaluation> sites;
   SliderConfiguration configuration = SliderConfiguration::free_flight;
+  // Penetration of the slider's corners TL, TR, BL, BR (> 0 beyond the guide surface; 0 when the
+  // slider-guide joint is ideal).
+  std::array<double, 4> corner_penetration{};
   // Journal eccentricity (journal centre minus bearing centre) for each revolute clearance joint,
   // in the order of joint_names().
   std::vector<std::array<double, 2>> eccentricity;
@@ -147,6 +150,12 @@ class SliderCrank {
   // forget them at release and unload the bristles there (z = 0 in x). Returns true when this
   // changed the right-hand side at x (the stepper's cached first stage is then stale).
   bool commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x);
+
+  // The functions whose zeros switch a contact force on or off or change its formula: the slider's
+  // four corner penetrations (when its joint has clearance: every slider model's force is smooth
+  // between their zeros) and each journal's penetration, from an evaluation. The simulation ends
+  // its steps on these zeros (integrator.locate_switches, simulate.cpp).
+  void switching_functions(const Evaluation& ev, std::vector<double>& g) const;
 
   const std::vector<ContactMemory>& memory() const { return memory_; }
   // Replaces the memory (one entry per site, as memory() returns): how a trajectory that is
