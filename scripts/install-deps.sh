@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages the project builds with. Runs as root (or through sudo).
 set -euo pipefail
 packages=(
-  g++ cmake make pkg-config
+  g++ cmake make ninja-build pkg-config
   libeigen3-dev libfftw3-dev libboost-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libnanoflann-dev
   libgtest-dev libbenchmark-dev

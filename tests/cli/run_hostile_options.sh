@@ -5,8 +5,8 @@
 # stderr when it refuses, and no NaN in what it writes. The options are read from each command's
 # --help (CLI11 prints UINT, INT or FLOAT after a numeric option), so a new option is covered too.
 # `chaos zoo` and `chaos validate` run whole catalogues and are left out.
-# Usage: run_hostile_options.sh [SHARD COUNT]: only the commands whose place in the sorted list,
-# modulo COUNT, is SHARD (CTest runs the shards side by side); all commands without arguments.
+# Usage: run_hostile_options.sh [SHARD COUNT]: only the (command, option) pairs whose place in the
+# sorted list, modulo COUNT, is SHARD (CTest runs the shards side by side); all without arguments.
 set -u
 shard=${1:-0}
 count=${2:-1}
@@ -67,12 +67,12 @@ declare -A base=(
   [generate]="henon -l 100" [spectrum]="henon --iterations 2000"
 )
 mapfile -t commands < <(printf '%s\n' "${!base[@]}" | sort)
-for i in "${!commands[@]}"; do
-  (( i % count == shard )) || continue
-  command=${commands[$i]}
+k=0  # (command, option) pairs are dealt to the shards in turn, which balances them within a few runs
+for command in "${commands[@]}"; do
   options=$(numeric_options "$command")
   [[ -n $options ]] || fail "chaos $command --help lists no numeric option"
   while read -r names type; do
+    (( k++ % count == shard )) || continue
     option=${names##*,}
     # shellcheck disable=SC2086  # the base arguments are words
     args=$(without "$names" -- ${base[$command]})
