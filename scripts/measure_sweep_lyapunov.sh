@@ -2,7 +2,7 @@
 # Regenerates docs/mechanism/lyapunov-sweep.md and lyapunov-sweep.png: the leading Lyapunov
 # exponents and the Kaplan-Yorke dimension from the equations (study sweep --lyapunov) across the
 # seed's clearance range at 5000 rpm, with the slider's rotation free and locked, for the printed
-# friction and for sigma1 fading.
+# reading, for it with sigma1 fading, and for the built-in scene (docs/mechanism/scene.md).
 # Usage: scripts/measure_sweep_lyapunov.sh [build-dir]
 # Environment: CLEARANCES ("1e-5:6e-4:12", a study axis), PERIODS (100, averaged per point),
 #   RUN (50: revolutions simulated before the exponents start), THREADS (2).
@@ -22,15 +22,26 @@ trap 'rm -rf "$work"' EXIT
 out=docs/mechanism/lyapunov-sweep.md
 png=docs/mechanism/lyapunov-sweep.png
 
-variants=(printed printed_locked sigma1_fading sigma1_fading_locked)
-# Each variant starts from the printed reading.
-variant_args() { echo "$printed_reading $(variant_sets "$1")"; }
+variants=(printed printed_locked sigma1_fading sigma1_fading_locked built_in built_in_locked)
+# The first four start from the printed reading, the last two from the built-in scene.
+variant_args() {
+  case $1 in
+    built_in*) echo "$(variant_sets "$1")" ;;
+    *) echo "$printed_reading $(variant_sets "$1")" ;;
+  esac
+}
 variant_sets() {
   case $1 in
-    printed) ;;
-    printed_locked) echo "--set joint.slider.rotation=locked" ;;
+    printed | built_in) ;;
+    printed_locked | built_in_locked) echo "--set joint.slider.rotation=locked" ;;
     sigma1_fading) echo "--set joint.slider.friction.sigma1_velocity=1e-3" ;;
     sigma1_fading_locked) echo "--set joint.slider.friction.sigma1_velocity=1e-3 --set joint.slider.rotation=locked" ;;
+  esac
+}
+variant_title() {
+  case $1 in
+    built_in*) echo "the built-in scene${2:+, $2}" ;;
+    *) echo "the printed reading${2:+, $2}" ;;
   esac
 }
 
@@ -58,7 +69,9 @@ set logscale y
 plot "$work/printed/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "printed, rotation free", \
      "$work/printed_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "printed, rotation locked", \
      "$work/sigma1_fading/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "sigma1 fading, free", \
-     "$work/sigma1_fading_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "sigma1 fading, locked"
+     "$work/sigma1_fading_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "sigma1 fading, locked", \
+     "$work/built_in/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "built in, free", \
+     "$work/built_in_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "built in, locked"
 unset logscale y
 set title "Kaplan-Yorke dimension of the attractor"
 set ylabel "D_KY"
@@ -67,6 +80,8 @@ plot "$work/printed/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "pri
      "$work/printed_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "printed, locked", \
      "$work/sigma1_fading/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "sigma1 fading, free", \
      "$work/sigma1_fading_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "sigma1 fading, locked", \
+     "$work/built_in/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "built in, free", \
+     "$work/built_in_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "built in, locked", \
      2.24 with lines dt 2 lc rgb "black" title "the seed's D2"
 unset multiplot
 EOF
@@ -84,7 +99,7 @@ EOF
   echo
   for v in "${variants[@]}"; do
     sets=$(variant_sets "$v" | sed 's/--set //g')
-    echo "## $v (${sets:-the scene as printed}; ${wall[$v]} s on $threads threads)"
+    echo "## $v ($(variant_title "$v" "$sets"); ${wall[$v]} s on $threads threads)"
     echo
     echo "| clearance (mm) | status | λ1 | λ2 | λ3 | λ4 | D_KY |"
     echo "|---|---|---|---|---|---|---|"

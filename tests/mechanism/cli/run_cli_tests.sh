@@ -47,7 +47,7 @@ grep -q '^# clearance = 5e-04' "$work/run.tsv" || fail "the table header lacks t
 rows=$(grep -vc '^#' "$work/run.tsv")
 [[ $rows -eq 201 ]] || fail "expected 201 rows (0 to 2 ms every 10 us), got $rows"
 "$m" simulate -q --json --set run.duration=0.002 > "$work/run.json" 2> /dev/null || fail "simulate --json"
-for key in status steps rejected_steps wall_seconds max_penetration contact_events energy_balance_error; do
+for key in status steps rejected_steps wall_seconds max_penetration contact_events located_switches energy_balance_error; do
   jq -e "has(\"$key\")" "$work/run.json" > /dev/null || fail "JSON summary lacks $key"
 done
 [[ $(jq -r .status "$work/run.json") == completed ]] || fail "status is not completed"
