@@ -5,7 +5,8 @@
 # reading, for it with sigma1 fading, and for the built-in scene (docs/mechanism/scene.md).
 # Usage: scripts/measure_sweep_lyapunov.sh [build-dir]
 # Environment: CLEARANCES ("1e-5:6e-4:12", a study axis), PERIODS (100, averaged per point),
-#   RUN (50: revolutions simulated before the exponents start), THREADS (2).
+#   RUN (50: revolutions simulated before the exponents start), THREADS (2), VARIANTS (default all
+#   six, in the order below), OUT (docs/mechanism/lyapunov-sweep.md; the figure is OUT with .png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/printed_reading.sh
@@ -19,10 +20,10 @@ run=${RUN:-50}
 threads=${THREADS:-2}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-out=docs/mechanism/lyapunov-sweep.md
-png=docs/mechanism/lyapunov-sweep.png
+out=${OUT:-docs/mechanism/lyapunov-sweep.md}
+png=${out%.md}.png
 
-variants=(printed printed_locked sigma1_fading sigma1_fading_locked built_in built_in_locked)
+read -r -a variants <<<"${VARIANTS:-printed printed_locked sigma1_fading sigma1_fading_locked built_in built_in_locked}"
 # The first four start from the printed reading, the last two from the built-in scene.
 variant_args() {
   case $1 in
@@ -55,6 +56,15 @@ for v in "${variants[@]}"; do
 done
 
 # columns of lyapunov.tsv: point, clearance, status, periods, lambda_1..4, se_1..4, kaplan_yorke, ...
+# The gnuplot clauses of one curve per variant, for column $1.
+curves() {
+  local column=$1 v clauses=()
+  for v in "${variants[@]}"; do
+    clauses+=("\"$work/$v/lyapunov.tsv\" using (\$2*1e3):$column with linespoints title \"${v//_/ }\"")
+  done
+  local IFS=,
+  echo "${clauses[*]}"
+}
 gnuplot <<EOF
 set terminal pngcairo size 1100,450
 set output "$png"
@@ -66,36 +76,27 @@ set datafile missing "-"
 set title "largest Lyapunov exponent from the equations, 5000 rpm"
 set ylabel "lambda_1 (1/s)"
 set logscale y
-plot "$work/printed/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "printed, rotation free", \
-     "$work/printed_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "printed, rotation locked", \
-     "$work/sigma1_fading/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "sigma1 fading, free", \
-     "$work/sigma1_fading_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "sigma1 fading, locked", \
-     "$work/built_in/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "built in, free", \
-     "$work/built_in_locked/lyapunov.tsv" using (\$2*1e3):5 with linespoints title "built in, locked"
+plot $(curves 5)
 unset logscale y
 set title "Kaplan-Yorke dimension of the attractor"
 set ylabel "D_KY"
 set yrange [0:*]
-plot "$work/printed/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "printed, free", \
-     "$work/printed_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "printed, locked", \
-     "$work/sigma1_fading/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "sigma1 fading, free", \
-     "$work/sigma1_fading_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "sigma1 fading, locked", \
-     "$work/built_in/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "built in, free", \
-     "$work/built_in_locked/lyapunov.tsv" using (\$2*1e3):13 with linespoints title "built in, locked", \
-     2.24 with lines dt 2 lc rgb "black" title "the seed's D2"
+plot $(curves 13), 2.24 with lines dt 2 lc rgb "black" title "the seed's D2"
 unset multiplot
 EOF
 
 {
   echo "# Lyapunov exponents across the clearance range"
   echo
-  echo "Made by \`scripts/measure_sweep_lyapunov.sh\` on $(date -u +%Y-%m-%d) ($(nproc) cores, Release): \`study sweep"
+  settings=""
+  for name in CLEARANCES VARIANTS OUT; do [[ -n ${!name:-} ]] && settings+="$name=\"${!name}\" "; done
+  echo "Made by \`${settings}scripts/measure_sweep_lyapunov.sh\` on $(date -u +%Y-%m-%d) ($(nproc) cores, Release): \`study sweep"
   echo "--lyapunov\` at 5000 rpm over joint.slider.clearance = $clearances m, each point simulated for $run"
   echo "revolutions from the seed's Eq. 29, then its 4 leading exponents averaged over $periods periods"
   echo "(after 20 that align the directions). Method and validation: [lyapunov.md](lyapunov.md). λ in 1/s with"
   echo "standard errors; D_KY is the attractor's; \`-\`: none (the 4 exponents do not bound it, or the run failed)."
   echo
-  echo "![lambda_1 and D_KY against the clearance](lyapunov-sweep.png)"
+  echo "![lambda_1 and D_KY against the clearance]($(basename "$png"))"
   echo
   for v in "${variants[@]}"; do
     sets=$(variant_sets "$v" | sed 's/--set //g')
