@@ -27,7 +27,7 @@ read -r -a variants <<<"${VARIANTS:-printed printed_locked sigma1_fading sigma1_
 # The first four start from the printed reading, the last two from the built-in scene.
 variant_args() {
   case $1 in
-    built_in*) echo "$(variant_sets "$1")" ;;
+    built_in*) variant_sets "$1" ;;
     *) echo "$printed_reading $(variant_sets "$1")" ;;
   esac
 }

@@ -75,6 +75,7 @@ class HybridLoop {
     // Time-series rows at transient + k dt; revolutions at whole periods from the transient on.
     next_out_ = 0;
     next_rev_ = static_cast<std::size_t>(std::ceil(transient_ / period_ - 1e-9));
+    locate_ = s.integrator.locate_switches;
     onset_rate_.assign(sys_.site_count(), std::numeric_limits<double>::quiet_NaN());
   }
 
@@ -86,28 +87,31 @@ class HybridLoop {
     energy0_ = ev_.kinetic_energy + ev_.potential_energy;
     penetration_prev_.resize(sys_.site_count());
     for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
-    sys_.switching_functions(ev_, switch_prev_);
+    if (locate_) sys_.switching_functions(ev_, switch_prev_);
     emit_due(0.0, x, true);
     State x0 = x;
     sys_.commit(ev_, onset_rate_, x0);
   }
 
   // The evaluation at the end (t1, x) of the step just taken, which find_switch and after_step
-  // read: the adaptive stepper's record when it made one there, else one evaluation.
+  // read: the adaptive stepper's record when it made one there, else one evaluation. With
+  // integrator.locate_switches, also the switching functions there.
   void evaluate_end(double t1, const State& x) {
     const Evaluation* recorded = rec_ ? rec_->recorded(t1, x) : nullptr;
     if (recorded)
       ev_ = *recorded;
     else
       sys_.evaluate(t1, x, ev_);
+    if (locate_) sys_.switching_functions(ev_, switch_now_);
   }
 
-  // After evaluate_end: whether a switching function (SliderCrank::switching_functions) changed
-  // sign inside the step [t0, t1] just taken, and then tc, the earliest such zero, located on the
-  // step's dense output to a millionth of the step (locate_crossing's `after` end: the first time
-  // at which the function has its new sign).
-  bool find_switch(double t0, double t1, double& tc) {
-    sys_.switching_functions(ev_, switch_now_);
+  // After evaluate_end: whether the step [t0, t1] just taken should end earlier, at tc, the earliest
+  // zero of a switching function (SliderCrank::switching_functions) that changed sign inside it,
+  // located on the step's dense output to a millionth of the step (locate_crossing's `after` end:
+  // the first time at which the function has its new sign). False without
+  // integrator.locate_switches, and when that zero lies within `margin` of either end of the step.
+  bool find_switch(double t0, double t1, double margin, double& tc) {
+    if (!locate_) return false;
     bool found = false;
     tc = t1;
     for (std::size_t i = 0; i < switch_now_.size(); ++i) {
@@ -123,13 +127,13 @@ class HybridLoop {
       if (ti < tc) tc = ti;
       found = true;
     }
-    return found;
+    return found && tc - t0 > margin && t1 - tc > margin;
   }
 
   // After an accepted step from t0 to t1 (x is the state at t1, evaluate_end called there).
   void after_step(double t0, double t1, State& x) {
     emit_due(t1, x, false);
-    sys_.switching_functions(ev_, switch_prev_);
+    if (locate_) switch_prev_.swap(switch_now_);  // evaluate_end's, at this step end
     const int n = sys_.coordinate_count();
     const double balance =
         std::abs(ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1]);
@@ -230,6 +234,7 @@ class HybridLoop {
   const SimulationObserver& obs_;
   SimulationSummary& sum_;
   RecordingSystem* rec_;
+  bool locate_ = false;  // integrator.locate_switches
   double t_end_ = 0, transient_ = 0, out_dt_ = 0, period_ = 0;
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
@@ -304,8 +309,6 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     // ends on t_end itself: total h can round below it (2 T + T at 5000 rpm is 0.036000000000000004
     // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution (issue 16).
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
-    const bool locate = scene.integrator.locate_switches;
-    State step_start;  // the state at the start of the current piece, kept while switches are located
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {
         sum.status = SimulationStatus::step_limit;
@@ -319,15 +322,14 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       bool finite = true;
       for (;;) {
         const double t0 = t;
-        if (locate) step_start = x;
         stepper.step(system, t, x, t1 - t0);
         t = t1;
         if (!(finite = x.allFinite())) break;
         loop.evaluate_end(t1, x);
         double tc = t1;
-        if (locate && loop.find_switch(t0, t1, tc) && tc - t0 > 1e-3 * h && t1 - tc > 1e-3 * h) {
+        if (loop.find_switch(t0, t1, 1e-3 * h, tc)) {
+          stepper.interpolate(t0, x);  // the piece's start: the dense output is exact at its ends
           t = t0;
-          x = step_start;
           stepper.step(system, t, x, tc - t0);
           t = tc;
           if (!(finite = x.allFinite())) break;
@@ -366,8 +368,6 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     double h = std::min(opt.max_step, t_end);
     // Contacts make the first steps hard to guess; start small and let the controller grow it.
     h = std::min(h, 1e-6);
-    const bool locate = scene.integrator.locate_switches;
-    State step_start;  // the state at the start of the step being tried, kept while switches are located
     while (t < t_end) {
       if (stepper.accepted_steps() + stepper.rejected_steps() >= opt.max_steps) {
         sum.status = SimulationStatus::step_limit;
@@ -378,7 +378,6 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       const bool last = 1.01 * h >= t_end - t;
       double trial = last ? t_end - t : h;
       const double t0 = t;
-      if (locate) step_start = x;
       const StepOutcome outcome = stepper.try_step(recorder, t, x, trial);
       if (outcome == StepOutcome::rejected) {
         h = trial;
@@ -398,14 +397,13 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       h = std::min(trial, opt.max_step);
       loop.evaluate_end(t, x);
       double tc = t;
-      if (locate && loop.find_switch(t0, t, tc) && tc - t0 > 1e-3 * (t - t0) && t - tc > 1e-3 * (t - t0)) {
+      if (loop.find_switch(t0, t, 1e-3 * (t - t0), tc)) {
         // A contact switched inside the accepted step: take it again up to the switch, with one
         // step and no error control (it is shorter than the step the controller accepted and
-        // smoother), and go on from there with the controller's proposal.
+        // smoother), and go on from there with the controller's proposal. Nothing was committed
+        // since the step's start, so the stepper reuses its first stage there.
+        stepper.interpolate(t0, x);  // the step's start: the dense output is exact at its ends
         t = t0;
-        x = step_start;
-        stepper.invalidate();
-        recorder.forget();
         stepper.step_fixed_to(recorder, t, x, tc);
         if (!x.allFinite()) {
           sum.status = SimulationStatus::non_finite;
