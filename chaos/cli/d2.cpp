@@ -122,7 +122,7 @@ void register_d2(CLI::App& app) {
   command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
   command->add_flag("--inclusive", args->params.sums.inclusive,
                     "count pairs at distance <= eps, as TISEAN's d2 does (default: < eps)");
-  command->add_option("--search", args->params.search, "box (box-assisted, the fastest), kd (kd-tree, often tens of times slower) or brute (the definition, slowest)")->capture_default_str();
+  command->add_option("--search", args->params.search, "box (box-assisted, the fastest), kd (kd-tree, one traversal per point for all radii and m: 0.8-1.3 times the box time) or brute (the definition, slowest)")->capture_default_str();
   command->add_option("-N,--pairs-per-radius", args->params.sums.pairs_per_radius,
                       "stop counting a radius after this many close pairs (0: exact)")
       ->capture_default_str();

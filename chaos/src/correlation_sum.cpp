@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -19,7 +20,6 @@
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
-#include "chaos/neighbors.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
 #include "numeric.hpp"
@@ -450,10 +450,16 @@ std::vector<Count> plane_counts(const Problem& pb, const std::function<void(doub
 // grows), hence differs by less than h in coordinate 1 and lies in the same or adjacent rows, and
 // it lies inside the coordinate-0 window of the other point. Each unordered pair is visited once,
 // from its lower row (same row: from the earlier position).
-struct Grid {
+// Points copied in a search structure's order, one contiguous array per coordinate, which is what
+// the candidate scans below read (the grid and the kd-tree each lay the points out their way).
+struct PointLayout {
   std::size_t size = 0;
-  std::vector<double> coords;  // coordinate k of the point at grid position p: coords[k * size + p]
-  std::vector<std::size_t> index;
+  std::vector<double> coords;  // coordinate k of the point at position p: coords[k * size + p]
+  std::vector<std::size_t> index;  // the embedded point at position p
+  const double* coordinate(std::size_t k) const noexcept { return coords.data() + k * size; }
+};
+
+struct Grid : PointLayout {
   struct Row {
     std::int64_t id;
     std::size_t begin, end;
@@ -463,7 +469,6 @@ struct Grid {
     std::size_t row, begin, end;
   };
   std::vector<Chunk> chunks;
-  const double* coordinate(std::size_t k) const noexcept { return coords.data() + k * size; }
 };
 
 Grid build_grid(const Problem& pb) {
@@ -573,7 +578,7 @@ class Survivors {
 // ends the block (the accumulator never decreases). Level-major order keeps each level's count
 // in a register; candidate-major order would chain every update through memory.
 template <class N, bool check_window>
-void scan_scalar(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+void scan_scalar(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
                  double t) {
   const std::size_t levels = s.levels(), first = s.first_stored(), w = pb.w, i = g.index[p];
   const double* c0 = g.coordinate(0);
@@ -628,7 +633,7 @@ constexpr CompressTable make_compress_table() {
 constexpr CompressTable compress_table = make_compress_table();
 
 template <class N>
-__attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb,
+__attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb,
                                                        std::size_t qe, Survivors& s, double t_filter) {
   const std::size_t levels = s.levels(), first = s.first_stored();
   const __m256d sign = _mm256_set1_pd(-0.0);
@@ -695,7 +700,7 @@ bool plane_disabled() {
 template <class N, bool check_window>
 // Candidates q in [qb, qe) of grid position p, kept while their accumulator is below t (at most
 // t_max: the exact walk passes t_max, a capped reference walk the largest radius still open).
-void grid_candidates(const Problem& pb, const Grid& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+void scan_candidates(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
                      bool simd, double t) {
 #if defined(__x86_64__) && defined(__GNUC__)
   if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s, t);
@@ -754,12 +759,12 @@ Histogram box_grid(const Problem& pb, const Grid& g, std::size_t first) {
     for (std::size_t p = chunk.begin; p < chunk.end; ++p) {
       same = std::max(same, p + 1);
       while (same < row.end && not_right_of(p, same)) ++same;
-      grid_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd, t);
+      scan_candidates<N, check_window>(pb, g, p, p + 1, same, survivors, simd, t);
       if (!has_next) continue;
       while (lo < next.end && left_of(p, lo)) ++lo;
       hi = std::max(hi, lo);
       while (hi < next.end && not_right_of(p, hi)) ++hi;
-      grid_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd, t);
+      scan_candidates<N, check_window>(pb, g, p, lo, hi, survivors, simd, t);
     }
   }, pb.progress);
   return sum_histograms(parts);
@@ -796,33 +801,147 @@ std::vector<std::vector<Count>> box_exact(const Problem& pb) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// kd-tree, exact walk: KdTree::count_within per dimension, radius and point counts the partners
-// on both sides of the point, so the total over all points is twice the number of unordered pairs.
+// kd-tree: one traversal per point for every radius and every m >= 2.
+//
+// The tree splits the first c = max(2, min_m) coordinates: a pair that counts in some m >= min_m
+// has acc < t_max in those coordinates already (the accumulator only grows). A node splits at the
+// median of its widest coordinate until at most `leaf_points` remain; the points are copied in
+// leaf order, every coordinate contiguous, as the grid copies them, so a leaf is a run of
+// positions that the grid's candidate scan filters level by level and bins for every m at once. A
+// point visits the leaves whose box lies within t_max of it in the c coordinates (a lower bound
+// of every accumulator inside, as rounding is monotone), and in the exact walk only the positions
+// after its own, so each unordered pair is examined once. m = 1 and the Theiler window are done as
+// in the box-assisted walk.
+struct KdLayout : PointLayout {
+  static constexpr std::size_t leaf_points = 128;
+  struct Node {
+    std::size_t begin, end;
+    std::size_t left;  // children left and left + 1; 0 (the root is nobody's child): a leaf
+  };
+  std::size_t dims = 2;  // c
+  std::vector<Node> nodes;
+  std::vector<double> box;  // lo and hi of coordinate k of node n: box[2 * (n * dims + k)] and the next
+  std::vector<std::size_t> position;  // the position of each embedded point
 
-std::vector<KdTree> build_trees(const Problem& pb) {
-  std::vector<KdTree> trees;
-  trees.reserve(pb.nm);
-  for (std::size_t m = pb.min_m; m <= pb.max_m; ++m)
-    trees.emplace_back(DelayEmbedding(pb.y, m, pb.tau, pb.points), pb.norm);
-  return trees;
+  // Lower bound of the accumulator in the c split coordinates from the point q to any point of
+  // node n.
+  template <class N>
+  double near(std::size_t n, const double* q) const noexcept {
+    const double* b = box.data() + 2 * n * dims;
+    double acc = 0.0;
+    for (std::size_t k = 0; k < dims; ++k) {
+      const double lo = b[2 * k], hi = b[2 * k + 1];
+      acc = N::add(acc, q[k] < lo ? lo - q[k] : (q[k] > hi ? q[k] - hi : 0.0));
+    }
+    return acc;
+  }
+};
+
+KdLayout build_kd(const Problem& pb) {
+  const std::size_t n = pb.points, c = std::max<std::size_t>(2, pb.min_m);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  KdLayout t;
+  t.dims = c;
+  t.nodes.push_back({0, n, 0});
+  for (std::size_t id = 0; id < t.nodes.size(); ++id) {  // breadth first: children are appended
+    const std::size_t begin = t.nodes[id].begin, end = t.nodes[id].end;
+    t.box.resize(2 * t.nodes.size() * c);
+    double* b = t.box.data() + 2 * id * c;
+    std::size_t widest = 0;
+    for (std::size_t k = 0; k < c; ++k) {
+      double lo = infinity, hi = -infinity;
+      for (std::size_t u = begin; u < end; ++u) {
+        lo = std::min(lo, pb.at(order[u], k));
+        hi = std::max(hi, pb.at(order[u], k));
+      }
+      b[2 * k] = lo;
+      b[2 * k + 1] = hi;
+      if (hi - lo > b[2 * widest + 1] - b[2 * widest]) widest = k;
+    }
+    if (end - begin <= KdLayout::leaf_points) continue;
+    // Split by count even where every value is equal (ties, quantised data): leaves stay small.
+    const std::size_t mid = begin + (end - begin) / 2;
+    std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(mid),
+                     order.begin() + static_cast<std::ptrdiff_t>(end), [&](std::size_t x, std::size_t y) {
+                       const double vx = pb.at(x, widest), vy = pb.at(y, widest);
+                       return vx != vy ? vx < vy : x < y;
+                     });
+    t.nodes[id].left = t.nodes.size();
+    t.nodes.push_back({begin, mid, 0});
+    t.nodes.push_back({mid, end, 0});
+  }
+  t.box.resize(2 * t.nodes.size() * c);
+  t.size = n;
+  t.coords.resize(n * pb.max_m);
+  t.index = std::move(order);
+  t.position.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    t.position[t.index[p]] = p;
+    for (std::size_t k = 0; k < pb.max_m; ++k) t.coords[k * n + p] = pb.at(t.index[p], k);
+  }
+  return t;
 }
 
-std::vector<std::vector<Count>> kd_exact(const Problem& pb) {
-  const std::vector<KdTree> trees = build_trees(pb);
-  const NeighborQuery query{pb.w, false};
+// Every leaf within t of the point at position p, from position `from` on, handed to
+// scan_candidates. `stack` is the caller's scratch.
+template <class N, bool check_window>
+void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_t from, Survivors& s, bool simd,
+                 double threshold, std::vector<std::size_t>& stack) {
+  double q[64];
+  std::vector<double> wide;  // more split coordinates than q holds (min_m > 64): rare
+  double* query = q;
+  if (t.dims > 64) {
+    wide.resize(t.dims);
+    query = wide.data();
+  }
+  for (std::size_t k = 0; k < t.dims; ++k) query[k] = t.coordinate(k)[p];
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const std::size_t id = stack.back();
+    stack.pop_back();
+    const KdLayout::Node& node = t.nodes[id];
+    if (node.end <= from || !(t.near<N>(id, query) < threshold)) continue;
+    if (node.left == 0) {
+      scan_candidates<N, check_window>(pb, t, p, std::max(node.begin, from), node.end, s, simd, threshold);
+    } else {
+      stack.push_back(node.left + 1);
+      stack.push_back(node.left);
+    }
+  }
+}
+
+template <class N, bool check_window>
+Histogram kd_counts(const Problem& pb, const KdLayout& t, std::size_t first) {
+  const bool simd = use_avx2();
   const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
   std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(pb.nm * pb.nr, 0));
-  parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
-    Count* sums = parts[worker].data();
-    const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
-    for (std::size_t i = t * chunk_points; i < end; ++i)
-      for (std::size_t mi = 0; mi < pb.nm; ++mi)
-        for (std::size_t k = 0; k < pb.nr; ++k) sums[mi * pb.nr + k] += trees[mi].count_within(i, pb.radii[k], query);
+  parallel_tasks(pb.threads, tasks, [&](std::size_t task, std::size_t worker) {
+    Survivors survivors(pb, parts[worker].data(), first);
+    std::vector<std::size_t> stack;
+    const std::size_t end = std::min(pb.points, (task + 1) * chunk_points);
+    for (std::size_t p = task * chunk_points; p < end; ++p)
+      kd_partners<N, check_window>(pb, t, p, p + 1, survivors, simd, pb.t_max, stack);
   }, pb.progress);
-  const Histogram total = sum_histograms(parts);
-  std::vector<std::vector<Count>> pairs(pb.nm, std::vector<Count>(pb.nr));
-  for (std::size_t mi = 0; mi < pb.nm; ++mi)
-    for (std::size_t k = 0; k < pb.nr; ++k) pairs[mi][k] = total[mi * pb.nr + k] / 2;
+  return sum_histograms(parts);
+}
+
+template <class N>
+std::vector<std::vector<Count>> kd_exact(const Problem& pb) {
+  std::vector<std::vector<Count>> pairs(pb.nm);
+  if (pb.max_m >= 2) {
+    const KdLayout t = build_kd(pb);
+    const std::size_t first = pb.min_m > 2 ? pb.min_m - 2 : 0;
+    Histogram h;
+    if (pb.w > pb.points / 8) {  // as box_grid: a wide window is tested in the scan
+      h = kd_counts<N, true>(pb, t, first);
+    } else {
+      h = kd_counts<N, false>(pb, t, first);
+      window_pairs<N>(pb, h.data());
+    }
+    pairs = cumulate(h, pb.nm, pb.nr);
+  }
+  if (pb.min_m == 1) pairs[0] = box_dimension_one<N>(pb);
   return pairs;
 }
 
@@ -861,42 +980,66 @@ class BruteCounter final : public ReferenceCounter {
   const Problem& pb_;
 };
 
-class KdCounter final : public ReferenceCounter {
+// The partners of reference point i that can be closer than t in m >= 2, on the grid: they lie
+// in i's row or the adjacent ones, inside i's coordinate-0 window (the argument of box_grid), so
+// the work per reference point is the exact walk's work per point.
+template <class N>
+class GridWalk {
  public:
-  explicit KdCounter(const Problem& pb) : pb_(pb), trees_(build_trees(pb)) {}
-  void count(std::size_t i, const std::vector<std::size_t>& need, Count* cum, Histogram&) const override {
-    const NeighborQuery query{pb_.w, false};
-    for (std::size_t mi = 0; mi < pb_.nm; ++mi)
-      for (std::size_t k = 0; k < need[mi]; ++k) cum[mi * pb_.nr + k] = trees_[mi].count_within(i, pb_.radii[k], query);
+  explicit GridWalk(const Problem& pb) : grid_(build_grid(pb)), position_(pb.points), row_of_(pb.points) {
+    for (std::size_t r = 0; r < grid_.rows.size(); ++r)
+      for (std::size_t p = grid_.rows[r].begin; p < grid_.rows[r].end; ++p) {
+        position_[grid_.index[p]] = p;
+        row_of_[p] = r;
+      }
+  }
+  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, bool simd) const {
+    const Grid& g = grid_;
+    const std::size_t p = position_[i], r = row_of_[p];
+    const double* c0 = g.coordinate(0);
+    for (std::size_t s = r > 0 ? r - 1 : 0; s <= r + 1 && s < g.rows.size(); ++s) {
+      const Grid::Row& row = g.rows[s];
+      if (row.id < g.rows[r].id - 1 || row.id > g.rows[r].id + 1) continue;
+      const std::size_t lo = first_failing(row.begin, row.end, [&](std::size_t q) {
+        return c0[q] <= c0[p] && !(N::add(0.0, c0[p] - c0[q]) < t);
+      });
+      const std::size_t hi = first_failing(lo, row.end, [&](std::size_t q) {
+        return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
+      });
+      scan_candidates<N, false>(pb, g, p, lo, hi, survivors, simd, t);
+    }
   }
 
  private:
-  const Problem& pb_;
-  std::vector<KdTree> trees_;
+  Grid grid_;
+  std::vector<std::size_t> position_, row_of_;  // grid position of each point, row of each position
 };
 
-// Box-assisted per point, on the grid of the exact walk: the partners of reference point i that can
-// be closer than r_max in m >= 2 lie in i's row or the adjacent ones, inside i's coordinate-0
-// window (the argument of box_grid), so the work per reference point is the exact walk's work per
-// point and a subset of R points costs about R/P of the exact job (twice that, as each point
-// counts its partners on both sides). The candidates are scanned without the index test, as in
-// the exact walk; i itself and its partners inside the Theiler window are then enumerated and
-// taken out again with the same accumulators, so exactly the same bins. m = 1 is counted on the
-// sorted values: the partners within t of a value form a run found by two binary searches.
+// The same on the kd-tree: every leaf within t of i, on both sides.
 template <class N>
-class GridCounter final : public ReferenceCounter {
+class KdWalk {
  public:
-  explicit GridCounter(const Problem& pb) : pb_(pb), simd_(use_avx2()) {
-    if (pb.max_m >= 2) {
-      grid_ = build_grid(pb);
-      position_.resize(pb.points);
-      row_of_.resize(pb.points);
-      for (std::size_t r = 0; r < grid_.rows.size(); ++r)
-        for (std::size_t p = grid_.rows[r].begin; p < grid_.rows[r].end; ++p) {
-          position_[grid_.index[p]] = p;
-          row_of_[p] = r;
-        }
-    }
+  explicit KdWalk(const Problem& pb) : tree_(build_kd(pb)) {}
+  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, bool simd) const {
+    thread_local std::vector<std::size_t> stack;
+    kd_partners<N, false>(pb, tree_, tree_.position[i], 0, survivors, simd, t, stack);
+  }
+
+ private:
+  KdLayout tree_;
+};
+
+// Per reference point on a spatial structure (GridWalk or KdWalk): a subset of R points costs
+// about R/P of the exact job (twice that, as each point counts its partners on both sides). The
+// candidates are scanned without the index test, as in the exact walk; i itself and its partners
+// inside the Theiler window are then enumerated and taken out again with the same accumulators,
+// so exactly the same bins. m = 1 is counted on the sorted values: the partners within t of a
+// value form a run found by two binary searches.
+template <class N, class Walk>
+class SpatialCounter final : public ReferenceCounter {
+ public:
+  explicit SpatialCounter(const Problem& pb) : pb_(pb), simd_(use_avx2()) {
+    if (pb.max_m >= 2) walk_.emplace(pb);
     if (pb.min_m == 1) {
       sorted_.assign(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
       std::sort(sorted_.begin(), sorted_.end());
@@ -914,23 +1057,10 @@ class GridCounter final : public ReferenceCounter {
       const double t = pb_.thresholds[top - 1];
       {
         Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0);
-        const Grid& g = grid_;
-        const std::size_t p = position_[i], r = row_of_[p];
-        const double* c0 = g.coordinate(0);
-        for (std::size_t s = r > 0 ? r - 1 : 0; s <= r + 1 && s < g.rows.size(); ++s) {
-          const Grid::Row& row = g.rows[s];
-          if (row.id < g.rows[r].id - 1 || row.id > g.rows[r].id + 1) continue;
-          const std::size_t lo = first_failing(row.begin, row.end, [&](std::size_t q) {
-            return c0[q] <= c0[p] && !(N::add(0.0, c0[p] - c0[q]) < t);
-          });
-          const std::size_t hi = first_failing(lo, row.end, [&](std::size_t q) {
-            return c0[q] <= c0[p] || N::add(0.0, c0[q] - c0[p]) < t;
-          });
-          grid_candidates<N, false>(pb_, g, p, lo, hi, survivors, simd_, t);
-        }
+        walk_->partners(pb_, i, t, survivors, simd_);
       }
       // i itself and the window partners, as the scan saw them (acc < t in the first two
-      // coordinates: the same or an adjacent row and inside the coordinate-0 window).
+      // coordinates, and in the first min_m before anything is binned).
       const AccBins::Lookup bins = pb_.bins->lookup();
       const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
       for (std::size_t j = first; j <= last; ++j) {
@@ -966,9 +1096,8 @@ class GridCounter final : public ReferenceCounter {
  private:
   const Problem& pb_;
   bool simd_;
-  Grid grid_;
-  std::vector<std::size_t> position_, row_of_;  // grid position of each point, row of each position
-  std::vector<double> sorted_;                  // coordinate 0 of every point, sorted (m = 1)
+  std::optional<Walk> walk_;   // m >= 2 only
+  std::vector<double> sorted_;  // coordinate 0 of every point, sorted (m = 1)
 };
 
 // Partners of point i on both sides outside the Theiler window.
@@ -1090,7 +1219,7 @@ Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
     std::vector<std::vector<Count>> pairs;
     switch (options.search) {
       case CorrelationSearch::brute_force: pairs = cumulate(brute_exact<N>(pb), pb.nm, pb.nr); break;
-      case CorrelationSearch::kd_tree: pairs = kd_exact(pb); break;
+      case CorrelationSearch::kd_tree: pairs = kd_exact<N>(pb); break;
       case CorrelationSearch::box_assisted: pairs = box_exact<N>(pb); break;
     }
     const std::size_t span = pb.points - pb.w - 1;  // validated: P >= w + 2
@@ -1107,10 +1236,10 @@ Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
   const std::size_t groups = options.jackknife_groups;
   switch (options.search) {
     case CorrelationSearch::brute_force: return reference_walk(pb, BruteCounter<N>(pb), order, cap, groups);
-    case CorrelationSearch::kd_tree: return reference_walk(pb, KdCounter(pb), order, cap, groups);
+    case CorrelationSearch::kd_tree: return reference_walk(pb, SpatialCounter<N, KdWalk<N>>(pb), order, cap, groups);
     case CorrelationSearch::box_assisted: break;
   }
-  return reference_walk(pb, GridCounter<N>(pb), order, cap, groups);
+  return reference_walk(pb, SpatialCounter<N, GridWalk<N>>(pb), order, cap, groups);
 }
 
 }  // namespace

@@ -497,19 +497,22 @@ TEST(CorrelationSum, ReferenceOffsetCountsTheNextPointsOfTheOrder) {
 
 TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
   // Issue 15: the box-assisted reference walk scans the exact walk's grid (only as far as the
-  // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards.
-  // Expected: the documented walk above, on integer data (ties at the radii), both norms, windows
-  // 0 to 9, m from 1, 2 or 3, strict and inclusive counting, with and without a cap, with the AVX2
-  // and the portable scan.
+  // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards;
+  // the kd-tree walk scans the leaves within that radius and does the same. Expected: the
+  // documented walk above, on integer data (ties at the radii, so many leaves of equal values),
+  // both norms, windows 0 to 9, m from 1, 2 or 3, strict and inclusive counting, with and without
+  // a cap, with the AVX2 and the portable scan.
   chaos::Random rng(8);
   std::vector<double> x(700);
   for (auto& v : x) v = static_cast<double>(rng.below(11));
   const std::vector<double> radii{1, 2, 3, 5, 8};
+  for (const auto search : {CorrelationSearch::box_assisted, CorrelationSearch::kd_tree})
   for (const auto norm : both_norms)
     for (const std::size_t w : {0u, 2u, 9u})
       for (const std::size_t min_m : {1u, 2u, 3u})
         for (const bool inclusive : {false, true}) {
           auto o = options(2, min_m, 4, w, radii, norm);
+          o.search = search;
           o.inclusive = inclusive;
           o.reference_points = 90;
           o.seed = 3 + w;
