@@ -10,6 +10,7 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -526,7 +527,7 @@ class Survivors {
   // counted by plane_counts).
   Survivors(const Problem& pb, Count* hist, std::size_t first)
       : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(first),
-        acc_(levels_ * capacity), n_(levels_, 0), wide_(copies * pb.nm * pb.nr, 0) {}
+        acc_(new double[levels_ * capacity]), n_(levels_, 0), wide_(copies * pb.nm * pb.nr, 0) {}
   ~Survivors() {
     flush();
     for (std::size_t k = 0; k < wide_.size(); ++k) hist_[k / copies] += wide_[k];
@@ -536,7 +537,7 @@ class Survivors {
 
   std::size_t levels() const noexcept { return levels_; }
   std::size_t first_stored() const noexcept { return first_; }  // levels below are filtered, not counted
-  double* buffer(std::size_t level) noexcept { return acc_.data() + level * capacity; }
+  double* buffer(std::size_t level) noexcept { return acc_.get() + level * capacity; }
   std::size_t& count(std::size_t level) noexcept { return n_[level]; }
   // Room for one more block at every level, else bin what has been collected.
   void make_room() noexcept {
@@ -567,7 +568,7 @@ class Survivors {
   const Problem& pb_;
   Count* hist_;
   std::size_t levels_, first_;
-  std::vector<double> acc_;
+  std::unique_ptr<double[]> acc_;  // not zeroed: only the entries below n_[level] are read (a reference walk builds one per point)
   std::vector<std::size_t> n_;
   std::vector<Count> wide_;
 };
@@ -1075,21 +1076,28 @@ class SpatialCounter final : public ReferenceCounter {
     histogram_to_cumulative(h, pb_.nm, nr, cum);
     if (pb_.min_m == 1) {
       // Partners within t_k in coordinate 0: the run of sorted values around a0, less i itself and
-      // the window partners that pass the same test.
+      // the window partners that pass the same test. Those are binned once (acc < t_k exactly
+      // when the bin, the number of thresholds <= acc, is at most k) rather than tested per radius.
       const double a0 = pb_.at(i, 0);
       const std::size_t first = i > pb_.w ? i - pb_.w : 0, last = std::min(pb_.points - 1, add_sat(i, pb_.w));
-      for (std::size_t k = 0; k < need[0]; ++k) {
-        const double t = pb_.thresholds[k];
-        const auto lo = std::partition_point(sorted_.begin(), sorted_.end(), [&](double v) {
-          return v <= a0 && !(N::add(0.0, a0 - v) < t);
-        });
-        const auto hi = std::partition_point(lo, sorted_.end(), [&](double v) {
-          return v <= a0 || N::add(0.0, v - a0) < t;
-        });
-        Count inside = static_cast<Count>(hi - lo);
-        for (std::size_t j = first; j <= last; ++j) inside -= N::add(0.0, std::abs(a0 - pb_.at(j, 0))) < t;
-        cum[k] = inside;
+      Count* window = h.data();  // the m >= 2 histogram is spent: reuse its first nr entries
+      std::fill(window, window + nr, 0);
+      const AccBins::Lookup bins = pb_.bins->lookup();
+      for (std::size_t j = first; j <= last; ++j) {
+        const double acc = N::add(0.0, std::abs(a0 - pb_.at(j, 0)));
+        if (acc < pb_.t_max) ++window[bins.inside(acc)];
       }
+      // The runs are nested (a smaller radius's run lies inside a larger one's), so the searches go
+      // from the largest radius down, each inside the previous run: they stay near a0 in memory.
+      auto lo = sorted_.begin(), hi = sorted_.end();
+      for (std::size_t k = need[0]; k-- > 0;) {
+        const double t = pb_.thresholds[k];
+        lo = std::partition_point(lo, hi, [&](double v) { return v <= a0 && !(N::add(0.0, a0 - v) < t); });
+        hi = std::partition_point(lo, hi, [&](double v) { return v <= a0 || N::add(0.0, v - a0) < t; });
+        cum[k] = static_cast<Count>(hi - lo);
+      }
+      Count taken_out = 0;
+      for (std::size_t k = 0; k < need[0]; ++k) cum[k] -= taken_out += window[k];
     }
   }
 
