@@ -445,12 +445,6 @@ std::vector<Count> plane_counts(const Problem& pb, const std::function<void(doub
   return pairs;
 }
 
-// m >= 2: a grid over the first two coordinates. Points are grouped into rows by coordinate 1
-// (row height h >= r_max) and sorted by coordinate 0 within a row. A pair closer than r_max in any
-// m >= 2 has acc(coordinate difference) < t_max in coordinates 0 and 1 (the accumulator only
-// grows), hence differs by less than h in coordinate 1 and lies in the same or adjacent rows, and
-// it lies inside the coordinate-0 window of the other point. Each unordered pair is visited once,
-// from its lower row (same row: from the earlier position).
 // Points copied in a search structure's order, one contiguous array per coordinate, which is what
 // the candidate scans below read (the grid and the kd-tree each lay the points out their way).
 struct PointLayout {
@@ -460,6 +454,12 @@ struct PointLayout {
   const double* coordinate(std::size_t k) const noexcept { return coords.data() + k * size; }
 };
 
+// m >= 2: a grid over the first two coordinates. Points are grouped into rows by coordinate 1
+// (row height h >= r_max) and sorted by coordinate 0 within a row. A pair closer than r_max in any
+// m >= 2 has acc(coordinate difference) < t_max in coordinates 0 and 1 (the accumulator only
+// grows), hence differs by less than h in coordinate 1 and lies in the same or adjacent rows, and
+// it lies inside the coordinate-0 window of the other point. Each unordered pair is visited once,
+// from its lower row (same row: from the earlier position).
 struct Grid : PointLayout {
   struct Row {
     std::int64_t id;
@@ -699,7 +699,7 @@ bool plane_disabled() {
 }
 
 template <class N, bool check_window>
-// Candidates q in [qb, qe) of grid position p, kept while their accumulator is below t (at most
+// Candidates q in [qb, qe) of layout position p, kept while their accumulator is below t (at most
 // t_max: the exact walk passes t_max, a capped reference walk the largest radius still open).
 void scan_candidates(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
                      bool simd, double t) {
