@@ -824,15 +824,15 @@ struct KdLayout : PointLayout {
   std::vector<double> box;  // lo and hi of coordinate k of node n: box[2 * (n * dims + k)] and the next
   std::vector<std::size_t> position;  // the position of each embedded point
 
-  // Lower bound of the accumulator in the c split coordinates from the point q to any point of
-  // node n.
+  // Lower bound of the accumulator in the c split coordinates from the point at position p to
+  // any point of node n.
   template <class N>
-  double near(std::size_t n, const double* q) const noexcept {
+  double near(std::size_t n, std::size_t p) const noexcept {
     const double* b = box.data() + 2 * n * dims;
     double acc = 0.0;
     for (std::size_t k = 0; k < dims; ++k) {
-      const double lo = b[2 * k], hi = b[2 * k + 1];
-      acc = N::add(acc, q[k] < lo ? lo - q[k] : (q[k] > hi ? q[k] - hi : 0.0));
+      const double q = coordinate(k)[p], lo = b[2 * k], hi = b[2 * k + 1];
+      acc = N::add(acc, q < lo ? lo - q : (q > hi ? q - hi : 0.0));
     }
     return acc;
   }
@@ -889,20 +889,12 @@ KdLayout build_kd(const Problem& pb) {
 template <class N, bool check_window>
 void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_t from, Survivors& s, bool simd,
                  double threshold, std::vector<std::size_t>& stack) {
-  double q[64];
-  std::vector<double> wide;  // more split coordinates than q holds (min_m > 64): rare
-  double* query = q;
-  if (t.dims > 64) {
-    wide.resize(t.dims);
-    query = wide.data();
-  }
-  for (std::size_t k = 0; k < t.dims; ++k) query[k] = t.coordinate(k)[p];
   stack.assign(1, 0);
   while (!stack.empty()) {
     const std::size_t id = stack.back();
     stack.pop_back();
     const KdLayout::Node& node = t.nodes[id];
-    if (node.end <= from || !(t.near<N>(id, query) < threshold)) continue;
+    if (node.end <= from || !(t.near<N>(id, p) < threshold)) continue;
     if (node.left == 0) {
       scan_candidates<N, check_window>(pb, t, p, std::max(node.begin, from), node.end, s, simd, threshold);
     } else {
