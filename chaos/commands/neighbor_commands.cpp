@@ -312,7 +312,10 @@ void check_length(std::size_t n, std::size_t m, std::size_t tau, std::size_t w, 
 
 std::string join(const std::vector<std::size_t>& v) {
   std::string s;
-  for (std::size_t c = 0; c < v.size(); ++c) s += (c ? "," : "") + std::to_string(v[c]);
+  for (std::size_t c = 0; c < v.size(); ++c) {
+    if (c) s += ',';
+    s += std::to_string(v[c]);
+  }
   return s;
 }
 

@@ -1128,7 +1128,9 @@ Totals reference_walk(const Problem& pb, const ReferenceCounter& counter, const 
                       std::uint64_t cap, std::size_t groups) {
   const std::size_t nm = pb.nm, nr = pb.nr, stride = nm * nr;
   const auto table = [&] { return std::vector<std::vector<Count>>(nm, std::vector<Count>(nr, 0)); };
-  Totals out{table(), table()};
+  Totals out;
+  out.pairs = table();
+  out.examined = table();
   groups = order.size() >= 2 ? std::min(groups, order.size()) : 0;  // one group has nothing to leave out
   for (std::size_t b = 0; b < groups; ++b) {
     out.group_pairs.push_back(table());
