@@ -173,6 +173,12 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     } catch (const InvalidInput& e) {
       a.local_maps_refusal = e.what();
     }
+    // A divergence slope that the consistent local-map exponent contradicts is withdrawn too.
+    if (options.cross_check && a.local_maps) {
+      const double tolerance = automatic_lyapunov_fit(a.scales).tolerance;
+      if (a.rosenstein) cross_check(*a.rosenstein, *a.local_maps, tolerance);
+      if (a.kantz) cross_check(*a.kantz, *a.local_maps, tolerance);
+    }
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 1.0);
   }
   return a;

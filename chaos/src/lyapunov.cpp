@@ -12,6 +12,7 @@
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
+#include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
 #include "numeric.hpp"
@@ -540,14 +541,42 @@ void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) 
   if (k) withdraw(kantz, why.str());
 }
 
+namespace {
+
+void withdraw_per_time(LyapunovResult& r) {
+  if (r.fit.lambda) return;
+  r.lambda_per_time.reset();
+  r.lambda_per_time_interval.reset();
+  r.fit_range_time.reset();
+}
+
+}  // namespace
+
 void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance) {
   cross_check(rosenstein.fit, kantz.fit, tolerance);
-  for (LyapunovResult* r : {&rosenstein, &kantz})
-    if (!r->fit.lambda) {
-      r->lambda_per_time.reset();
-      r->lambda_per_time_interval.reset();
-      r->fit_range_time.reset();
-    }
+  withdraw_per_time(rosenstein);
+  withdraw_per_time(kantz);
+}
+
+void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance) {
+  if (!(std::isfinite(tolerance) && tolerance > 0.0))
+    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+  if (fit.status != LyapunovStatus::linear_region || local_maps.status != LocalMapStatus::consistent ||
+      !local_maps.lambda)
+    return;
+  const double a = *fit.lambda, b = *local_maps.lambda;
+  if (std::abs(a - b) <= tolerance * 0.5 * (a + b)) return;
+  const std::string name = method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz";
+  std::ostringstream why;
+  why << "the local-map exponent contradicts this slope: " << verdict(name.c_str(), fit) << ", local maps give "
+      << std::setprecision(4) << b << " per sample (consistent over their variants), more than " << tolerance * 100
+      << "% apart; a divergence-curve slope that the local maps contradict is not trusted";
+  withdraw(fit, why.str());
+}
+
+void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance) {
+  cross_check(result.fit, result.options.method, local_maps, tolerance);
+  withdraw_per_time(result);
 }
 
 LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options,

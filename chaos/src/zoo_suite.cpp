@@ -296,17 +296,22 @@ ZooEstimate local_maps_estimate(const LocalMapResult& r, const ZooBand& band) {
   return e;
 }
 
-// lambda_1 from local linear maps at (m, tau, w) with the pipeline's settings; a refusal (a series
-// too short for the embedding) is reported as not_run.
-ZooEstimate local_maps_estimate(std::span<const double> x, std::size_t m, std::size_t tau, std::size_t w,
-                                std::optional<double> dt, const ZooBand& band) {
+// lambda_1 from local linear maps at (m, tau, w) with the pipeline's settings, or the refusal (a
+// series too short for the embedding), which the row reports as not_run.
+struct LocalMaps {
+  std::optional<LocalMapResult> result;
+  std::string refusal;
+};
+
+LocalMaps local_maps_at(std::span<const double> x, std::size_t m, std::size_t tau, std::size_t w,
+                        std::optional<double> dt) {
+  LocalMaps out;
   try {
-    return local_maps_estimate(largest_lyapunov_local_maps(x, automatic_local_map_options(m, tau, w), dt), band);
+    out.result = largest_lyapunov_local_maps(x, automatic_local_map_options(m, tau, w), dt);
   } catch (const InvalidInput& error) {
-    ZooEstimate e;
-    e.status = std::string("not_run: ") + error.what();
-    return e;
+    out.refusal = std::string("not_run: ") + error.what();
   }
+  return out;
 }
 
 ZooEstimate not_run(const std::string& why) {
@@ -407,12 +412,18 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
             if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return std::nullopt;
             return fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit);
           };
-          // As in the pipeline: each fit is checked against the other (cross_check).
+          // As in the pipeline: each fit is checked against the other and against a consistent
+          // local-map exponent (cross_check).
           std::optional<LyapunovFit> r = fit_of(rosenstein), q = fit_of(kantz);
           if (r && q) cross_check(*r, *q, fit.tolerance);
+          const LocalMaps maps = local_maps_at(x, m, *a.delay, w, c.dt);
+          if (maps.result) {
+            if (r) cross_check(*r, LyapunovMethod::rosenstein, *maps.result, fit.tolerance);
+            if (q) cross_check(*q, LyapunovMethod::kantz, *maps.result, fit.tolerance);
+          }
           row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
-          row.local_maps = local_maps_estimate(x, m, *a.delay, w, c.dt, c.lambda_band);
+          row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run(maps.refusal);
           result.rows.push_back(row);
         }
       }

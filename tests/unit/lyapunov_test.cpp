@@ -8,6 +8,7 @@
 //   - the documented refusals and conventions (per time unit = per sample / dt; thread count and
 //     block size do not change a bit).
 #include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_local_maps.hpp"
 
 #include <gtest/gtest.h>
 
@@ -658,6 +659,64 @@ TEST(LyapunovCrossCheck, HenonIsConfirmedByBothEstimators) {
   EXPECT_FALSE(lonely.lambda_per_time.has_value());
   EXPECT_FALSE(lonely.lambda_per_time_interval.has_value());
   EXPECT_FALSE(lonely.fit_range_time.has_value());
+}
+
+// The check against a local-map exponent (expected outcomes from the rule's definition): only a
+// consistent local-map value can withdraw a slope, only when they differ by more than tolerance *
+// mean, and the local-map result itself is never changed (it is passed as const).
+chaos::LocalMapResult local_map_result(chaos::LocalMapStatus status, std::optional<double> lambda) {
+  chaos::LocalMapResult m;
+  m.status = status;
+  m.lambda = lambda;
+  return m;
+}
+
+TEST(LyapunovCrossCheck, ALocalMapExponentWithdrawsOnlyTheSlopesItContradicts) {
+  using chaos::LocalMapStatus;
+  const auto consistent = local_map_result(LocalMapStatus::consistent, 0.1017);
+  // Genesio-Tesi's zoo row (N = 10^5, m = 4): Rosenstein 0.0915, local maps 0.1017 per time unit;
+  // 0.0102 > 0.1 * 0.0966, so the slope is withdrawn and both values are named.
+  auto r = region_fit(0.0915);
+  chaos::cross_check(r, chaos::LyapunovMethod::rosenstein, consistent, 0.1);
+  EXPECT_EQ(r.status, LyapunovStatus::unconfirmed);
+  EXPECT_FALSE(r.lambda.has_value());
+  EXPECT_FALSE(r.lambda_interval.has_value());
+  EXPECT_NE(r.explanation.find("Rosenstein gives 0.0915 per sample"), std::string::npos) << r.explanation;
+  EXPECT_NE(r.explanation.find("local maps give 0.1017"), std::string::npos) << r.explanation;
+  // Kantz's 0.0949 on the same row: 0.0068 <= 0.1 * 0.0983, it stands untouched.
+  auto k = region_fit(0.0949);
+  chaos::cross_check(k, chaos::LyapunovMethod::kantz, consistent, 0.1);
+  EXPECT_EQ(k.status, LyapunovStatus::linear_region);
+  EXPECT_EQ(*k.lambda, 0.0949);
+  EXPECT_EQ(k.explanation, "local slopes agree");
+  // A slope above the local maps is withdrawn the same way (the rule is symmetric in value).
+  k = region_fit(0.115);
+  chaos::cross_check(k, chaos::LyapunovMethod::kantz, consistent, 0.1);
+  EXPECT_EQ(k.status, LyapunovStatus::unconfirmed);
+  EXPECT_NE(k.explanation.find("Kantz gives 0.115"), std::string::npos) << k.explanation;
+  // A local-map result that is not consistent confirms and contradicts nothing.
+  for (const auto status : {LocalMapStatus::inconsistent, LocalMapStatus::not_deterministic, LocalMapStatus::not_positive}) {
+    r = region_fit(0.0915);
+    chaos::cross_check(r, chaos::LyapunovMethod::rosenstein, local_map_result(status, std::nullopt), 0.1);
+    EXPECT_EQ(r.status, LyapunovStatus::linear_region) << chaos::to_string(status);
+  }
+  // A fit without a region has nothing to withdraw.
+  auto none = no_region_fit();
+  chaos::cross_check(none, chaos::LyapunovMethod::kantz, consistent, 0.1);
+  EXPECT_EQ(none.status, LyapunovStatus::no_linear_region);
+  EXPECT_EQ(none.explanation, "no stretch");
+  EXPECT_THROW(chaos::cross_check(none, chaos::LyapunovMethod::kantz, consistent, -0.1), chaos::InvalidInput);
+
+  // On a full result the per-time values go with the slope.
+  const auto x = chaos::henon(5000).components[0];
+  LyapunovOptions o;
+  o.dimension = 2;
+  auto full = chaos::largest_lyapunov_rosenstein(x, o, {}, 1.0);
+  ASSERT_EQ(full.fit.status, LyapunovStatus::linear_region) << full.fit.explanation;
+  chaos::cross_check(full, local_map_result(LocalMapStatus::consistent, 2.0 * *full.fit.lambda));
+  EXPECT_EQ(full.fit.status, LyapunovStatus::unconfirmed);
+  EXPECT_FALSE(full.lambda_per_time.has_value());
+  EXPECT_FALSE(full.fit_range_time.has_value());
 }
 
 TEST(LargestLyapunov, NamedEntryPointsSetTheMethod) {

@@ -15,7 +15,9 @@
 //      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
 //      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
 //      reference points; the two fits are then checked against each other (cross_check): a linear
-//      region that only one of them finds, or two slopes more than 10% apart, leaves both unconfirmed.
+//      region that only one of them finds, or two slopes more than 10% apart, leaves both unconfirmed;
+//   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp); where it is consistent, a
+//      Rosenstein or Kantz slope more than 10% from it is unconfirmed as well.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
@@ -43,7 +45,7 @@ struct AutomaticAnalysisOptions {
   std::size_t radii = 40;            // log-spaced from range/1000 to range/4
   bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
   bool rosenstein = true, kantz = true;
-  bool cross_check = true;           // with both methods: a lambda_1 only one of them supports is unconfirmed
+  bool cross_check = true;           // a lambda_1 the other estimators contradict or do not support is unconfirmed
   bool local_maps = true;            // lambda_1 from local linear maps too (lyapunov_local_maps.hpp)
   std::size_t threads = 1;           // results identical for any number
   // Called with the step running ("Cao's method", "correlation sums", ...) and its fraction done,

@@ -102,7 +102,7 @@ enum class LyapunovStatus {
   no_linear_region,  // no stretch of min_steps steps whose positive local slopes agree within the tolerance
   not_diverging,     // no local slope is positive: the curve does not rise, no exponential divergence
   no_neighbours,     // no reference point had a neighbour: nothing to fit
-  unconfirmed,       // a linear region, but the other estimator finds none or another slope (cross_check)
+  unconfirmed,       // a linear region, but another estimator finds none or another slope (cross_check)
 };
 const char* to_string(LyapunovStatus status) noexcept;
 

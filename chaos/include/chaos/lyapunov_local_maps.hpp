@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "chaos/lyapunov.hpp"
 #include "chaos/norm.hpp"
 #include "chaos/scaling_region.hpp"
 
@@ -119,5 +120,17 @@ struct LocalMapResult {
 // variant the series is too short for makes the result `inconsistent`.
 LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const LocalMapOptions& options,
                                            std::optional<double> dt = std::nullopt, double tolerance = 0.05);
+
+// A divergence-curve slope (Rosenstein's or Kantz's, lyapunov.hpp) checked against the local-map
+// exponent of the same series and sampling (docs/lyapunov.md, "Two estimators must agree"). Where
+// the local-map result is `consistent` and the fit has a linear region whose slope differs from it by
+// more than `tolerance` times their mean, the fit becomes `unconfirmed`: its value and region are
+// withdrawn, and its explanation gives both values. Otherwise nothing changes. The local-map value
+// keeps its status: it has passed its own ten variants, and the disagreements found so far were the
+// divergence curves' known low bias on flows (Genesio-Tesi: Rosenstein 10% low, inside a straight
+// stretch that Kantz confirmed; docs/zoo-notes.md, section 3).
+void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance = 0.1);
+// The same on a full result (its method from result.options), with the per-time values withdrawn too.
+void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance = 0.1);
 
 }  // namespace chaos
