@@ -28,10 +28,6 @@ struct D2Args {
   bool quiet = false;
 };
 
-std::string interval_text(const std::optional<Interval>& i) {
-  return i ? "[" + number(i->low) + ", " + number(i->high) + "]" : std::string("none");
-}
-
 // log C against log eps per m (top) and the local slopes with the chosen region and D2 (bottom).
 std::string plot_script(const CorrelationSumResult& sums, const CorrelationDimensionResult& d2) {
   std::ostringstream s;

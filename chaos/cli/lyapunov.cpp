@@ -24,10 +24,6 @@ struct LyapunovArgs {
   bool quiet = false;
 };
 
-std::string interval_text(const std::optional<Interval>& i) {
-  return i ? "[" + number(i->low) + ", " + number(i->high) + "]" : std::string("none");
-}
-
 // The divergence curve with the fitted line over the region (top) and the local slopes with the
 // region shaded and lambda dashed (bottom); x in time units when dt is known.
 std::string plot_script(const LyapunovResult& r) {

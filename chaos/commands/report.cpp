@@ -16,6 +16,10 @@ std::string number(double value) {
   return buffer;
 }
 
+std::string interval_text(const std::optional<Interval>& interval) {
+  return interval ? "[" + number(interval->low) + ", " + number(interval->high) + "]" : std::string("none");
+}
+
 Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)) {
   json_["command"] = command_;
   json_["parameters"] = nlohmann::ordered_json::object();

@@ -33,6 +33,8 @@ inline OutputOptions mode_of(const OutputOptions& output) { return {output.json,
 
 // Formats a double with enough digits to round-trip the estimate's meaningful precision.
 std::string number(double value);
+// "[low, high]" with number()'s digits, or "none".
+std::string interval_text(const std::optional<Interval>& interval);
 
 // Collects the parameters of a run in the order they are added, then writes them as '#' lines or
 // as the "parameters" object of the JSON output.

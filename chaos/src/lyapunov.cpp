@@ -522,6 +522,14 @@ void withdraw(LyapunovFit& fit, const std::string& why) {
   fit.lambda_by_curve.clear();
 }
 
+// A result whose fit was withdrawn loses its per-time values too.
+void withdraw_per_time(LyapunovResult& r) {
+  if (r.fit.lambda) return;
+  r.lambda_per_time.reset();
+  r.lambda_per_time_interval.reset();
+  r.fit_range_time.reset();
+}
+
 }  // namespace
 
 void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
@@ -540,17 +548,6 @@ void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) 
   if (r) withdraw(rosenstein, why.str());
   if (k) withdraw(kantz, why.str());
 }
-
-namespace {
-
-void withdraw_per_time(LyapunovResult& r) {
-  if (r.fit.lambda) return;
-  r.lambda_per_time.reset();
-  r.lambda_per_time_interval.reset();
-  r.fit_range_time.reset();
-}
-
-}  // namespace
 
 void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance) {
   cross_check(rosenstein.fit, kantz.fit, tolerance);
