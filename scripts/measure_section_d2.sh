@@ -103,6 +103,10 @@ done
     echo "The continuous D2 is the sweep's analysis of slider_y over the last $analysis_periods revolutions sampled every"
     echo "$analysis_interval s (\`analysis.tsv\`: MI delay, Cao, D2 up to m = $max_m with the record's halves; docs/study.md),"
     echo "against D_KY itself."
+    if command -v gnuplot > /dev/null; then
+      echo
+      echo "![section and continuous D2 against the clearance]($(basename "$png"))"
+    fi
   fi
   echo
   for v in "${variants[@]}"; do
@@ -162,7 +166,7 @@ plot '$work/$v.plot' using 1:2 with lines lw 2 lc rgb 'black' title 'D_KY (equat
      '' using 1:5 with points pt 5 ps 0.6 lc rgb '#d62728' title 'section, slope at m = $max_m', \\
      '' using 1:6 with points pt 9 ps 1.2 lc rgb '#2ca02c' title 'continuous D2 (saturated)', \\
      '' using 1:3 with points pt 11 ps 1.2 lc rgb '#9467bd' title 'section D2 (saturated)', \\
-     2.24 with lines dt 3 lc rgb 'gray' title \"the seed's D2\"
+     2.24 with lines lw 2 dt 3 lc rgb '#555555' title \"the seed's D2\"
 "
   done
   gnuplot <<EOF
