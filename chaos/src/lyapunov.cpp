@@ -522,6 +522,14 @@ void withdraw(LyapunovFit& fit, const std::string& why) {
   fit.lambda_by_curve.clear();
 }
 
+void require_cross_check_tolerance(double tolerance) {
+  if (!(std::isfinite(tolerance) && tolerance > 0.0))
+    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+}
+
+// Two exponents agree when they differ by at most `tolerance` times their mean.
+bool agree(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance * 0.5 * (a + b); }
+
 // A result whose fit was withdrawn loses its per-time values too.
 void withdraw_per_time(LyapunovResult& r) {
   if (r.fit.lambda) return;
@@ -533,13 +541,11 @@ void withdraw_per_time(LyapunovResult& r) {
 }  // namespace
 
 void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
-  if (!(std::isfinite(tolerance) && tolerance > 0.0))
-    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+  require_cross_check_tolerance(tolerance);
   const bool r = rosenstein.status == LyapunovStatus::linear_region, k = kantz.status == LyapunovStatus::linear_region;
   if (!r && !k) return;
   if (r && k) {
-    const double a = *rosenstein.lambda, b = *kantz.lambda;
-    if (std::abs(a - b) <= tolerance * 0.5 * (a + b)) return;
+    if (agree(*rosenstein.lambda, *kantz.lambda, tolerance)) return;
   }
   std::ostringstream why;
   why << "the two estimators disagree: " << verdict("Rosenstein", rosenstein) << ", " << verdict("Kantz", kantz);
@@ -556,17 +562,15 @@ void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double toler
 }
 
 void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance) {
-  if (!(std::isfinite(tolerance) && tolerance > 0.0))
-    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
+  require_cross_check_tolerance(tolerance);
   if (fit.status != LyapunovStatus::linear_region || local_maps.status != LocalMapStatus::consistent ||
       !local_maps.lambda)
     return;
-  const double a = *fit.lambda, b = *local_maps.lambda;
-  if (std::abs(a - b) <= tolerance * 0.5 * (a + b)) return;
+  if (agree(*fit.lambda, *local_maps.lambda, tolerance)) return;
   const std::string name = method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz";
   std::ostringstream why;
   why << "the local-map exponent contradicts this slope: " << verdict(name.c_str(), fit) << ", local maps give "
-      << std::setprecision(4) << b << " per sample (consistent over their variants), more than " << tolerance * 100
+      << std::setprecision(4) << *local_maps.lambda << " per sample (consistent over their variants), more than " << tolerance * 100
       << "% apart; a divergence-curve slope that the local maps contradict is not trusted";
   withdraw(fit, why.str());
 }
