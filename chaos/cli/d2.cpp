@@ -143,6 +143,9 @@ void register_d2(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--min-pairs", args->params.dimension.min_pairs, "radii with fewer close pairs are left out")
       ->capture_default_str();
+  command->add_option("--min-plateau-ratio", args->params.dimension.min_plateau_ratio,
+                      "the highest dimensions' shared plateau spans at least this factor in eps (eps_high / eps_low)")
+      ->capture_default_str();
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
   add_quiet_option(*command, args->quiet);

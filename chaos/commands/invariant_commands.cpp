@@ -79,6 +79,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("seed", params.sums.seed).parameter("threads", params.sums.threads)
       .parameter("tolerance", params.dimension.region.tolerance).parameter("min_points", params.dimension.region.min_points)
       .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
+      .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
       .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)
       .parameter("points", sums.points)

@@ -31,6 +31,10 @@ void CorrelationDimensionOptions::validate() const {
                            std::to_string(slope_error_fraction) + ")");
   if (saturation_dimensions < 1)
     throw InvalidInput(ErrorCode::invalid_parameter, "saturation needs at least 1 dimension (got 0)");
+  if (!(min_plateau_ratio >= 1.0) || !std::isfinite(min_plateau_ratio))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the plateau's smallest extent, a factor in eps, must be finite and at least 1 (got " +
+                           std::to_string(min_plateau_ratio) + ")");
 }
 
 std::optional<std::pair<double, double>> takens_theiler(const std::vector<double>& radius,
@@ -205,8 +209,12 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   } else {
     std::vector<std::vector<std::optional<double>>> curves;
     for (const auto d : top) curves.push_back(searchable(usable[d]));
-    // The highest dimension has the fewest pairs: its count is the shared region's support.
-    const auto shared = find_scaling_region(log_r, curves, options.region, support[top.back()]);
+    // The highest dimension has the fewest pairs: its count is the shared region's support. The
+    // plateau must also span min_plateau_ratio in eps: a shorter flat stretch may be the crest of
+    // a hump (docs/correlation_dimension.md, step 3).
+    ScalingRegionOptions plateau_options = options.region;
+    plateau_options.min_width = std::log(options.min_plateau_ratio);
+    const auto shared = find_scaling_region(log_r, curves, plateau_options, support[top.back()]);
     // Step 4 (small-scale limit): a second plateau at smaller radii, searched below the first.
     std::optional<ScalingRegion> below, lacunar_below;
     if (shared && shared->first >= options.region.min_points) {
@@ -241,7 +249,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
         for (const auto& curve : curves)
           upper.emplace_back(curve.begin() + static_cast<std::ptrdiff_t>(begin), curve.begin() + static_cast<std::ptrdiff_t>(searched));
         if (const auto above = find_scaling_region(std::span<const double>(log_r).subspan(begin, searched - begin), upper,
-                                                   options.region,
+                                                   plateau_options,
                                                    std::span<const double>(support[top.back()]).subspan(begin, searched - begin))) {
           ScalingRegion shifted = *above;
           shifted.first += begin;
@@ -252,7 +260,13 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     }
     if (!shared) {
       out.status = D2Status::not_saturated;
-      why << "the highest dimensions share no plateau; D2(m) by dimension: " << list_d2();
+      why << "the highest dimensions share no plateau";
+      if (const auto narrow = find_scaling_region(log_r, curves, options.region, support[top.back()]))
+        why << " spanning a factor of " << options.min_plateau_ratio << " in eps (their local slopes agree on "
+            << narrow->slope << " only for eps in [" << sums.radius[narrow->first] << ", " << sums.radius[narrow->last]
+            << "], a factor of " << sums.radius[narrow->last] / sums.radius[narrow->first]
+            << ": too short to tell a plateau from the crest of a hump)";
+      why << "; D2(m) by dimension: " << list_d2();
     } else if (below) {
       out.status = D2Status::scale_dependent;
       out.plateaus = {plateau(*shared), plateau(*below)};

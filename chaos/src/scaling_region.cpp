@@ -56,6 +56,9 @@ void ScalingRegionOptions::validate() const {
   if (!(min_support_gain >= 0.0) || !std::isfinite(min_support_gain))
     throw InvalidInput(ErrorCode::invalid_parameter, "scaling-region support gain must be finite and at least 0 (got " +
                                                          std::to_string(min_support_gain) + ")");
+  if (!(min_width >= 0.0) || !std::isfinite(min_width))
+    throw InvalidInput(ErrorCode::invalid_parameter, "scaling-region minimum width must be finite and at least 0 (got " +
+                                                         std::to_string(min_width) + ")");
   if (half_width < 1)
     throw InvalidInput(ErrorCode::invalid_parameter, "local-slope half width must be at least 1 (got 0)");
 }
@@ -96,7 +99,7 @@ std::optional<ScalingRegion> find_scaling_region(std::span<const double> x,
       // Once the spread exceeds twice the allowance no mean can bring it back: stop extending.
       if (hi - lo > 2.0 * allowed) break;
       if (hi - mean > allowed || mean - lo > allowed) continue;
-      if (b - a + 1 < options.min_points) continue;
+      if (b - a + 1 < options.min_points || x[b] - x[a] < options.min_width) continue;
       const double width = support.empty() ? x[b] - x[a] : support[b] - support[a];
       if (!support.empty() && (!(width > 0.0) || width < options.min_support_gain))
         continue;  // too little entered across the region: no evidence of its slope

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/error.hpp"
@@ -221,6 +222,75 @@ TEST(CorrelationDimension, MaxRegionFractionKeepsTheRegionAtSmallScales) {
   for (const double bad : {0.0, -0.1, std::nan("")}) {
     capped.max_region_fraction = bad;
     EXPECT_THROW(chaos::correlation_dimension(sums, capped), chaos::InvalidInput) << bad;
+  }
+}
+
+// Sums for m = 1..6 over radii 0.1..1 (40 log-spaced) whose local slope is 1 for m = 1, 2 for m = 2,
+// and for m >= 3 is 3 on a stretch of `crest` e-folds of eps centred at ln eps = -1.15, rising
+// steeply (3 per e-fold) on both sides: the crest of a hump, flat for a while but not a scaling
+// law. ln C is the integral of the slope, C = 0.5 at the largest radius.
+chaos::CorrelationSumResult crest_of_a_hump(double crest) {
+  chaos::CorrelationSumResult s;
+  s.radius = chaos::log_radii(0.1, 1.0, 40);
+  s.points = 100000;
+  const double a = -1.15 - crest / 2, b = -1.15 + crest / 2;
+  const auto slope = [&](std::size_t m, double x) {
+    if (m < 3) return double(m);
+    return x < a ? 3.0 - 3.0 * (a - x) : x > b ? 3.0 + 3.0 * (x - b) : 3.0;
+  };
+  const std::uint64_t pairs_total = 1000000000000;
+  for (std::size_t m = 1; m <= 6; ++m) {
+    s.dimension.push_back(m);
+    std::vector<double> c(s.radius.size());
+    std::vector<std::uint64_t> pairs, examined;
+    double log_c = std::log(0.5);
+    c.back() = 0.5;
+    for (std::size_t k = s.radius.size() - 1; k-- > 0;) {  // integrate the slope downwards in ln eps
+      const double x0 = std::log(s.radius[k]), x1 = std::log(s.radius[k + 1]);
+      const int steps = 1000;
+      for (int i = 0; i < steps; ++i) {
+        const double u = x1 - (x1 - x0) * (i + 0.5) / steps;
+        log_c -= slope(m, u) * (x1 - x0) / steps;
+      }
+      c[k] = std::exp(log_c);
+    }
+    for (const double v : c) {
+      pairs.push_back(static_cast<std::uint64_t>(std::llround(v * static_cast<double>(pairs_total))));
+      examined.push_back(pairs_total);
+    }
+    s.correlation_sum.push_back(c);
+    s.pairs.push_back(pairs);
+    s.examined.push_back(examined);
+  }
+  return s;
+}
+
+TEST(CorrelationDimension, APlateauShorterThanAnOctaveIsNotSaturation) {
+  // A crest 0.4 e-folds wide (a factor 1.49 in eps): every local slope of m = 4..6 there is within
+  // 5% of 3, with enough radii and pairs for a region, but it spans less than the octave a plateau
+  // needs (min_plateau_ratio = 2). Found on a slider-crank series: 3.13 over a factor 1.76,
+  // against D_KY = 2.00 (docs/correlation_dimension.md, step 3).
+  const auto narrow = crest_of_a_hump(0.4);
+  const auto r = chaos::correlation_dimension(narrow);
+  EXPECT_EQ(r.status, chaos::D2Status::not_saturated) << r.explanation;
+  EXPECT_FALSE(r.d2.has_value());
+  EXPECT_NE(r.explanation.find("too short"), std::string::npos) << r.explanation;
+  // Without the rule (a ratio of 1) the same sums read as saturated at 3: the rule is what refuses.
+  chaos::CorrelationDimensionOptions any_width;
+  any_width.min_plateau_ratio = 1.0;
+  const auto old = chaos::correlation_dimension(narrow, any_width);
+  ASSERT_EQ(old.status, chaos::D2Status::saturated) << old.explanation;
+  EXPECT_NEAR(*old.d2, 3.0, 0.05);
+  EXPECT_LT(old.scaling_region->high / old.scaling_region->low, 2.0);
+  // A crest 0.9 e-folds wide (a factor 2.46) is a plateau.
+  const auto wide = chaos::correlation_dimension(crest_of_a_hump(0.9));
+  ASSERT_EQ(wide.status, chaos::D2Status::saturated) << wide.explanation;
+  EXPECT_NEAR(*wide.d2, 3.0, 0.05);
+  EXPECT_GE(wide.scaling_region->high / wide.scaling_region->low, 2.0);
+
+  for (const double bad : {0.5, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    any_width.min_plateau_ratio = bad;
+    EXPECT_THROW(chaos::correlation_dimension(narrow, any_width), chaos::InvalidInput) << bad;
   }
 }
 

@@ -71,6 +71,33 @@ TEST(FindScalingRegion, PicksTheWidestFlatStretchSharedByAllCurves) {
   EXPECT_EQ(narrower->last, 11u);
 }
 
+TEST(FindScalingRegion, MinWidthRefusesShorterStretches) {
+  // Flat (2.0) on indices 3..8, i.e. 0.5 wide in x, and on 10..19, 0.9 wide; steep in between.
+  std::vector<double> x;
+  Curve a;
+  for (int k = 0; k < 20; ++k) {
+    x.push_back(0.1 * k);
+    a.push_back(k >= 3 && k <= 8 ? 2.0 : k >= 10 ? 3.0 : 1.0 - 0.2 * k);
+  }
+  const auto any = chaos::find_scaling_region(x, {a});  // the widest: 10..19
+  ASSERT_TRUE(any.has_value());
+  EXPECT_EQ(any->first, 10u);
+  chaos::ScalingRegionOptions wide;
+  wide.min_width = 0.95;  // wider than both: none
+  EXPECT_FALSE(chaos::find_scaling_region(x, {a}, wide).has_value());
+  wide.min_width = 0.6;  // only 10..19 qualifies, also when it gains less support than 3..8
+  std::vector<double> support(20, 0.0);
+  for (int k = 0; k < 20; ++k) support[k] = k <= 8 ? 10.0 * k : 80.0 + 0.1 * (k - 8);
+  const auto chosen = chaos::find_scaling_region(x, {a}, wide, support);
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_EQ(chosen->first, 10u);
+  EXPECT_EQ(chosen->last, 19u);
+  wide.min_width = std::nan("");
+  EXPECT_THROW(chaos::find_scaling_region(x, {a}, wide), chaos::InvalidInput);
+  wide.min_width = -1.0;
+  EXPECT_THROW(chaos::find_scaling_region(x, {a}, wide), chaos::InvalidInput);
+}
+
 TEST(FindScalingRegion, NoneWhenNothingIsFlatOrDefined) {
   std::vector<double> x;
   Curve rising, undefined(12);

@@ -12,7 +12,11 @@
 //     however long and flat;
 //  3. the saturated D2 needs one region shared by the `saturation_dimensions` highest dimensions
 //     that have an estimate, with their D2(m) agreeing within the tolerance; its interval is the
-//     range of all local slopes of those dimensions over the shared region;
+//     range of all local slopes of those dimensions over the shared region. The shared region must
+//     span at least an octave of eps (min_plateau_ratio = 2): over a shorter stretch the crest of a
+//     hump in the local slopes passes the flatness test as easily as a plateau does (a slider-crank
+//     series whose slopes of m = 8..10 still rise with m read 3.13 over a factor 1.76 against
+//     D_KY = 2.00; docs/correlation_dimension.md, step 3);
 //  4. D2 is the limit of small scales. If, at radii below that region, the same dimensions share a
 //     second admissible plateau (the same tolerance, support and length) whose allowance (mean +-
 //     tolerance * |mean|) does not overlap the first's, the slopes still change with scale (more than
@@ -64,6 +68,9 @@ const char* to_string(D2Status status) noexcept;
 struct CorrelationDimensionOptions {
   ScalingRegionOptions region{0.05, true, 5, 1, 0.6931471805599453};
   std::size_t saturation_dimensions = 3;
+  // The shared plateau of the saturation step spans at least this factor in eps (eps_high / eps_low).
+  // Per-dimension regions and the search for a second plateau below it (step 4) are not limited.
+  double min_plateau_ratio = 2.0;
   std::uint64_t min_pairs = 100;
   // Regions are searched at radii <= max_region_fraction * range (CorrelationSumResult::range);
   // infinity (the default) searches every radius.

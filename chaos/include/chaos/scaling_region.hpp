@@ -32,6 +32,8 @@ struct ScalingRegionOptions {
   // With a support (find_scaling_region): the support must gain at least this much across a
   // region, support[last] - support[first] >= min_support_gain (and always more than 0).
   double min_support_gain = 0.0;
+  // A region must span at least this much in x, x[last] - x[first] >= min_width (0: any width).
+  double min_width = 0.0;
   void validate() const;
 };
 
