@@ -6,11 +6,24 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/error.hpp"
 
 namespace {
+
+// Appends dimension m with correlation sums c (one per radius of s) and the pair counts they
+// stand for out of `pairs_total` examined pairs.
+void add_dimension(chaos::CorrelationSumResult& s, std::size_t m, std::vector<double> c, std::uint64_t pairs_total) {
+  std::vector<std::uint64_t> pairs;
+  for (const double v : c) pairs.push_back(static_cast<std::uint64_t>(std::llround(v * static_cast<double>(pairs_total))));
+  s.dimension.push_back(m);
+  s.correlation_sum.push_back(std::move(c));
+  s.pairs.push_back(std::move(pairs));
+  s.examined.emplace_back(s.radius.size(), pairs_total);
+}
 
 // Sums for m = 1..dims over radii 0.01..1 with C(eps, m) = min(1, (eps / 2)^slope(m)); pair
 // counts from `pairs_total` examined pairs.
@@ -19,17 +32,9 @@ chaos::CorrelationSumResult power_law(std::size_t dims, double (*slope)(std::siz
   s.radius = chaos::log_radii(0.01, 1.0, 30);
   s.points = 100000;
   for (std::size_t m = 1; m <= dims; ++m) {
-    s.dimension.push_back(m);
     std::vector<double> c;
-    std::vector<std::uint64_t> pairs, examined;
-    for (const double r : s.radius) {
-      c.push_back(std::min(1.0, std::pow(r / 2.0, slope(m))));
-      pairs.push_back(static_cast<std::uint64_t>(std::llround(c.back() * static_cast<double>(pairs_total))));
-      examined.push_back(pairs_total);
-    }
-    s.correlation_sum.push_back(c);
-    s.pairs.push_back(pairs);
-    s.examined.push_back(examined);
+    for (const double r : s.radius) c.push_back(std::min(1.0, std::pow(r / 2.0, slope(m))));
+    add_dimension(s, m, std::move(c), pairs_total);
   }
   return s;
 }
@@ -238,11 +243,8 @@ chaos::CorrelationSumResult crest_of_a_hump(double crest) {
     if (m < 3) return double(m);
     return x < a ? 3.0 - 3.0 * (a - x) : x > b ? 3.0 + 3.0 * (x - b) : 3.0;
   };
-  const std::uint64_t pairs_total = 1000000000000;
   for (std::size_t m = 1; m <= 6; ++m) {
-    s.dimension.push_back(m);
     std::vector<double> c(s.radius.size());
-    std::vector<std::uint64_t> pairs, examined;
     double log_c = std::log(0.5);
     c.back() = 0.5;
     for (std::size_t k = s.radius.size() - 1; k-- > 0;) {  // integrate the slope downwards in ln eps
@@ -254,13 +256,7 @@ chaos::CorrelationSumResult crest_of_a_hump(double crest) {
       }
       c[k] = std::exp(log_c);
     }
-    for (const double v : c) {
-      pairs.push_back(static_cast<std::uint64_t>(std::llround(v * static_cast<double>(pairs_total))));
-      examined.push_back(pairs_total);
-    }
-    s.correlation_sum.push_back(c);
-    s.pairs.push_back(pairs);
-    s.examined.push_back(examined);
+    add_dimension(s, m, std::move(c), 1000000000000);
   }
   return s;
 }
