@@ -17,6 +17,7 @@ nlohmann::ordered_json simulation_summary_json(const SimulationSummary& s, const
   j["located_switches"] = s.located_switches;
   j["energy_balance_error"] = s.energy_balance_error;
   j["energy_balance_relative"] = s.energy_balance_relative;
+  j["energy_jump_relative"] = s.energy_jump_relative;
   j["samples"] = s.samples;
   j["stroboscopic_samples"] = s.stroboscopic_samples;
   j["coordinates"] = system.coordinate_names();

@@ -47,41 +47,6 @@ double bristle_limit(const FrictionLawParameters& p, double normal_force, double
   return p.law == FrictionLaw::lugre_absolute ? normal_force * mu : mu;
 }
 
-FrictionEvaluation lugre(const FrictionLawParameters& p, double normal_force, double v,
-                         double z_start, double elapsed) {
-  FrictionEvaluation out;
-  if (normal_force == 0.0) return out;  // no load on the bristles: force 0, z 0
-  if (std::isnan(normal_force)) {         // state, not a parameter: let the caller see it
-    out.force = out.deflection = out.deflection_rate = normal_force;
-    return out;
-  }
-  double z = z_start, rate = 0.0;
-  if (v != 0.0) {  // at v == 0 the ODE is dz/dt = 0: z holds (sticking); NaN takes this branch
-    const double g = bristle_limit(p, normal_force, v);
-    const double z_ss = std::copysign(g / p.sigma0, v);
-    // g can underflow to 0 for a subnormal F_N: then k overflows. A huge finite k keeps
-    // k * 0 and 0 * k away from NaN and changes nothing else (exp(-k t) is 0 either way).
-    const double k = std::fmin(p.sigma0 * std::fabs(v) / g, std::numeric_limits<double>::max());
-    const double kt = k * elapsed;
-    const double gap = z_ss - z_start;
-    // z_start + gap (1 - e^{-kt}): expm1 keeps the digits when kt is tiny (presliding).
-    z = z_start - gap * std::expm1(-kt);
-    // Rounding may put z an ulp past z_ss; the exact solution never overshoots.
-    if (!std::isnan(z)) z = std::clamp(z, std::fmin(z_start, z_ss), std::fmax(z_start, z_ss));
-    // dz/dt = k (z_ss - z(t)) = k gap e^{-kt}; formed from gap e^{-kt} first, so a huge k meets a
-    // 0 (not an inf) once the bristles have settled.
-    const double settled = gap * std::exp(-kt);
-    rate = settled == 0.0 ? 0.0 : k * settled;
-    if (!std::isnan(rate))
-      rate = std::clamp(rate, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
-  }
-  const double s = p.sigma0 * z + p.bristle_damping(v) * rate + p.sigma2 * v;
-  out.force = p.law == FrictionLaw::lugre_absolute ? -s : -normal_force * s;
-  out.deflection = z;
-  out.deflection_rate = rate;
-  return out;
-}
-
 constexpr std::array<std::pair<FrictionLaw, std::string_view>, 5> kNames{{
     {FrictionLaw::none, "none"},
     {FrictionLaw::coulomb, "coulomb"},
@@ -170,7 +135,7 @@ FrictionEvaluation friction(const FrictionLawParameters& p, double normal_force,
                       : -p.kinetic_coefficient * ambrosio_correction(p, v) * normal_force * sign(v);
       return out;
     case FrictionLaw::lugre_absolute:
-    case FrictionLaw::lugre_normalised: return lugre(p, normal_force, v, z_start, elapsed);
+    case FrictionLaw::lugre_normalised: return detail::lugre_kernel(p, normal_force, v, z_start, elapsed);
   }
   return out;  // unreachable: validate() rejects unknown laws
 }

@@ -5,7 +5,9 @@
 // side, where the checks cost more than the formulas (tens of millions of calls per run). One
 // source for each formula keeps both paths bit-identical.
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mechanism/friction_law.hpp"
 
@@ -136,6 +138,46 @@ inline double stribeck_kernel(const FrictionLawParameters& p, double sliding_vel
   return p.kinetic_coefficient +
          (p.static_coefficient - p.kinetic_coefficient) *
              exp_minus(p.stribeck_exponent == 2.0 ? ratio * ratio : std::pow(ratio, p.stribeck_exponent));
+}
+
+// LuGre (friction_law.hpp) with z advanced exactly from z_start over `elapsed` at this sliding
+// speed: z' = k (z_ss - z) with k = sigma0 |v| / g(v) and z_ss = g(v) sign(v) / sigma0, where g is
+// mu(v) F_N (absolute form, newtons) or mu(v) (normalised form). Used by friction() and, with
+// integrator.bristles = "exponential", by the slider-crank's right-hand side.
+inline FrictionEvaluation lugre_kernel(const FrictionLawParameters& p, double normal_force, double v, double z_start,
+                                       double elapsed) {
+  FrictionEvaluation out;
+  if (normal_force == 0.0) return out;  // no load on the bristles: force 0, z 0
+  if (std::isnan(normal_force)) {         // state, not a parameter: let the caller see it
+    out.force = out.deflection = out.deflection_rate = normal_force;
+    return out;
+  }
+  double z = z_start, rate = 0.0;
+  if (v != 0.0) {  // at v == 0 the ODE is dz/dt = 0: z holds (sticking); NaN takes this branch
+    const double mu = stribeck_kernel(p, v);
+    const double g = p.law == FrictionLaw::lugre_absolute ? normal_force * mu : mu;
+    const double z_ss = std::copysign(g / p.sigma0, v);
+    // g can underflow to 0 for a subnormal F_N: then k overflows. A huge finite k keeps
+    // k * 0 and 0 * k away from NaN and changes nothing else (exp(-k t) is 0 either way).
+    const double k = std::fmin(p.sigma0 * std::fabs(v) / g, std::numeric_limits<double>::max());
+    const double kt = k * elapsed;
+    const double gap = z_ss - z_start;
+    // z_start + gap (1 - e^{-kt}): expm1 keeps the digits when kt is tiny (presliding).
+    z = z_start - gap * std::expm1(-kt);
+    // Rounding may put z an ulp past z_ss; the exact solution never overshoots.
+    if (!std::isnan(z)) z = std::clamp(z, std::fmin(z_start, z_ss), std::fmax(z_start, z_ss));
+    // dz/dt = k (z_ss - z(t)) = k gap e^{-kt}; formed from gap e^{-kt} first, so a huge k meets a
+    // 0 (not an inf) once the bristles have settled.
+    const double settled = gap * exp_minus(kt);
+    rate = settled == 0.0 ? 0.0 : k * settled;
+    if (!std::isnan(rate))
+      rate = std::clamp(rate, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  }
+  const double s = p.sigma0 * z + p.bristle_damping(v) * rate + p.sigma2 * v;
+  out.force = p.law == FrictionLaw::lugre_absolute ? -s : -normal_force * s;
+  out.deflection = z;
+  out.deflection_rate = rate;
+  return out;
 }
 
 }  // namespace mechanism::detail

@@ -86,6 +86,10 @@ template <>
 struct EnumNames<IntegratorMethod> {
   static constexpr std::string_view names[] = {"rk4", "dopri5"};
 };
+template <>
+struct EnumNames<BristleUpdate> {
+  static constexpr std::string_view names[] = {"integrated", "exponential"};
+};
 // The laws' names are theirs (contact_law.hpp, friction_law.hpp): read them, do not repeat them.
 template <class E, std::size_t N>
 std::array<std::string_view, N> names_from_to_string() {
@@ -224,6 +228,10 @@ void visit_fields(Visitor& v, Scene& s) {
   v.flag("integrator.locate_switches", s.integrator.locate_switches,
          "end steps where a contact opens or closes (located on the step's dense output), so no step "
          "integrates across the force's switch");
+  v.choice("integrator.bristles", s.integrator.bristles,
+           "LuGre bristle deflections: integrated (in the ODE state, rate capped by bristle_time_floor; RK4 "
+           "needs step <= 2.5 x the floor) or exponential (the law's exact update at each stage's sliding "
+           "speed; no cap, no step limit)");
   v.number("run.duration", s.run.duration, Rule::positive, "s, simulated after the transient");
   v.number("run.transient", s.run.transient, Rule::non_negative, "s, simulated and not written");
   v.number("run.output_interval", s.run.output_interval, Rule::non_negative,
@@ -488,11 +496,12 @@ void check_consistency(const Scene& s) {
         std::tuple{"joint.crank_conrod", s.crank_conrod.kind, &s.crank_conrod.friction, s.crank_conrod.bristle_time_floor},
         std::tuple{"joint.conrod_slider", s.conrod_slider.kind, &s.conrod_slider.friction, s.conrod_slider.bristle_time_floor}}) {
     if (kind == JointKind::clearance && lugre(*f) && s.integrator.method == IntegratorMethod::rk4 &&
-        s.integrator.step > 2.5 * floor * (1 + 1e-12)) {
+        s.integrator.bristles == BristleUpdate::integrated && s.integrator.step > 2.5 * floor * (1 + 1e-12)) {
       throw InvalidParameter("integrator.step", format_number(s.integrator.step),
                              "must be <= 2.5 x " + std::string(name) + ".friction.bristle_time_floor (" +
                                  format_number(floor) +
-                                 " s): explicit RK4 is unstable on the LuGre bristle state beyond that");
+                                 " s): explicit RK4 is unstable on the LuGre bristle state beyond that "
+                                 "(integrator.bristles = \"exponential\" has no such limit)");
     }
   }
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
@@ -582,6 +591,12 @@ std::vector<std::string> scene_warnings(const Scene& s) {
       w.push_back(name + ".friction: static_coefficient " + format_number(f.static_coefficient) +
                   " < kinetic_coefficient " + format_number(f.kinetic_coefficient) +
                   ": no stiction peak (the seed's Table 2 prints these values; it may be a swap)");
+    }
+    if (kind == JointKind::clearance && f.has_state() && s.integrator.bristles == BristleUpdate::exponential &&
+        f.sigma1 > 0 && f.sigma1_velocity == 0.0) {
+      w.push_back(name + ".friction: integrator.bristles = \"exponential\" with a constant sigma1: its sigma1 dz/dt "
+                  "term makes the update first order in the step (the energy-balance error only halves as the "
+                  "step halves; docs/mechanism/contact-and-friction.md, \"The exact bristle update\")");
     }
   };
   if (s.slider_guide.kind == JointKind::clearance && s.slider_guide.friction.has_state() &&

@@ -83,14 +83,16 @@ class HybridLoop {
 
   // At t = 0: the first evaluation, the energy reference and a sample if the transient is 0.
   void start(const State& x) {
+    sys_.start_bristle_clock(0.0);
     sys_.evaluate(0.0, x, ev_);
     energy0_ = ev_.kinetic_energy + ev_.potential_energy;
+    kinetic_max_ = ev_.kinetic_energy;
     penetration_prev_.resize(sys_.site_count());
     for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
     if (locate_) sys_.switching_functions(ev_, switch_prev_);
     emit_due(0.0, x, true);
     State x0 = x;
-    sys_.commit(ev_, onset_rate_, x0);
+    sys_.commit(0.0, ev_, onset_rate_, x0);
   }
 
   // The evaluation at the end (t1, x) of the step just taken, which find_switch and after_step
@@ -135,9 +137,11 @@ class HybridLoop {
     emit_due(t1, x, false);
     if (locate_) switch_prev_.swap(switch_now_);  // evaluate_end's, at this step end
     const int n = sys_.coordinate_count();
-    const double balance =
-        std::abs(ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1]);
-    sum_.energy_balance_error = std::max(sum_.energy_balance_error, balance);
+    const double balance = ev_.kinetic_energy + ev_.potential_energy - energy0_ - x[2 * n] - x[2 * n + 1];
+    sum_.energy_balance_error = std::max(sum_.energy_balance_error, std::abs(balance));
+    if (kinetic_max_ > 0.0)
+      sum_.energy_jump_relative = std::max(sum_.energy_jump_relative, std::abs(balance - balance_prev_) / kinetic_max_);
+    balance_prev_ = balance;
     kinetic_max_ = std::max(kinetic_max_, ev_.kinetic_energy);
     bool onset = false;
     for (std::size_t i = 0; i < sys_.site_count(); ++i) {
@@ -152,7 +156,7 @@ class HybridLoop {
       penetration_prev_[i] = now;
     }
     if (rec_) rec_->forget();
-    const bool changed = sys_.commit(ev_, onset_rate_, x);
+    const bool changed = sys_.commit(t1, ev_, onset_rate_, x);
     if (onset || changed) stepper_.invalidate();
   }
 
@@ -238,6 +242,7 @@ class HybridLoop {
   double t_end_ = 0, transient_ = 0, out_dt_ = 0, period_ = 0;
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
+  double balance_prev_ = 0;  // the energy balance at the last step end (0 at the start)
   std::vector<double> penetration_prev_, onset_rate_;
   // Switching functions at the last accepted step end, at the step end being checked, at a probe.
   std::vector<double> switch_prev_, switch_now_, switch_probe_;
@@ -255,6 +260,17 @@ std::string at_time(const char* what, double t) {
 // A run that reached its end with an energy balance too far off to trust (simulate.hpp).
 void check_energy_balance(SimulationSummary& sum, double period) {
   if (sum.status != SimulationStatus::completed) return;
+  if (sum.energy_jump_relative > max_energy_defect_per_revolution) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "one step changed the energy balance by " << sum.energy_jump_relative
+       << " of the largest kinetic energy before it (above the limit " << max_energy_defect_per_revolution
+       << ", a whole revolution's allowance): the integration does not resolve this run "
+          "(docs/mechanism/model.md, \"The energy balance\")";
+    sum.status = SimulationStatus::energy_defect;
+    sum.message = os.str();
+    return;
+  }
   const double revolutions = sum.end_time / period;
   const double rate = sum.energy_balance_relative / std::max(1.0, revolutions);
   if (!(rate > max_energy_defect_per_revolution)) return;

@@ -1,5 +1,6 @@
 #include "mechanism/slider_crank.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -101,6 +102,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     site.chi = hysteresis_factor(c.law, c.restitution);
     if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
   }
+  exponential_bristles_ = bristles_ > 0 && s.integrator.bristles == BristleUpdate::exponential;
   memory_.assign(sites_.size(), ContactMemory{});
   slider_sites_ = slider_clearance_ ? (scene_.slider_guide.model == SliderContactModel::corners ? 4 : 2) : 0;
   seed_topology_ = slider_clearance_ && idx_crank_pivot_ < 0 && idx_conrod_pin_ < 0 && idx_slider_x_ < 0;
@@ -111,17 +113,25 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
 namespace {
 
 // Friction at one site. LuGre (Canudas de Wit et al. 1995): z' = v - sigma0 |v| z / g(v), with g
-// in newtons (absolute form) or as a coefficient (normalised form); the relaxation rate
+// in newtons (absolute form) or as a coefficient (normalised form). `z` is the deflection in the
+// state. Integrated (elapsed = NaN): z is the deflection now, and the relaxation rate
 // k = sigma0 |v| / g is capped at 1 / floor, so z' = max-rate relaxation toward the steady
 // deflection z_ss = g sign(v) / sigma0 when k floor > 1 (same fixed point, bounded stiffness).
+// Exponential (elapsed: the time since the step's start, where z was written): the law's exact
+// solution for this sliding speed, friction()'s own kernel, with no cap (BristleUpdate, scene.hpp).
 // The other laws are stateless.
 struct FrictionResult {
-  double force = 0.0, z_rate = 0.0;
+  double force = 0.0, z = 0.0, z_rate = 0.0;
 };
-inline FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z) {
-  if (!(normal > 0.0)) return {};
+inline FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z,
+                                    double elapsed) {
+  if (!(normal > 0.0)) return {0.0, z, 0.0};
   if (p.law != FrictionLaw::lugre_absolute && p.law != FrictionLaw::lugre_normalised)
-    return {friction(p, normal, v, 0.0, 0.0).force, 0.0};
+    return {friction(p, normal, v, 0.0, 0.0).force, 0.0, 0.0};
+  if (!std::isnan(elapsed)) {
+    const FrictionEvaluation e = detail::lugre_kernel(p, normal, v, z, elapsed);
+    return {e.force, e.deflection, e.deflection_rate};
+  }
   const bool absolute = p.law == FrictionLaw::lugre_absolute;
   const double g = detail::stribeck_kernel(p, v) * (absolute ? normal : 1.0);
   const double k = p.sigma0 * std::abs(v) / g;
@@ -133,7 +143,7 @@ inline FrictionResult site_friction(const FrictionLawParameters& p, double floor
     z_rate = (z_ss - z) / floor;
   }
   const double coefficient = p.sigma0 * z + p.bristle_damping(v) * z_rate + p.sigma2 * v;
-  return {absolute ? -coefficient : -coefficient * normal, z_rate};
+  return {absolute ? -coefficient : -coefficient * normal, z, z_rate};
 }
 
 }  // namespace
@@ -178,6 +188,9 @@ struct SliderCrank::Result {
   double driving_torque, drive_power, contact_power, kinetic_energy, potential_energy;
   SliderConfiguration configuration;
   std::array<double, 4> corner_penetration;
+  // Exponential bristle update: the time since the deflections in the state were written (the
+  // step's start, SliderCrank::commit); NaN when the stepper integrates them (site_friction).
+  double bristle_elapsed;
 };
 
 namespace {
@@ -319,9 +332,10 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
                                  : detail::normal_force_kernel(site.chi, tj.contact.exponent, tj.contact.velocity_floor,
                                                                se.stiffness, depth, depth_rate, impact);
     se.sliding_velocity = vx;
-    se.deflection = site.state >= 0 ? x[site.state] : 0.0;
-    const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx, se.deflection);
+    const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx,
+                                           site.state >= 0 ? x[site.state] : 0.0, out.bristle_elapsed);
     se.friction_force = f.force;
+    se.deflection = f.z;
     se.deflection_rate = f.z_rate;
     // Force (gx, gy) at W on the slider, and its moment about the slider's centre.
     const double gx = f.force, gy = upper ? -se.normal_force : se.normal_force;
@@ -507,10 +521,10 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
     se.normal_force = detail::normal_force_kernel(site.chi, revolute(jr).contact.exponent, revolute(jr).contact.velocity_floor,
                                                   jr.stiffness, se.penetration, se.penetration_rate, impact);
     se.sliding_velocity = vt;
-    se.deflection = site.state >= 0 ? x[site.state] : 0.0;
-    const FrictionResult f =
-        site_friction(revolute(jr).friction, revolute(jr).bristle_time_floor, se.normal_force, vt, se.deflection);
+    const FrictionResult f = site_friction(revolute(jr).friction, revolute(jr).bristle_time_floor, se.normal_force,
+                                           vt, site.state >= 0 ? x[site.state] : 0.0, out.bristle_elapsed);
     se.friction_force = f.force;
+    se.deflection = f.z;
     se.deflection_rate = f.z_rate;
     // On the journal: pushed back toward the bearing centre, friction along the tangent.
     const double gx = -se.normal_force * nx + f.force * tx, gy = -se.normal_force * ny + f.force * ty;
@@ -608,6 +622,7 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
 }
 
 void SliderCrank::compute(double t, const State& x, Result& r, bool jets_only) const {
+  r.bristle_elapsed = exponential_bristles_ ? t - bristle_epoch_ : std::numeric_limits<double>::quiet_NaN();
   if (seed_topology_ && !jets_only) {
     compute_seed(t, x, r);
     return;
@@ -672,7 +687,7 @@ void SliderCrank::derivatives_of(const Result& r, const State& x, State& dxdt) c
   dxdt[2 * n] = r.drive_power;
   dxdt[2 * n + 1] = r.contact_power;
   for (std::size_t i = 0; i < sites_.size(); ++i) {
-    if (sites_[i].state >= 0) dxdt[sites_[i].state] = r.sites[i].deflection_rate;
+    if (sites_[i].state >= 0) dxdt[sites_[i].state] = exponential_bristles_ ? 0.0 : r.sites[i].deflection_rate;
   }
 }
 
@@ -720,12 +735,17 @@ void SliderCrank::switching_functions(const Evaluation& ev, std::vector<double>&
   for (std::size_t i = slider_sites_; i < sites_.size(); ++i) g.push_back(ev.sites[i].penetration);
 }
 
-bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {
+bool SliderCrank::commit(double t, const Evaluation& at_end, const std::vector<double>& onset_rate, State& x) {
   bool latched = false;
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     ContactMemory& m = memory_[i];
     const SiteEvaluation& se = at_end.sites[i];
     if (se.penetration > 0.0) {
+      // The exponential update's deflection at the step's end becomes the next step's start.
+      if (exponential_bristles_ && sites_[i].state >= 0 && x[sites_[i].state] != se.deflection) {
+        x[sites_[i].state] = se.deflection;
+        latched = true;
+      }
       if (!m.touching) {
         m.touching = true;
         const double at_onset = i < onset_rate.size() ? onset_rate[i] : std::numeric_limits<double>::quiet_NaN();
@@ -740,6 +760,7 @@ bool SliderCrank::commit(const Evaluation& at_end, const std::vector<double>& on
       }
     }
   }
+  bristle_epoch_ = t;
   return latched;
 }
 

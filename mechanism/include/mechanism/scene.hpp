@@ -139,6 +139,18 @@ struct RevoluteJoint {
 
 enum class IntegratorMethod { rk4, dopri5 };
 
+// How the LuGre bristle deflections z advance (docs/mechanism/contact-and-friction.md, "The exact
+// bristle update").
+//   integrated:  z is part of the ODE state and the stepper integrates z' = k (z_ss - z) with the
+//                mechanics; the rate k is capped at 1 / bristle_time_floor, which explicit steps
+//                must resolve (RK4: step <= 2.5 floors).
+//   exponential: the state holds z at the step's start; each stage uses the law's exact solution
+//                z_ss + (z_start - z_ss) exp(-k tau) at its own sliding speed, tau after the start
+//                (friction()'s kernel), and the step's end writes that value into the state. Exact
+//                at constant sliding speed and stable at any k, so there is no cap and no step limit
+//                (bristle_time_floor is not used).
+enum class BristleUpdate { integrated, exponential };
+
 struct IntegratorSettings {
   IntegratorMethod method = IntegratorMethod::rk4;
   // RK4: the largest step; the step used is the crank period divided by the smallest whole number
@@ -157,6 +169,7 @@ struct IntegratorSettings {
   // smooth between those zeros but not across them (with Eq. 11's exponent 1 the force's slope
   // jumps at onset), and a step across one loses the method's order.
   bool locate_switches = true;
+  BristleUpdate bristles = BristleUpdate::integrated;
 };
 
 // Refused before a run starts (read_scene, check_run_size): more simulated steps, or more

@@ -18,9 +18,9 @@
 // Continuous state x = (q, q_dot, W_drive, W_contact, z): W_drive and W_contact integrate the work
 // of the driving torque and of all contact and friction forces, so the energy balance
 // E(t) - E(0) = W_drive + W_contact checks the integration; z holds the LuGre bristle deflection
-// of each site whose law is LuGre (integrated with the same order as the mechanics; its
-// relaxation rate is capped by the joint's bristle_time_floor, and it is reset to zero when the
-// contact opens). The equations of motion are the
+// of each site whose law is LuGre (integrated with the same order as the mechanics, or updated
+// exactly for each stage's sliding speed: integrator.bristles; its relaxation rate is capped by the
+// joint's bristle_time_floor, and it is reset to zero when the contact opens). The equations of motion are the
 // principle of virtual power over the three moving bodies, with Jacobians and bias accelerations
 // from kinematic jets (kinematic_jet.hpp); for the seed's topology the same equations are written
 // out in closed form (a diagonal mass matrix), which is what the right-hand side's speed needs.
@@ -144,12 +144,18 @@ class SliderCrank {
   // form for the seed's topology (clearance only in the slider-guide joint), tested against this.
   void evaluate_with_jets(double t, const State& x, Evaluation& out) const;
 
-  // After an accepted step ending at state x, given the evaluation there made with the step's
+  // After an accepted step ending at (t, x), given the evaluation there made with the step's
   // memory: latch impact velocities at onsets (onset_rate[i] is the penetration rate at the
   // located onset time for sites that started touching during the step, NaN or absent otherwise),
-  // forget them at release and unload the bristles there (z = 0 in x). Returns true when this
-  // changed the right-hand side at x (the stepper's cached first stage is then stale).
-  bool commit(const Evaluation& at_end, const std::vector<double>& onset_rate, State& x);
+  // forget them at release and unload the bristles there (z = 0 in x). With the exponential
+  // bristle update, also write each touching site's deflection at t into x and start the next
+  // step's bristle clock at t. Returns true when this changed x or the right-hand side at x (the
+  // stepper's cached first stage is then stale).
+  bool commit(double t, const Evaluation& at_end, const std::vector<double>& onset_rate, State& x);
+  // A run that starts at t from a state whose bristle deflections hold at t (simulate() calls it
+  // first; with the exponential update every evaluation reads the time elapsed since then or since
+  // the last commit).
+  void start_bristle_clock(double t) { bristle_epoch_ = t; }
 
   // The functions whose zeros switch a contact force on or off or change its formula: the slider's
   // four corner penetrations (when its joint has clearance: every slider model's force is smooth
@@ -216,6 +222,8 @@ class SliderCrank {
   std::vector<Site> sites_;
   std::vector<ContactMemory> memory_;
   int bristles_ = 0;
+  bool exponential_bristles_ = false;  // integrator.bristles = "exponential" and some site has LuGre
+  double bristle_epoch_ = 0.0;         // when the state's deflections were written (commit)
   int jet_columns_ = 9;           // the jet width compute() uses: n + 1 rounded up to 3, 5 or 9
   std::size_t slider_sites_ = 0;  // sites_ starts with the slider's (2 faces or 4 corners)
   bool seed_topology_ = false;    // compute_seed applies

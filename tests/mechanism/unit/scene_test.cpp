@@ -152,5 +152,23 @@ TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
                   .empty());
 }
 
+TEST(Scene, BristleUpdateIsAChoiceAndLiftsRk4sStepLimit) {
+  // integrated (the default): explicit RK4 must resolve the capped bristle rate, step <= 2.5 floors;
+  // exponential: the law's exact update, stable at any step, so the same scene is accepted.
+  EXPECT_EQ(read_scene("").integrator.bristles, BristleUpdate::integrated);
+  const std::vector<std::string> coarse{"integrator.step=1e-5", "joint.slider.friction.bristle_time_floor=1e-6"};
+  EXPECT_THROW(read_scene("", coarse), InvalidParameter);
+  std::vector<std::string> exponential = coarse;
+  exponential.push_back("integrator.bristles=\"exponential\"");
+  EXPECT_EQ(read_scene("", exponential).integrator.bristles, BristleUpdate::exponential);
+  EXPECT_THROW(read_scene("", {"integrator.bristles=\"implicit\""}), InvalidParameter);
+  // With a constant sigma1 the exponential update is first order in the step: one more warning.
+  const std::vector<std::string> constant{"joint.slider.friction.sigma1_velocity=0"};
+  std::vector<std::string> constant_exponential = constant;
+  constant_exponential.push_back("integrator.bristles=\"exponential\"");
+  EXPECT_EQ(scene_warnings(read_scene("", constant_exponential)).size(),
+            scene_warnings(read_scene("", constant)).size() + 1);
+}
+
 }  // namespace
 }  // namespace mechanism

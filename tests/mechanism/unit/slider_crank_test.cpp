@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "mechanism/contact_stiffness.hpp"
 #include "mechanism/error.hpp"
+#include "mechanism/friction_law.hpp"
 #include "mechanism/line_contact.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/slider_crank.hpp"
@@ -124,6 +126,55 @@ TEST(SliderCrank, SeedClosedFormMatchesTheJets) {
       EXPECT_GT(cases, 10) << "the poses must put the slider in contact";
     }
   }
+}
+
+TEST(SliderCrank, ExponentialBristlesAdvanceByTheLawsExactUpdate) {
+  // integrator.bristles = "exponential": a stage tau after the step's start sees the deflection that
+  // friction() gives for the state's z advanced over tau at that stage's sliding speed (the law's
+  // exact solution, checked against its ODE in friction_law_test), the state's z stands still
+  // (dz/dt = 0 in rhs), and commit() writes the step end's deflection into the state, from which the
+  // next step starts with the force the last one ended with (to rounding: e^{-k tau} (z_ss - z_0) and
+  // z_ss - z_1 differ in the last bits). Slider tilted by 0.05 rad: both faces touch (error_weights_test).
+  const Scene s = read_scene("", {"integrator.bristles=\"exponential\""});
+  SliderCrank sys(s);
+  const double t0 = 2e-3, t1 = t0 + 3e-7;
+  State x = sys.initial_state();
+  const auto& names = sys.coordinate_names();
+  auto index = [&](const char* name) { return std::find(names.begin(), names.end(), name) - names.begin(); };
+  // The conrod angle that keeps the slider's centre on the guide's centre line at t0.
+  x[index("conrod_angle")] = std::asin(-s.crank.length * std::sin(sys.omega() * t0) / s.conrod.length);
+  x[index("slider_angle")] = 0.05;
+  const FrictionLawParameters& law = s.slider_guide.friction;
+  for (std::size_t i = 0; i < sys.site_count(); ++i)
+    if (sys.bristle_index(i) >= 0) x[sys.bristle_index(i)] = (i % 2 ? -0.4 : 0.7) * law.kinetic_coefficient / law.sigma0;
+  Evaluation start, end, next;
+  sys.start_bristle_clock(t0);
+  sys.evaluate(t0, x, start);
+  sys.commit(t0, start, {}, x);  // latches the impact velocities; at tau = 0 z is unchanged
+  sys.evaluate(t1, x, end);
+  State dxdt;
+  sys.rhs(t1, x, dxdt);
+  State x1 = x;
+  EXPECT_TRUE(sys.commit(t1, end, {}, x1));
+  sys.evaluate(t1, x1, next);
+  int touching = 0;
+  for (std::size_t i = 0; i < sys.site_count(); ++i) {
+    const int k = sys.bristle_index(i);
+    const SiteEvaluation& e = end.sites[i];
+    if (k < 0 || !(e.penetration > 0.0)) continue;
+    ++touching;
+    const FrictionEvaluation f = friction(law, e.normal_force, e.sliding_velocity, x[k], t1 - t0);
+    EXPECT_EQ(e.friction_force, f.force);
+    EXPECT_EQ(e.deflection, f.deflection);
+    EXPECT_EQ(e.deflection_rate, f.deflection_rate);
+    EXPECT_NE(e.deflection, x[k]) << "the bristles must move over the step for the test to mean anything";
+    EXPECT_EQ(dxdt[k], 0.0);
+    EXPECT_EQ(x1[k], e.deflection);
+    EXPECT_NEAR(next.sites[i].friction_force, e.friction_force, 1e-12 * std::abs(e.friction_force));
+  }
+  EXPECT_EQ(touching, 2);
+  for (int j = 0; j < sys.coordinate_count(); ++j)
+    EXPECT_NEAR(next.q_ddot[j], end.q_ddot[j], 1e-12 * std::max(1.0, std::abs(end.q_ddot[j])));
 }
 
 TEST(SliderCrank, LockedRotationIsOneCoordinateFewerAndMatchesTheJets) {
