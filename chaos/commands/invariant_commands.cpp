@@ -355,23 +355,14 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     fnn_options.progress = step("false nearest neighbours");
     run.fnn = false_nearest_neighbors(x, fnn_options);
   }
-  // The surrogate test on the first test_length samples, trimmed to their best end match (an end
-  // mismatch alone makes surrogates look rougher than the data): K = 19 IAAFT surrogates, one-sided
-  // (deterministic data are more predictable than their surrogates), the prediction error in the
-  // chosen embedding. Kept short so the demonstration stays quick.
+  // The surrogate test on the first test_length samples (embedded_nonlinearity_test), K = 19 by
+  // default; kept short so the demonstration stays quick.
   if (a.dimension && a.delay) {
-    const std::span<const double> head(x.data(), std::min(x.size(), params.test_length));
-    run.segment = end_match(head);
-    NonlinearityTestOptions t;
-    t.statistic = NonlinearityStatistic::prediction_error;
-    t.alternative = Alternative::smaller;
-    t.surrogates = params.surrogates;
-    t.seed = params.seed;
-    t.prediction.dimension = *a.dimension;
-    t.prediction.delay = *a.delay;
-    t.prediction.theiler = a.theiler;
-    t.progress = step("nonlinearity test");
-    run.nonlinear = nonlinearity_test(head.subspan(run.segment->offset, run.segment->length), t);
+    EmbeddedNonlinearityTest test = embedded_nonlinearity_test(x, params.test_length, *a.dimension, *a.delay, a.theiler,
+                                                               params.surrogates, params.seed,
+                                                               step("nonlinearity test"));
+    run.segment = test.segment;
+    run.nonlinear = std::move(test.result);
   }
   if (params.mutual_curve && scales.stationary) {
     // The information curve the delay was read from (the pipeline keeps only its minimum).

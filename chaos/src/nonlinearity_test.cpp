@@ -237,4 +237,24 @@ NonlinearityTestResult nonlinearity_test(std::span<const double> x, const Nonlin
   return out;
 }
 
+EmbeddedNonlinearityTest embedded_nonlinearity_test(std::span<const double> x, std::size_t length,
+                                                    std::size_t dimension, std::size_t delay, std::size_t theiler,
+                                                    std::size_t surrogates, std::uint64_t seed,
+                                                    std::function<void(double)> progress) {
+  const std::span<const double> head = x.first(std::min(x.size(), length));
+  EmbeddedNonlinearityTest out;
+  out.segment = end_match(head);
+  NonlinearityTestOptions t;
+  t.statistic = NonlinearityStatistic::prediction_error;
+  t.alternative = Alternative::smaller;
+  t.surrogates = surrogates;
+  t.seed = seed;
+  t.prediction.dimension = dimension;
+  t.prediction.delay = delay;
+  t.prediction.theiler = theiler;
+  t.progress = std::move(progress);
+  out.result = nonlinearity_test(head.subspan(out.segment.offset, out.segment.length), t);
+  return out;
+}
+
 }  // namespace chaos

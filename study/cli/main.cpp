@@ -76,6 +76,10 @@ int main(int argc, char** argv) {
                     "sample the analysed series this many times per crank revolution instead of every --analysis-interval");
   sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay searched, samples");
   sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
+  sweep->add_option("--surrogates", spec.analysis.surrogates,
+                    "with --analysis: the IAAFT surrogate test for nonlinearity with this many surrogates (19: one-sided 5%; 0: none)");
+  sweep->add_option("--test-length", spec.analysis.test_length, "samples given to the surrogate test (the first ones of the analysed series)");
+  sweep->add_option("--seed", spec.analysis.seed, "seed of the surrogates");
   sweep->add_flag("--lyapunov", spec.lyapunov,
                   "also compute each point's Lyapunov exponents from the equations, from its final state (mechanism lyapunov)");
   sweep->add_option("--lyapunov-periods", spec.lyapunov_options.periods, "crank periods averaged (>= 10)");

@@ -36,7 +36,7 @@ struct Table {
 // Strict: a row cut short or with a field too many, or a number column holding something that is
 // neither a finite number nor '-', is refused naming the file and line. A truncated samples.tsv
 // was plotted with its last row read past its end, a garbled value drawn as NaN (issue 16,
-// corrupt-file tier). The text columns are status, d2_status and message.
+// corrupt-file tier). The text columns are status, d2_status, nonlinearity and message.
 Table read_table(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw StudyError("study plot", path, "cannot be read (run `study sweep` into this directory first)");
@@ -68,7 +68,8 @@ Table read_table(const std::string& path) {
     std::vector<double> row;
     for (std::size_t k = 0; k < f.size(); ++k) {
       const std::string& x = f[k];
-      const bool text = t.names[k] == "status" || t.names[k] == "d2_status" || t.names[k] == "message";
+      const bool text = t.names[k] == "status" || t.names[k] == "d2_status" || t.names[k] == "message" ||
+                        t.names[k] == "nonlinearity";
       char* end = nullptr;
       const double v = std::strtod(x.c_str(), &end);
       const bool ok = !x.empty() && *end == '\0' && std::isfinite(v);

@@ -250,6 +250,8 @@ void ResultStore::write(const PointResult& r) const {
     for (std::size_t k = 0; k < m; ++k) o << "\t" << at(a.E2, k);
     for (std::size_t k = 0; k < m; ++k)
       o << "\t" << (k < a.d2_by_dimension.size() ? optional_number(a.d2_by_dimension[k]) : "-");
+    o << "\t" << one_line(a.nonlinearity) << "\t" << (a.nonlinearity_rank ? std::to_string(*a.nonlinearity_rank) : "-")
+      << "\t" << (a.surrogates ? std::to_string(a.surrogates) : "-");
     o << "\n";
   }
   if (r.lyapunov) {
@@ -322,7 +324,7 @@ void ResultStore::assemble() const {
       analysis += name;
       analysis += std::to_string(k);
     }
-  analysis += "\n";
+  analysis += "\tnonlinearity\tnonlinearity_rank\tsurrogates\n";
   std::string lyapunov = head + "# Lyapunov exponents from the equations (docs/mechanism/lyapunov.md), 1/s; '-': none\n# point" +
                          axes_header + "\tstatus\tperiods";
   for (const char* name : {"lambda_", "se_"})

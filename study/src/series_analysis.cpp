@@ -9,6 +9,7 @@
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/mutual_information.hpp"
+#include "chaos/nonlinearity_test.hpp"
 #include "chaos/time_scales.hpp"
 
 namespace study {
@@ -17,6 +18,7 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
   SeriesAnalysis r;
   r.samples = x.size();
   r.interval = interval;
+  if (options.surrogates > 0) r.nonlinearity = "not run: the pipeline stopped before it";
   if (x.size() < 4) {
     r.status = "series too short: " + std::to_string(x.size()) + " samples";
     return r;
@@ -78,6 +80,18 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
       r.d2_high = d.d2_interval->high;
     }
     r.d2_by_dimension = d.d2_by_dimension;
+    if (options.surrogates > 0) {
+      stage = "the surrogate test";
+      if (r.embedding_dimension) {
+        const chaos::EmbeddedNonlinearityTest t = chaos::embedded_nonlinearity_test(
+            x, options.test_length, *r.embedding_dimension, *r.delay, r.theiler, options.surrogates, options.seed);
+        r.nonlinearity = t.result.test.rejected ? "rejected" : "not rejected";
+        r.nonlinearity_rank = t.result.test.rank;
+        r.surrogates = options.surrogates;
+      } else {
+        r.nonlinearity = "not run: no Cao dimension to embed in";
+      }
+    }
     r.status = "ok";
   } catch (const std::invalid_argument& e) {
     // The estimators refuse a series they cannot handle (too short for the embedding, ...): the

@@ -74,6 +74,9 @@ void SweepSpec::validate() const {
       throw StudyError("--analysis-periods", std::to_string(analysis.periods),
                        "must be 1 .. --periods (" + std::to_string(periods) + ")");
     validate_analysis(analysis);
+  } else if (analysis.surrogates > 0) {
+    throw StudyError("--surrogates", std::to_string(analysis.surrogates),
+                     "tests the analysed series: it needs --analysis");
   }
   if (lyapunov) {
     const LyapunovSpec& l = lyapunov_options;
@@ -125,6 +128,10 @@ std::string SweepSpec::describe() const {
       << "analysis.max_dimension = " << analysis.max_dimension << "\n"
       << "analysis.radii = " << analysis.radii << "\n"
       << "analysis.given_delay = " << analysis.given_delay << "\n";
+    if (analysis.surrogates > 0)
+      d << "analysis.surrogates = " << analysis.surrogates << "\n"
+        << "analysis.test_length = " << analysis.test_length << "\n"
+        << "analysis.seed = " << analysis.seed << "\n";
   } else {
     d << "analysis = off\n";
   }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -168,6 +169,30 @@ TEST(NonlinearityTest, BookkeepingMatchesThePublicPieces) {
   EXPECT_EQ(r.test.rejected, t.rejected);
   EXPECT_DOUBLE_EQ(r.test.significance, 2.0 / 10.0);
   EXPECT_EQ(r.options.surrogates, 9u);
+}
+
+TEST(NonlinearityTest, EmbeddedTestIsTheOneSidedPredictionTestOnTheEndMatchedHead) {
+  // embedded_nonlinearity_test (the pipelines' test) is nonlinearity_test on the end-matched first
+  // `length` samples, one-sided (smaller), prediction error in the given embedding (its header).
+  const auto x = chaos::henon(1500).components[0];
+  const auto e = chaos::embedded_nonlinearity_test(x, 1000, 2, 1, 3, 19, 5);
+  const auto head = std::span<const double>(x).first(1000);
+  const auto m = chaos::end_match(head);
+  EXPECT_EQ(e.segment.offset, m.offset);
+  EXPECT_EQ(e.segment.length, m.length);
+  NonlinearityTestOptions o;
+  o.alternative = Alternative::smaller;
+  o.surrogates = 19;
+  o.seed = 5;
+  o.prediction.dimension = 2;
+  o.prediction.delay = 1;
+  o.prediction.theiler = 3;
+  const auto r = chaos::nonlinearity_test(head.subspan(m.offset, m.length), o);
+  EXPECT_EQ(e.result.data_statistic, r.data_statistic);
+  EXPECT_EQ(e.result.surrogate_statistics, r.surrogate_statistics);
+  EXPECT_EQ(e.result.test.rank, r.test.rank);
+  EXPECT_TRUE(e.result.test.rejected);  // Henon: deterministic (HenonIsRejected)
+  EXPECT_DOUBLE_EQ(e.result.test.significance, 1.0 / 20.0);
 }
 
 TEST(NonlinearityTest, SawtoothIsTimeAsymmetric) {

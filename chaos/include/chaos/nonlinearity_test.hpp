@@ -101,4 +101,18 @@ struct NonlinearityTestResult {
 // statistic.
 NonlinearityTestResult nonlinearity_test(std::span<const double> x, const NonlinearityTestOptions& options = {});
 
+// The test as the automatic pipelines run it (`chaos analyze`, `study sweep --surrogates`): on the
+// first `length` samples, trimmed to their best end match (an end mismatch alone makes surrogates
+// look rougher than the data, surrogates.hpp), K IAAFT surrogates, one-sided (deterministic data are
+// more predictable than their surrogates: Alternative::smaller), the prediction error in the
+// embedding (dimension, delay) with the Theiler window the pipeline chose.
+struct EmbeddedNonlinearityTest {
+  EndMatch segment;  // offset and length within the first `length` samples
+  NonlinearityTestResult result;
+};
+EmbeddedNonlinearityTest embedded_nonlinearity_test(std::span<const double> x, std::size_t length,
+                                                    std::size_t dimension, std::size_t delay, std::size_t theiler,
+                                                    std::size_t surrogates, std::uint64_t seed,
+                                                    std::function<void(double)> progress = nullptr);
+
 }  // namespace chaos

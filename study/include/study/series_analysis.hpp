@@ -9,10 +9,14 @@
 //   D2         correlation sums for m = 1..max_dimension with the automatic scaling region
 //              (chaos/correlation_dimension.hpp): saturated with its interval, or the reason not;
 //              a saturated D2 must be reproduced by the record's two halves (check_record_halves),
-//              else its status is not_reproduced and no D2 is given.
+//              else its status is not_reproduced and no D2 is given;
+//   surrogates when asked (surrogates > 0), the rank-order test for nonlinearity against K IAAFT
+//              surrogates in Cao's embedding (chaos::embedded_nonlinearity_test, as `chaos analyze`):
+//              rejected means the series is more predictable than every linear stochastic imitation.
 // A constant series (a slider resting on the guide) is reported as such, with no estimates.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -31,6 +35,11 @@ struct AnalysisOptions {
   std::size_t max_dimension = 12; // Cao and D2 up to this m (the seed's Fig. 7d: 1..12)
   std::size_t radii = 40;         // D2 radii, log-spaced from range/1000 to range/4
   std::size_t given_delay = 0;    // > 0: use this delay instead of the MI minimum (the seed's 18)
+  // > 0: the surrogate test for nonlinearity with this many IAAFT surrogates (one-sided, so 19 is a
+  // test at 5%), on the first test_length samples, surrogates drawn from seed.
+  std::size_t surrogates = 0;
+  std::size_t test_length = 4096;
+  std::uint64_t seed = 1;
 };
 
 struct SeriesAnalysis {
@@ -47,6 +56,10 @@ struct SeriesAnalysis {
   std::string d2_status = "not computed";  // chaos::D2Status as text (saturated, not_saturated, not_reproduced, ...)
   std::optional<double> d2, d2_low, d2_high;
   std::vector<std::optional<double>> d2_by_dimension;  // per m = 1..max_dimension
+  // The surrogate test: "rejected" (nonlinear), "not rejected", "not asked", or why it did not run.
+  std::string nonlinearity = "not asked";
+  std::optional<std::size_t> nonlinearity_rank;  // 1: the data's prediction error is below every surrogate's
+  std::size_t surrogates = 0;                    // K used
   // The curves behind the numbers (seed Fig. 7 b, d, e): I(delay) for delay 0..max_delay in nats,
   // and C(eps, m) on the radii for m = 1..max_dimension.
   std::vector<double> mutual_information;

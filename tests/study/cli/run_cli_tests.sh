@@ -155,6 +155,16 @@ cmp -s "$work/k/samples.tsv" "$work/u/samples.tsv" || fail "a recomputed truncat
 expect_code 0 "analysis" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=2e-4,5e-4 --axis driver.speed_rpm=4000,5000 --periods 8 --keep 5 --analysis -o "$work/c" -q
 [[ $(grep -vc '^#' "$work/c/analysis.tsv") == 4 ]] || fail "analysis.tsv should have one row per point"
 grep -q 'delay_samples' "$work/c/analysis.tsv" || fail "analysis.tsv lacks its header"
+# The surrogate test only tests an analysed series; asked for, every analysed row says what it found.
+expect_code 3 "surrogates without analysis" "$STUDY" sweep "${fast[@]}" --periods 8 --keep 5 --surrogates 19 -o "$work/x" -q
+expect_message "--surrogates = 19: tests the analysed series: it needs --analysis" "surrogates without analysis"
+awk -F'\t' '/^# point/ {for (i = 1; i <= NF; ++i) if ($i == "nonlinearity") c = i; next} !/^#/ && $c != "not asked" {bad = 1}
+  END {exit !(c && !bad)}' "$work/c/analysis.tsv" || fail "analysis.tsv without --surrogates should say 'not asked' in its nonlinearity column"
+expect_code 0 "analysis with surrogates" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=5e-4 --periods 8 --keep 5 --analysis \
+  --surrogates 19 --test-length 1024 -o "$work/s" -q
+awk -F'\t' '/^# point/ {for (i = 1; i <= NF; ++i) {if ($i == "nonlinearity") c = i; if ($i == "surrogates") k = i}; next}
+  !/^#/ {n++; if ($c !~ /^(rejected|not rejected|not run: .*)$/ || ($c ~ /rejected$/ && $k != 19)) bad = 1}
+  END {exit !(n == 1 && !bad)}' "$work/s/analysis.tsv" || fail "the surrogate test's columns: $(grep -v '^#' "$work/s/analysis.tsv" | cut -f1-3)"
 for fig in bifurcation density portrait d2 e2 d2map; do
   expect_code 0 "plot $fig" "$STUDY" plot "$work/c" --figure "$fig" -o "$work/$fig.svg"
   [[ -s "$work/$fig.svg" ]] || fail "plot $fig wrote nothing"

@@ -8,9 +8,11 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "chaos/control_signals.hpp"
 #include "chaos/generate.hpp"
+#include "chaos/nonlinearity_test.hpp"
 #include "study/series_analysis.hpp"
 
 namespace {
@@ -38,6 +40,34 @@ TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   ASSERT_TRUE(a.d2.has_value()) << a.d2_status;
   EXPECT_NEAR(*a.d2, 2.05, 0.15);
   EXPECT_GT(a.e2_deviation, 0.1);  // deterministic: E2 departs from 1
+}
+
+TEST(SeriesAnalysis, TheSurrogateTestRunsWhenAskedInCaosEmbedding) {
+  // With surrogates = 19 the pipeline runs chaos::embedded_nonlinearity_test in its own choices
+  // (Cao's m, the MI delay, its Theiler window) on the first test_length samples: on Lorenz x,
+  // deterministic (Lorenz 1963), the data rank first of 20 (chaos's LorenzIsRejected). Without it
+  // the test is "not asked"; on a constant series it did not run, and says so.
+  chaos::GenerateRequest request;
+  request.system = chaos::SystemKind::lorenz;
+  request.length = 20000;
+  const chaos::Trajectory t = chaos::generate(request);
+  study::AnalysisOptions options;
+  options.max_dimension = 8;
+  options.surrogates = 19;
+  options.test_length = 2048;
+  const study::SeriesAnalysis a = study::analyse_series(t.components[0], t.dt, options);
+  ASSERT_EQ(a.status, "ok");
+  EXPECT_EQ(a.nonlinearity, "rejected");
+  EXPECT_EQ(a.nonlinearity_rank, 1u);
+  EXPECT_EQ(a.surrogates, 19u);
+  const auto direct = chaos::embedded_nonlinearity_test(t.components[0], 2048, *a.embedding_dimension, *a.delay,
+                                                        a.theiler, 19, options.seed);
+  EXPECT_EQ(a.nonlinearity_rank, direct.result.test.rank);
+  options.surrogates = 0;
+  EXPECT_EQ(study::analyse_series(t.components[0], t.dt, options).nonlinearity, "not asked");
+  options.surrogates = 19;
+  const std::vector<double> flat(1000, 0.25);
+  EXPECT_EQ(study::analyse_series(flat, 1e-5, options).nonlinearity, "not run: the pipeline stopped before it");
 }
 
 TEST(SeriesAnalysis, AClosedCurveKeepsItsD2ThroughTheHalves) {
