@@ -745,6 +745,9 @@ py::dict study_sweep(const std::string& toml, const std::string& source, const s
   get(p, "analysis_samples_per_period", spec.analysis.samples_per_period);
   get(p, "max_delay", spec.analysis.max_delay);
   get(p, "max_dimension", spec.analysis.max_dimension);
+  get(p, "surrogates", spec.analysis.surrogates);
+  get(p, "test_length", spec.analysis.test_length);
+  get(p, "seed", spec.analysis.seed);
   if (threads == 0) value_error("threads must be at least 1 (got 0)");
   auto callback = std::make_shared<py::object>(std::move(progress));
   study::SweepProgress done;

@@ -43,6 +43,7 @@ def test_sweep_writes_the_command_s_files(tmp_path):
                     analysis_periods=3, analysis_samples_per_period=40, max_dimension=6, threads=2,
                     output=tmp_path / "py")
     same_files(tmp_path / "cli", tmp_path / "py", TABLES + ["analysis.tsv"])
+    assert list(s.analysis["nonlinearity"]) == ["not asked"] * 3
     assert s.directory == str(tmp_path / "py")
     # The arrays are the command's table read back (np.loadtxt, an independent reader).
     table = np.loadtxt(tmp_path / "cli" / "samples.tsv")
@@ -95,6 +96,7 @@ def test_temporary_directory_resume_and_refusals(tmp_path):
     (["--axis", "joint.slider.clearance=0,1e-4"], dict(axis="joint.slider.clearance=0,1e-4")),
     (["--signals", "slider_height"], dict(signals="slider_height")),
     (["--analysis", "--max-delay", 0], dict(analysis=True, max_delay=0)),
+    (["--surrogates", 19], dict(surrogates=19)),
 ])
 def test_refused_sweeps_raise_the_command_s_message(tmp_path, cli_args, kwargs):
     p = run_study("sweep", *cli_args, "-o", tmp_path / "cli", check=False)

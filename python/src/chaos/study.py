@@ -105,7 +105,8 @@ def _axes(axis):
 
 def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=500, signals=("slider_y", "slider_vy"),
           analysis=False, analysis_periods=None, analysis_interval=None, analysis_samples_per_period=None,
-          max_delay=None, max_dimension=None, threads=None, output=None, resume=False, progress=None):
+          max_delay=None, max_dimension=None, surrogates=None, test_length=None, seed=None, threads=None,
+          output=None, resume=False, progress=None):
     """A one- or two-dimensional sweep over scene keys (``study sweep``; the protocol of docs/study.md).
 
     Every point's scene is ``scene`` (the seed's when None; a ``mechanism.Scene`` with its settings,
@@ -118,7 +119,10 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     the last ``analysis_periods`` revolutions (mutual-information delay, Fraser and Swinney 1986;
     Cao's E1/E2, Cao 1997; D2 from the correlation sums C(eps, m), Grassberger and Procaccia 1983),
     sampled every ``analysis_interval`` s or ``analysis_samples_per_period`` times a revolution,
-    up to ``max_dimension`` with delays up to ``max_delay``. ``None`` keeps the command's default.
+    up to ``max_dimension`` with delays up to ``max_delay``. ``surrogates=K`` (with ``analysis``) adds
+    the IAAFT surrogate test for nonlinearity on the first ``test_length`` samples, surrogates drawn
+    from ``seed`` (``--surrogates``, ``--test-length``, ``--seed``; Theiler et al. 1992, Schreiber and
+    Schmitz 2000). ``None`` keeps the command's default.
 
     ``output``: the result directory (kept; ``resume=True`` continues a sweep already there, as
     ``--resume``); None writes to a temporary directory, read and removed. ``threads``: worker
@@ -152,7 +156,7 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     params = dict(initial=initial, periods=periods, keep=keep, signals=list(signals), analysis=analysis,
                   analysis_periods=analysis_periods, analysis_interval=analysis_interval,
                   analysis_samples_per_period=analysis_samples_per_period, max_delay=max_delay,
-                  max_dimension=max_dimension)
+                  max_dimension=max_dimension, surrogates=surrogates, test_length=test_length, seed=seed)
     directory = os.fspath(output) if output is not None else tempfile.mkdtemp(prefix="chaos-sweep-")
     bar = _progress_bar(progress, "sweep")
     try:
