@@ -1,6 +1,5 @@
 #include "mechanism/friction_law.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>

@@ -1,6 +1,5 @@
 #include "mechanism/slider_crank.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
