@@ -146,6 +146,10 @@ void register_d2(CLI::App& app) {
   command->add_option("--min-plateau-ratio", args->params.dimension.min_plateau_ratio,
                       "the highest dimensions' shared plateau spans at least this factor in eps (eps_high / eps_low)")
       ->capture_default_str();
+  command->add_option("--projection-tolerance", args->params.dimension.projection_tolerance,
+                      "no lower dimension m >= 2 D2 + 1 may read a mean local slope over the plateau more than this "
+                      "fraction above it (a projection cannot have a larger dimension; inf: no check)")
+      ->capture_default_str();
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
   add_quiet_option(*command, args->quiet);

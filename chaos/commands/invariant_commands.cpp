@@ -80,6 +80,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("tolerance", params.dimension.region.tolerance).parameter("min_points", params.dimension.region.min_points)
       .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
       .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
+      .parameter("projection_tolerance", params.dimension.projection_tolerance)
       .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)
       .parameter("points", sums.points)
@@ -124,6 +125,10 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   };
   j["plateaus"] = plateaus_json(d2.plateaus);
   j["other_plateaus"] = plateaus_json(d2.other_plateaus);
+  if (d2.steepest_lower_dimension)
+    j["steepest_lower"] = {{"dimension", *d2.steepest_lower_dimension}, {"slope", *d2.steepest_lower_slope}};
+  else
+    j["steepest_lower"] = nullptr;
   if (d2.first_half_status) {
     j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
     j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};

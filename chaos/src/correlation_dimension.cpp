@@ -35,6 +35,10 @@ void CorrelationDimensionOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the plateau's smallest extent, a factor in eps, must be finite and at least 1 (got " +
                            std::to_string(min_plateau_ratio) + ")");
+  if (!(projection_tolerance >= 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the projection check's tolerance, a fraction of the plateau's slope, must be at least 0 (got " +
+                           std::to_string(projection_tolerance) + ")");
 }
 
 std::optional<std::pair<double, double>> takens_theiler(const std::vector<double>& radius,
@@ -258,6 +262,33 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
         }
       }
     }
+    // Step 5: the dimensions below the saturating ones, over the shared plateau's radii, from
+    // m >= 2 D2 + 1 up (Takens' bound with d = D2): in lower dimensions the delay map folds the set
+    // onto itself, and pairs across the fold raise the local slopes at finite scales (25 circles
+    // in m = 2 read 1.44 where m = 4..6 agree on 1.02), which says nothing about the set's D2.
+    if (shared) {
+      const std::size_t count = shared->last - shared->first + 1;
+      const double lowest = 2.0 * shared->slope + 1.0;
+      for (std::size_t d = 0; d < top.front(); ++d) {
+        if (static_cast<double>(out.dimension[d]) < lowest) continue;
+        double sum = 0.0;
+        std::size_t n = 0;
+        for (std::size_t k = shared->first; k <= shared->last; ++k)
+          if (usable[d][k]) {
+            sum += *usable[d][k];
+            ++n;
+          }
+        if (2 * n < count || n == 0) continue;
+        const double mean = sum / static_cast<double>(n);
+        if (!out.steepest_lower_slope || mean > *out.steepest_lower_slope) {
+          out.steepest_lower_dimension = out.dimension[d];
+          out.steepest_lower_slope = mean;
+        }
+      }
+    }
+    const bool projection_contradicts =
+        shared && out.steepest_lower_slope &&
+        *out.steepest_lower_slope > shared->slope + options.projection_tolerance * std::abs(shared->slope);
     if (!shared) {
       out.status = D2Status::not_saturated;
       why << "the highest dimensions share no plateau";
@@ -277,6 +308,15 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           << "] but on " << below->slope << " at smaller scales, eps in [" << out.plateaus[1].radii.low << ", "
           << out.plateaus[1].radii.high << "]: the slope still changes with scale, so neither plateau is the "
           << "small-scale limit D2 (a longer record reaches smaller scales)";
+    } else if (projection_contradicts) {
+      out.status = D2Status::not_saturated;
+      out.plateaus = {plateau(*shared)};
+      why << "local slopes of m = " << out.dimension[top.front()] << ".." << out.dimension[top.back()] << " agree on "
+          << shared->slope << " for eps in [" << out.plateaus[0].radii.low << ", " << out.plateaus[0].radii.high
+          << "], but m = " << *out.steepest_lower_dimension << " reads " << *out.steepest_lower_slope
+          << " there, more than " << options.projection_tolerance * 100
+          << "% higher: a projection cannot have a larger correlation dimension than the set it projects, so "
+          << "this plateau is not the saturated D2 (uneven density along a curve at these scales reads like this)";
     } else {
       out.plateaus = {plateau(*shared)};
       out.status = D2Status::saturated;

@@ -258,6 +258,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "min_points", params.dimension.region.min_points);
   get(p, "saturation_dimensions", params.dimension.saturation_dimensions);
   get(p, "min_plateau_ratio", params.dimension.min_plateau_ratio);
+  get(p, "projection_tolerance", params.dimension.projection_tolerance);
   get(p, "min_pairs", params.dimension.min_pairs);
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);

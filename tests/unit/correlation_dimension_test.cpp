@@ -290,6 +290,60 @@ TEST(CorrelationDimension, APlateauShorterThanAnOctaveIsNotSaturation) {
   }
 }
 
+// Sums whose m = 4..7 follow 0.1 (eps / 2)^0.85 while m = 3 follows (eps / 2)^lower (lower >= 0.85),
+// m = 2 (eps / 2)^two and m = 1 (eps / 2)^0.8: C still falls with m at every radius of 0.01..1, as it
+// must with the maximum norm, but over the plateau of m = 5..7 the projection m = 3 is the steeper one.
+chaos::CorrelationSumResult steeper_projection(double lower, double two = 0.9) {
+  chaos::CorrelationSumResult s;
+  s.radius = chaos::log_radii(0.01, 1.0, 30);
+  s.points = 100000;
+  const auto curve = [&](double prefactor, double slope) {
+    std::vector<double> c;
+    for (const double r : s.radius) c.push_back(prefactor * std::pow(r / 2.0, slope));
+    return c;
+  };
+  add_dimension(s, 1, curve(1.0, 0.8), 1000000000);
+  add_dimension(s, 2, curve(1.0, two), 1000000000);
+  add_dimension(s, 3, curve(1.0, lower), 1000000000);
+  for (std::size_t m = 4; m <= 7; ++m) add_dimension(s, m, curve(0.1, 0.85), 1000000000);
+  return s;
+}
+
+TEST(CorrelationDimension, APlateauBelowALowerDimensionsSlopeIsNotSaturation) {
+  // A projection cannot have a larger correlation dimension than the set it projects. Found on a
+  // slider-crank series: m = 8..10 agreed on 0.85 where m = 3 read 0.97, against D_KY = 2.00 from
+  // the equations of motion (docs/correlation_dimension.md, step 3).
+  const auto sums = steeper_projection(1.2);
+  const auto r = chaos::correlation_dimension(sums);
+  EXPECT_EQ(r.status, chaos::D2Status::not_saturated) << r.explanation;
+  EXPECT_FALSE(r.d2.has_value());
+  ASSERT_EQ(r.plateaus.size(), 1u);  // the plateau is still reported
+  EXPECT_NEAR(r.plateaus[0].slope, 0.85, 1e-9);
+  EXPECT_EQ(r.steepest_lower_dimension, 3u);
+  EXPECT_NEAR(*r.steepest_lower_slope, 1.2, 1e-9);
+  EXPECT_NE(r.explanation.find("projection"), std::string::npos) << r.explanation;
+  // The check off: the same sums read as saturated at 0.85.
+  chaos::CorrelationDimensionOptions off;
+  off.projection_tolerance = std::numeric_limits<double>::infinity();
+  const auto unchecked = chaos::correlation_dimension(sums, off);
+  ASSERT_EQ(unchecked.status, chaos::D2Status::saturated) << unchecked.explanation;
+  EXPECT_NEAR(*unchecked.d2, 0.85, 1e-9);
+  // 8% above the plateau is inside the 10% allowance: saturated, with the lower slope reported.
+  const auto close = chaos::correlation_dimension(steeper_projection(0.918));
+  ASSERT_EQ(close.status, chaos::D2Status::saturated) << close.explanation;
+  EXPECT_EQ(close.steepest_lower_dimension, 3u);
+  EXPECT_NEAR(*close.steepest_lower_slope, 0.918, 1e-9);
+  // m = 2 < 2 D2 + 1 = 2.7 need not embed the set: a steep m = 2 alone (crossings of the folded
+  // set) does not refuse the plateau.
+  const auto folded = chaos::correlation_dimension(steeper_projection(0.85, 1.4));
+  ASSERT_EQ(folded.status, chaos::D2Status::saturated) << folded.explanation;
+  EXPECT_EQ(folded.steepest_lower_dimension, 3u);
+  for (const double bad : {-0.1, std::nan("")}) {
+    off.projection_tolerance = bad;
+    EXPECT_THROW(chaos::correlation_dimension(sums, off), chaos::InvalidInput) << bad;
+  }
+}
+
 TEST(CorrelationDimension, SlopesGrowingWithDimensionAreNotSaturated) {
   // Noise-like: D2(m) = m for every m.
   const auto r = chaos::correlation_dimension(power_law(5, [](std::size_t m) { return double(m); }));

@@ -189,7 +189,7 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       max_region_fraction=None, halves=False, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
+       projection_tolerance=0.1, max_region_fraction=None, halves=False, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
        skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
@@ -201,7 +201,9 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     ||y_i - y_j|| <= eps instead, as TISEAN's d2 does (``--inclusive``). Local slopes d ln C / d ln eps;
     the scaling region is the widest range of radii where the slopes of the highest
     ``saturation_dimensions`` dimensions agree within ``tolerance`` over a factor of at least
-    ``min_plateau_ratio`` in eps; D2 is their mean there, with an interval. Defaults: theiler the
+    ``min_plateau_ratio`` in eps; D2 is their mean there, with an interval. No lower dimension
+    m >= 2 D2 + 1 may read a mean local slope over that plateau more than ``projection_tolerance`` above
+    it (a projection cannot have a larger dimension; ``float('inf')`` turns the check off). Defaults: theiler the
     autocorrelation's 1/e time (or half the dominant period), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
 
@@ -217,7 +219,7 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
 
     Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
     d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
-    other_plateaus, saturated,
+    other_plateaus, steepest_lower, saturated,
     status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
     exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``).
     """
@@ -227,6 +229,7 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
                   search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
                   threads=threads, tolerance=tolerance, min_points=min_points,
                   saturation_dimensions=saturation_dimensions, min_plateau_ratio=min_plateau_ratio,
+                  projection_tolerance=projection_tolerance,
                   min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, inclusive=inclusive, fast=fast,
                   fast_target=fast_target, fast_start=fast_start)
     bar = _progress_bar(progress, "correlation sums")
