@@ -38,8 +38,11 @@ def test_progress_callable_reports_and_changes_nothing(lorenz, name):
     # The fraction never goes back, except that lyapunov reports each of the curves it fits
     # (dimensions m, m+1, m+2: the command's default --dimensions 3) from the start of its half
     # again: the method's three curves in [0, 0.5], then the cross-check's three in [0.5, 1].
+    # Reports are sampled (as tasks end and every 10 ms), so on a loaded machine a curve can end
+    # before any report of it is seen and its restart goes unobserved: 30 runs beside three busy loops
+    # saw 4 restarts 28 times and 3 twice, never more.
     restarts = sum(1 for a, b in zip(seen, seen[1:]) if b < a)
-    assert restarts == (4 if name == "lyapunov" else 0)
+    assert restarts <= (4 if name == "lyapunov" else 0)
     if name == "lyapunov":
         assert max(seen) > 0.5 and min(seen) < 0.5
     assert r.to_dict() == function(lorenz, **kwargs).to_dict()
