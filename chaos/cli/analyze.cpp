@@ -242,6 +242,8 @@ void register_analyze(CLI::App& app) {
   command->add_option("-D,--max-delay", args->params.max_delay, "largest delay searched for the MI minimum")->capture_default_str();
   command->add_option("-b,--boxes", args->params.boxes, "boxes for mutual information")->capture_default_str();
   command->add_option("-M,--max-dimension", args->params.max_dimension, "largest embedding dimension")->capture_default_str();
+  command->add_flag("--delay-check", args->params.delay_check,
+                    "a saturated D2 must also be reproduced at twice the delay, within 0.05 (chaos d2 --delay-check)");
   command->add_option("--builtin-length", args->length, "length of the built-in Lorenz series")->capture_default_str();
   command->add_option("--test-length", args->params.test_length, "samples given to the nonlinearity test (the first ones)")
       ->capture_default_str();

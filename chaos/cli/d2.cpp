@@ -155,6 +155,11 @@ void register_d2(CLI::App& app) {
   add_quiet_option(*command, args->quiet);
   command->add_flag("--halves", args->params.halves,
                     "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
+  command->add_flag("--delay-check", args->params.delay_check,
+                    "a saturated D2 must be reproduced at twice the delay, within --delay-tolerance (as in chaos analyze)");
+  command->add_option("--delay-tolerance", args->params.dimension.delay_tolerance,
+                      "the largest difference between D2 at the delay and at twice it, with --delay-check")
+      ->capture_default_str();
   add_plot_option(*command, args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -96,6 +96,7 @@ struct D2Params {
   std::string norm = "max";
   std::string search = "box";
   bool halves = false;
+  bool delay_check = false;  // --delay-check: a saturated D2 must be reproduced at twice the delay
   // --fast: the reference subset grows until two disjoint subsets agree (adaptive_d2.hpp).
   bool fast = false;
   AdaptiveD2Options adaptive;
@@ -190,6 +191,7 @@ struct AnalyzeParams {
   std::size_t test_length = 4096;  // samples given to the nonlinearity test
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
+  bool delay_check = false;   // a saturated D2 must be reproduced at twice the delay too
   bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
   // Called with each step's name and the fraction of it done (AutomaticAnalysisOptions::progress),
   // also for the false neighbours and the surrogate test; may throw to stop.

@@ -66,6 +66,12 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
     halves.progress = nullptr;  // the progress shown is the full record's sums
     check_record_halves(d2, x, halves, params.dimension);
   }
+  if (params.delay_check) {
+    // The same sums at twice the delay (same radii): D2 must not depend on the embedding.
+    CorrelationSumOptions other = params.sums;
+    other.progress = nullptr;
+    check_delay_variant(d2, x, other, params.dimension);
+  }
 
   Report report("d2", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
@@ -81,6 +87,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
       .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
       .parameter("projection_tolerance", params.dimension.projection_tolerance)
+      .parameter("halves", params.halves).parameter("delay_check", params.delay_check)
+      .parameter("delay_tolerance", params.dimension.delay_tolerance)
       .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)
       .parameter("points", sums.points)
@@ -133,6 +141,9 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
     j["first_half"] = {{"status", to_string(*d2.first_half_status)}, {"d2", optional_json(d2.first_half_d2)}};
     j["second_half"] = {{"status", to_string(*d2.second_half_status)}, {"d2", optional_json(d2.second_half_d2)}};
   }
+  if (d2.variant_delay)
+    j["delay_variant"] = {{"delay", *d2.variant_delay}, {"status", to_string(*d2.variant_delay_status)},
+                          {"d2", optional_json(d2.variant_delay_d2)}};
   j["saturated"] = d2.status == D2Status::saturated;
   j["status"] = to_string(d2.status);
   j["explanation"] = d2.explanation;
@@ -339,6 +350,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   options.max_delay = params.max_delay;
   options.boxes = params.boxes;
   options.max_dimension = params.max_dimension;
+  options.check_delay = params.delay_check;
   options.progress = params.progress;
   // A step's own callback, copied into the options of that one call (the options kept in the run
   // hold none).
@@ -384,6 +396,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   report.parameter("file", in.file)
       .parameter("N", x.size()).parameter("dt", in.dt).parameter("max_delay", params.max_delay)
       .parameter("boxes", params.boxes).parameter("max_dimension", params.max_dimension)
+      .parameter("delay_check", params.delay_check)
       .parameter("test_length", params.test_length).parameter("surrogates", params.surrogates).parameter("seed", params.seed);
   const bool per_time = in.dt.has_value();
   const auto time = [&](std::size_t samples) {
@@ -406,6 +419,11 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   j["d2_interval"] = a.d2 ? interval_json(a.d2->d2_interval) : nullptr;
   j["d2_status"] = a.d2 ? to_string(a.d2->status) : "not_run";
   j["d2_explanation"] = a.d2 ? a.d2->explanation : a.stopped;
+  if (a.d2 && a.d2->variant_delay)
+    j["d2_delay_variant"] = {{"delay", *a.d2->variant_delay}, {"status", to_string(*a.d2->variant_delay_status)},
+                             {"d2", optional_json(a.d2->variant_delay_d2)}};
+  else
+    j["d2_delay_variant"] = nullptr;
   const auto lambda_json = [&](const std::optional<LyapunovResult>& l, const std::string& prefix) {
     if (l) {
       j[prefix] = optional_json(per_time ? l->lambda_per_time : l->fit.lambda);

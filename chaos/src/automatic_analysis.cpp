@@ -33,9 +33,10 @@ std::pair<std::span<const double>, std::span<const double>> record_halves(std::s
 }
 
 CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
-                                                           bool check_halves) {
+                                                           bool check_halves, bool check_delay) {
   CorrelationDimensionResult d2 = correlation_dimension(correlation_sum(x, sums));
   if (check_halves) check_record_halves(d2, x, sums);
+  if (check_delay) check_delay_variant(d2, x, sums);
   return d2;
 }
 
@@ -51,6 +52,21 @@ void check_record_halves(CorrelationDimensionResult& d2, std::span<const double>
     const CorrelationDimensionResult none;  // no_scaling_region
     require_reproduced_by_halves(d2, none, none, options);
     d2.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
+  }
+}
+
+void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
+                         const CorrelationDimensionOptions& options) {
+  if (d2.status != D2Status::saturated) return;
+  CorrelationSumOptions other = sums;
+  other.delay = 2 * sums.delay;
+  other.progress = nullptr;  // the progress shown is the chosen delay's sums
+  try {
+    require_reproduced_at_delay(d2, correlation_dimension(correlation_sum(x, other), options), other.delay, options);
+  } catch (const InvalidInput& e) {
+    // Too short to embed the highest dimension at twice the delay: the plateau cannot be reproduced.
+    require_reproduced_at_delay(d2, CorrelationDimensionResult{}, other.delay, options);
+    d2.explanation += std::string(" (the record cannot be embedded at that delay: ") + e.what() + ")";
   }
 }
 
@@ -144,7 +160,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
       automatic_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
   if (options.progress) s.progress = [&](double f) { options.progress("correlation sums", f); };
-  a.d2 = automatic_correlation_dimension(x, s, options.check_halves);
+  a.d2 = automatic_correlation_dimension(x, s, options.check_halves, options.check_delay);
 
   const auto lyapunov = [&](LyapunovMethod method) {
     LyapunovOptions l = automatic_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);

@@ -39,6 +39,10 @@ void CorrelationDimensionOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the projection check's tolerance, a fraction of the plateau's slope, must be at least 0 (got " +
                            std::to_string(projection_tolerance) + ")");
+  if (!(delay_tolerance >= 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the delay check's tolerance, an absolute difference of D2, must be at least 0 (got " +
+                           std::to_string(delay_tolerance) + ")");
 }
 
 std::optional<std::pair<double, double>> takens_theiler(const std::vector<double>& radius,
@@ -420,6 +424,35 @@ void require_reproduced_by_halves(CorrelationDimensionResult& full, const Correl
   full.takens_theiler.reset();
   full.takens_theiler_error.reset();
   full.explanation = why.str() + (full.explanation.empty() ? "" : " [full record: " + full.explanation + "]");
+}
+
+void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
+                                 std::size_t variant_delay, const CorrelationDimensionOptions& options) {
+  options.validate();
+  d2.variant_delay = variant_delay;
+  d2.variant_delay_status = variant.status;
+  d2.variant_delay_d2 = variant.d2;
+  if (d2.status != D2Status::saturated) return;
+  std::ostringstream why;
+  if (!variant.d2) {
+    why << "at delay " << variant_delay << " the same sums do not saturate (" << to_string(variant.status) << ")";
+  } else if (std::abs(*variant.d2 - *d2.d2) > options.delay_tolerance) {
+    why << "at delay " << variant_delay << " the same sums read " << *variant.d2 << ", more than "
+        << options.delay_tolerance << " from " << *d2.d2;
+  } else {
+    return;  // reproduced
+  }
+  why << "; the plateau (" << *d2.d2 << " for eps in [" << d2.scaling_region->low << ", " << d2.scaling_region->high
+      << "]) depends on the embedding, so it is not reported as D2 (D2 belongs to the attractor; smaller "
+      << "scales, i.e. a longer record, may settle it)";
+  d2.status = D2Status::not_reproduced;
+  d2.d2.reset();
+  d2.d2_interval.reset();
+  d2.scaling_region.reset();
+  d2.takens_theiler.reset();
+  d2.takens_theiler_error.reset();
+  d2.d2_standard_error.reset();
+  d2.explanation = why.str() + (d2.explanation.empty() ? "" : " [chosen delay: " + d2.explanation + "]");
 }
 
 }  // namespace chaos

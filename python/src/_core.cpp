@@ -262,6 +262,8 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "min_pairs", params.dimension.min_pairs);
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);
+  get(p, "delay_check", params.delay_check);
+  get(p, "delay_tolerance", params.dimension.delay_tolerance);
   get(p, "inclusive", params.sums.inclusive);
   get(p, "fast", params.fast);
   get(p, "fast_target", params.adaptive.target);
@@ -331,6 +333,7 @@ py::tuple analyze(const Array& x, const std::string& file, std::size_t column, s
   get(p, "test_length", params.test_length);
   get(p, "surrogates", params.surrogates);
   get(p, "seed", params.seed);
+  get(p, "delay_check", params.delay_check);
   params.progress = step_progress_hook(std::move(progress));
   params.mutual_curve = true;  // the information curve, for the plot (the JSON does not change)
   nlohmann::ordered_json json, evidence = nlohmann::ordered_json::object();

@@ -45,6 +45,8 @@ def test_d2_the_issue_bar(lorenz_file):
     (["-d", 8, "-M", 4, "--reference-points", 500, "--seed", 3, "-r", 0.5, "-R", 10],
      dict(delay=8, max_dimension=4, reference_points=500, seed=3, min_radius=0.5, max_radius=10)),
     (["-d", 8, "-M", 3, "--inclusive"], dict(delay=8, max_dimension=3, inclusive=True)),
+    (["-d", 8, "-M", 5, "--delay-check", "--delay-tolerance", 0.08],
+     dict(delay=8, max_dimension=5, delay_check=True, delay_tolerance=0.08)),
     (["-d", 8, "-M", 4, "--fast", "--fast-start", 100, "--fast-target", 0.05],
      dict(delay=8, max_dimension=4, fast=True, fast_start=100, fast_target=0.05)),
 ])
@@ -139,6 +141,15 @@ def test_analyze(lorenz_file):
     r = check(chaos.analyze, lorenz_file, ["analyze", "--dt", 0.01, "--test-length", 1024, "--surrogates", 9],
               dt=0.01, test_length=1024, surrogates=9)
     assert r.delay_source
+
+
+def test_analyze_delay_check(lorenz_file):
+    r = check(chaos.analyze, lorenz_file, ["analyze", "--dt", 0.01, "--test-length", 512, "--surrogates", 9,
+                                           "--delay-check"],
+              dt=0.01, test_length=512, surrogates=9, delay_check=True)
+    # The check ran when D2 saturated at the chosen delay: its variant is at twice that delay.
+    if r.d2_delay_variant is not None:
+        assert r.d2_delay_variant["delay"] == 2 * r.delay
 
 
 def test_analyze_noise(data_dir):

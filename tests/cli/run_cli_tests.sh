@@ -92,6 +92,14 @@ h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
     else false end)]')
 [[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
+# --delay-check: the D2 at twice the delay is reported, and the verdict follows from it (saturated
+# only within --delay-tolerance of it; otherwise not_reproduced and no D2).
+h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --delay-check --json | jq -c '
+  [(.delay_variant.delay == 2),
+   (if .status == "saturated" then (.delay_variant.d2 != null and ((.delay_variant.d2 - .d2) | fabs) <= 0.05)
+    elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("at delay 2")))
+    else false end)]')
+[[ $h == '[true,true]' ]] && pass || fail "d2 --delay-check on Hénon gave $h"
 # Issue 15: --inclusive counts pairs at distance <= eps (TISEAN's d2), the default < eps. Expected
 # counts: every pair of a 12-sample integer series enumerated here by awk (ties at both radii).
 printf '%s\n' 0 1 2 3 1 0 2 2 3 1 0 1 > "$work/ties.dat"

@@ -193,6 +193,54 @@ TEST(CorrelationDimension, APlateauTheHalvesDoNotReproduceIsWithdrawn) {
   EXPECT_EQ(unsure.status, chaos::D2Status::not_saturated);
 }
 
+TEST(CorrelationDimension, APlateauThatMovesWithTheDelayIsWithdrawn) {
+  // Exact power laws stand in for the sums at the chosen delay and at twice it; the rule reads only
+  // the two results (the second sum is check_delay_variant's). Tolerance 0.05, the default.
+  const auto at = [](double d) { return chaos::correlation_dimension(broken_power_law(5, 0.05, d, d)); };
+  const auto chosen = at(1.87);
+  ASSERT_EQ(chosen.status, chaos::D2Status::saturated) << chosen.explanation;
+
+  // 0.03 apart (inside 0.05): reproduced, unchanged, the variant reported.
+  auto close = chosen;
+  chaos::require_reproduced_at_delay(close, at(1.90), 30);
+  EXPECT_EQ(close.status, chaos::D2Status::saturated) << close.explanation;
+  EXPECT_EQ(close.d2, chosen.d2);
+  ASSERT_TRUE(close.variant_delay && close.variant_delay_d2);
+  EXPECT_EQ(*close.variant_delay, 30u);
+  EXPECT_NEAR(*close.variant_delay_d2, 1.90, 1e-6);
+
+  // 0.08 apart (Rossler x at N = 10^5: 1.871 at tau = 15, 1.950 at 30): withdrawn.
+  auto apart = chosen;
+  chaos::require_reproduced_at_delay(apart, at(1.95), 30);
+  EXPECT_EQ(apart.status, chaos::D2Status::not_reproduced);
+  EXPECT_FALSE(apart.d2.has_value());
+  EXPECT_FALSE(apart.scaling_region.has_value());
+  EXPECT_NE(apart.explanation.find("at delay 30"), std::string::npos) << apart.explanation;
+
+  // The same gap passes a looser tolerance: the rule is the stated one, not a fixed number.
+  chaos::CorrelationDimensionOptions loose;
+  loose.delay_tolerance = 0.1;
+  auto loosened = chosen;
+  chaos::require_reproduced_at_delay(loosened, at(1.95), 30, loose);
+  EXPECT_EQ(loosened.status, chaos::D2Status::saturated);
+
+  // No plateau at twice the delay: withdrawn too.
+  auto missing = chosen;
+  chaos::require_reproduced_at_delay(missing, chaos::CorrelationDimensionResult{}, 30);
+  EXPECT_EQ(missing.status, chaos::D2Status::not_reproduced);
+  EXPECT_EQ(*missing.variant_delay_status, chaos::D2Status::no_scaling_region);
+
+  // An unsure result stays what it was; a negative tolerance is refused.
+  chaos::CorrelationDimensionResult unsure;
+  unsure.status = chaos::D2Status::not_saturated;
+  chaos::require_reproduced_at_delay(unsure, at(1.87), 30);
+  EXPECT_EQ(unsure.status, chaos::D2Status::not_saturated);
+  chaos::CorrelationDimensionOptions negative;
+  negative.delay_tolerance = -0.01;
+  auto refused = chosen;
+  EXPECT_THROW(chaos::require_reproduced_at_delay(refused, at(1.87), 30, negative), chaos::InvalidInput);
+}
+
 TEST(CorrelationDimension, MaxRegionFractionKeepsTheRegionAtSmallScales) {
   // Slope 2.0 below eps = 0.1 and 2.6 above it (a shape bending the slope at large scales, as the
   // curvature of a torus does); the series' range is 1, so a fraction of 0.1 allows radii <= 0.1.

@@ -10,7 +10,8 @@
 //      alternative, named as the source); if neither exists within max_delay, nothing further runs;
 //   3. embedding dimension m: Cao's E1 saturation (Cao 1997); none, nothing further runs;
 //   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp); a
-//      saturated D2 must be reproduced by the two halves of the record (require_reproduced_by_halves);
+//      saturated D2 must be reproduced by the two halves of the record (require_reproduced_by_halves),
+//      and, when asked (check_delay), at twice the delay (require_reproduced_at_delay);
 //   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
 //      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
 //      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
@@ -44,6 +45,9 @@ struct AutomaticAnalysisOptions {
   std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
   std::size_t radii = 40;            // log-spaced from range/1000 to range/4
   bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
+  // ... and at twice the delay. Off by default: on the zoo it withdrew more right values than wrong
+  // ones (docs/zoo-notes.md, "The delay neighbourhood").
+  bool check_delay = false;
   bool rosenstein = true, kantz = true;
   bool cross_check = true;           // a lambda_1 the other estimators contradict or do not support is unconfirmed
   bool local_maps = true;            // lambda_1 from local linear maps too (lyapunov_local_maps.hpp)
@@ -79,13 +83,19 @@ CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> 
                                                         std::size_t radii = 40);
 
 // D2 as the pipeline computes it: correlation sums of x with `sums`, and, when D2 saturates, the
-// halves check on the same radii (the first and the second half of x).
+// halves check on the same radii (the first and the second half of x), then, when asked, the delay
+// check.
 CorrelationDimensionResult automatic_correlation_dimension(std::span<const double> x, const CorrelationSumOptions& sums,
-                                                           bool check_halves = true);
+                                                           bool check_halves = true, bool check_delay = false);
 // The halves check for a D2 already computed from x with `sums` and `options`: when it saturated,
 // the same sums and rules over each half (require_reproduced_by_halves). A half too short to embed
 // counts as not reproducing the plateau, and the explanation says why.
 void check_record_halves(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
+                         const CorrelationDimensionOptions& options = {});
+// The delay check for a D2 already computed from x with `sums` and `options`: when it saturated, the
+// same sums and rules at twice sums.delay (require_reproduced_at_delay). A record too short to embed
+// at that delay counts as not reproducing the plateau, and the explanation says why.
+void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
                          const CorrelationDimensionOptions& options = {});
 // The two halves of a record, as the halves check splits it: [0, n/2) and [n/2, n).
 std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x);

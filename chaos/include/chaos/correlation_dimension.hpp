@@ -90,6 +90,10 @@ struct CorrelationDimensionOptions {
   // Reference subsets and caps only: the largest jackknife error of a usable local slope, as a
   // fraction of tolerance * |slope| (0.5: two standard errors fit inside the flatness band).
   double slope_error_fraction = 0.5;
+  // The delay check (require_reproduced_at_delay): the largest difference allowed between the D2 at
+  // the chosen delay and at twice it, absolute; half the zoo's +-0.1 band, so that a value the
+  // embedding moves by more cannot be claimed to within that band.
+  double delay_tolerance = 0.05;
   void validate() const;
 };
 
@@ -144,6 +148,10 @@ struct CorrelationDimensionResult {
   // The halves check (require_reproduced_by_halves), when it ran: each half's status and D2.
   std::optional<D2Status> first_half_status, second_half_status;
   std::optional<double> first_half_d2, second_half_d2;
+  // The delay check (require_reproduced_at_delay), when it ran: the other delay, its status and D2.
+  std::optional<std::size_t> variant_delay;
+  std::optional<D2Status> variant_delay_status;
+  std::optional<double> variant_delay_d2;
 };
 
 CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sums,
@@ -160,6 +168,17 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
 void require_reproduced_by_halves(CorrelationDimensionResult& full, const CorrelationDimensionResult& first,
                                   const CorrelationDimensionResult& second,
                                   const CorrelationDimensionOptions& options = {});
+
+// Invariance under the embedding (the automatic pipeline's step after the halves check). `variant` is
+// D2 from the same record with the same Theiler window, dimensions and radii at another delay
+// (`variant_delay`, the pipeline takes twice the chosen one). D2 belongs to the attractor, not to
+// the embedding (Takens 1981), so a saturated `d2` stays saturated only when the variant saturates
+// too and reads within options.delay_tolerance of it; otherwise its status becomes not_reproduced
+// and its D2 is withdrawn, as for the halves. A plateau whose height moves with the delay is shaped
+// by the embedding's folds at the resolved scales, not by the attractor. (Rossler x, N = 10^5: 1.871
+// at tau = 15, 1.950 at tau = 30; Sprott's 1.991 is a zero-scale extrapolation.)
+void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
+                                 std::size_t variant_delay, const CorrelationDimensionOptions& options = {});
 
 // Takens-Theiler estimate at radius index k: C(r_k) / integral_0^{r_k} C(r)/r dr, with C a power
 // law between grid radii (and below the first, with the first interval's exponent). Standard error

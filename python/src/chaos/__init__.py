@@ -189,7 +189,7 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       projection_tolerance=0.1, max_region_fraction=None, halves=False, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
+       projection_tolerance=0.1, max_region_fraction=None, halves=False, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
        skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
@@ -221,7 +221,9 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
     other_plateaus, steepest_lower, saturated,
     status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
-    exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``).
+    exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``; delay_variant with
+    ``delay_check=True``, which requires a saturated D2 to be reproduced at twice the delay within
+    ``delay_tolerance``, as ``chaos analyze`` does).
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
     params = dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
@@ -230,7 +232,8 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
                   threads=threads, tolerance=tolerance, min_points=min_points,
                   saturation_dimensions=saturation_dimensions, min_plateau_ratio=min_plateau_ratio,
                   projection_tolerance=projection_tolerance,
-                  min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, inclusive=inclusive, fast=fast,
+                  min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, delay_check=delay_check,
+                  delay_tolerance=delay_tolerance, inclusive=inclusive, fast=fast,
                   fast_target=fast_target, fast_start=fast_start)
     bar = _progress_bar(progress, "correlation sums")
     try:
@@ -302,7 +305,8 @@ def lyapunov_maps(x, *, dimension=2, delay=1, theiler=None, step=0, neighbours=0
 
 
 def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
-            test_length=4096, surrogates=19, seed=1, progress=None, dt=None, column=1, skip=0, length=None):
+            test_length=4096, surrogates=19, seed=1, delay_check=False, progress=None, dt=None, column=1, skip=0,
+            length=None):
     """The embedding parameters chosen and justified, then D2, lambda_1 and a nonlinearity test
     (``chaos analyze``).
 
@@ -311,7 +315,9 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     decorrelated within a sample, else the first minimum of the mutual information; embedding
     dimension where Cao's E1 saturates (unless E2 says stochastic), corroborated by false nearest
     neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2; a
-    one-sided rank-order test against IAAFT surrogates (prediction error). With ``x=None`` it analyses
+    one-sided rank-order test against IAAFT surrogates (prediction error). ``delay_check=True``
+    (``--delay-check``) also requires a saturated D2 to be reproduced at twice the delay within 0.05
+    (the result's d2_delay_variant gives that D2). With ``x=None`` it analyses
     the built-in Lorenz x series (``builtin_length`` samples, dt = 0.01), as ``chaos analyze`` with no
     file does.
 
@@ -331,7 +337,7 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
         json, evidence = _core.analyze(values, file, column, dt,
                                        dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
                                             max_dimension=max_dimension, test_length=test_length,
-                                            surrogates=surrogates, seed=seed), bar)
+                                            surrogates=surrogates, seed=seed, delay_check=delay_check), bar)
         return _make(json, evidence=evidence)
     finally:
         if bar is not None and not callable(progress):

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# The automatic pipeline at its own delay and at others: for every chaotic system of docs/zoo.md
+# that the pipeline analyses, `chaos analyze` on the zoo's series at N = 10^5 with the delay forced
+# to tau (the automatic choice), tau/2, 3 tau/2 and 2 tau (rounded up; repeats dropped) and the
+# automatic Theiler window w; Cao's dimension, D2 and the three lambda_1 estimates are then chosen
+# as `analyze` chooses them at that delay. With DELAY_CHECK=1, D2 also goes through the delay check
+# (`analyze --delay-check`: the same sums at twice the delay, whose D2 is shown). This is what a user gets who takes the delay from another rule (the
+# autocorrelation's 1/e time or zero crossing instead of the mutual-information minimum), which the
+# zoo's grid (m and w at the automatic delay) does not vary.
+#
+# Each confident estimate is judged against the zoo's bands, read from the same docs/zoo.md row:
+# D2 (status saturated) inside the row's D2 band; lambda_1 (Rosenstein and Kantz: linear_region,
+# local maps: consistent) within 10% of lambda_1 from the equations. Output: a Markdown table, one
+# row per (system, delay), and a summary.
+#
+# Usage: scripts/measure_delay_neighbourhood.sh [build-dir] > table.md
+# Environment: JOBS (2) parallel cases; ONLY=name,name to restrict the systems; DELAY_CHECK=1.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+chaos="$PWD/$build/chaos/chaos"
+[[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $build --target chaos_cli" >&2; exit 2; }
+command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
+jobs=${JOBS:-2}
+check_flag=
+[[ ${DELAY_CHECK:-0} == 1 ]] && check_flag=--delay-check
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# name tau w d2_low d2_high lambda_1, from the automatic rows at N = 10^5 that got a dimension
+awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
+  on && $5 + 0 > 0 && $3 + 0 == 100000 {
+    for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
+    band = $8; gsub(/[][]/, "", band); split(band, b, ",")
+    print $2, $4, $6, b[1], b[2], $12 + 0 }' docs/zoo.md > "$work/systems"
+[[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
+
+case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
+  local name=$1 tau=$2 w=$3 lo=$4 hi=$5 lam=$6 dt t json out="$work/rows.$1"
+  "$chaos" zoo --series "$name" --json > "$work/$name.json"
+  jq -r '.x[]' "$work/$name.json" > "$work/$name.dat"
+  dt=$(jq -r '.parameters.dt // empty' "$work/$name.json")
+  : > "$out"
+  local done_delays=" "
+  for t in $tau $(((tau + 1) / 2)) $(((3 * tau + 1) / 2)) $((2 * tau)); do
+    [[ $done_delays == *" $t "* ]] && continue
+    done_delays+="$t "
+    json=$("$chaos" analyze "$work/$name.dat" -d "$t" -t "$w" ${dt:+--dt $dt} $check_flag --json -q 2> /dev/null) || json='{}'
+    jq -r --arg name "$name" --arg tau "$tau" --arg t "$t" --arg w "$w" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" '
+      def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
+      def d2v: if .d2_status != "saturated" then "unsure"
+               elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
+      def lv(s; v; ok): if s != ok then "unsure"
+               elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+      [$name, $tau, $t, (.embedding_dimension // "-" | tostring), $w,
+       "\(.d2 | num) \(.d2_status // "error")",
+       (if .d2_delay_variant == null then "-" else "\(.d2_delay_variant.d2 | num) \(.d2_delay_variant.status) (tau \(.d2_delay_variant.delay))" end),
+       "[\($lo), \($hi)]", d2v,
+       "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
+       "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
+       "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
+       lv(.lambda_local_maps_status; .lambda_local_maps; "consistent"), $lam] | join("\t")' <<< "$json" >> "$out"
+  done
+  echo "done $name" >&2
+}
+export -f case_rows
+export chaos work check_flag
+
+start=$(date +%s)
+while read -r name tau w lo hi lam; do
+  if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $tau $w $lo $hi $lam"; fi
+done < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+elapsed=$(($(date +%s) - start))
+
+echo "# The automatic pipeline at other delays (written by scripts/measure_delay_neighbourhood.sh)"
+echo
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), delay check ${check_flag:-off}; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo
+echo "| system | tau (automatic) | tau | m (Cao) | w | D2 | delay check: D2 at 2 tau | D2 band | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+while read -r name _; do
+  [[ -f $work/rows.$name ]] && sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"
+done < "$work/systems"
+echo
+cat "$work"/rows.* | awk -F'\t' '{
+    d[$9]++; r[$11]++; k[$13]++; l[$15]++; rows++
+    if ($9 == "in_band") ds[$1] = 1
+    if ($11 == "in_band" || $13 == "in_band" || $15 == "in_band") ls[$1] = 1
+    if ($2 == $3) { auto++; if ($9 == "in_band") ad++; if ($9 == "WRONG") aw++ }
+  } END {
+    printf "Rows: %d. D2: %d in band, %d unsure, %d wrong. lambda_1 by Rosenstein: %d / %d / %d; Kantz: %d / %d / %d; local maps: %d / %d / %d (in band / unsure / wrong).\n",
+      rows, d["in_band"], d["unsure"], d["WRONG"], r["in_band"], r["unsure"], r["WRONG"], k["in_band"], k["unsure"], k["WRONG"], l["in_band"], l["unsure"], l["WRONG"]
+    printf "Systems with a confident D2 in band at some delay: %d; with a confident lambda_1 in band: %d.\n", length(ds), length(ls)
+    printf "At the automatic delay: %d systems, D2 in band on %d, wrong on %d.\n", auto, ad, aw
+  }'
