@@ -169,14 +169,16 @@ void require_reproduced_by_halves(CorrelationDimensionResult& full, const Correl
                                   const CorrelationDimensionResult& second,
                                   const CorrelationDimensionOptions& options = {});
 
-// Invariance under the embedding (the automatic pipeline's step after the halves check). `variant` is
-// D2 from the same record with the same Theiler window, dimensions and radii at another delay
-// (`variant_delay`, the pipeline takes twice the chosen one). D2 belongs to the attractor, not to
+// Invariance under the embedding (opt-in: `chaos d2 --delay-check`, AutomaticAnalysisOptions::
+// check_delay, after the halves check). `variant` is D2 from the same record with the same Theiler
+// window, dimensions and radii at another delay (`variant_delay`; check_delay_variant takes twice
+// the chosen one). D2 belongs to the attractor, not to
 // the embedding (Takens 1981), so a saturated `d2` stays saturated only when the variant saturates
 // too and reads within options.delay_tolerance of it; otherwise its status becomes not_reproduced
 // and its D2 is withdrawn, as for the halves. A plateau whose height moves with the delay is shaped
-// by the embedding's folds at the resolved scales, not by the attractor. (Rossler x, N = 10^5: 1.871
-// at tau = 15, 1.950 at tau = 30; Sprott's 1.991 is a zero-scale extrapolation.)
+// by the embedding at the resolved scales, not by the attractor. (Thomas x, N = 10^5, m = 6..8: 1.719
+// at tau = 39, 1.846 at 78.) Not a default: on the zoo most plateaus, right ones included, move
+// by more than 0.05 when the delay doubles (docs/zoo-notes.md, section 8).
 void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
                                  std::size_t variant_delay, const CorrelationDimensionOptions& options = {});
 
