@@ -177,8 +177,8 @@ void require_reproduced_by_halves(CorrelationDimensionResult& full, const Correl
 // too and reads within options.delay_tolerance of it; otherwise its status becomes not_reproduced
 // and its D2 is withdrawn, as for the halves. A plateau whose height moves with the delay is shaped
 // by the embedding at the resolved scales, not by the attractor. (Thomas x, N = 10^5, m = 6..8: 1.719
-// at tau = 39, 1.846 at 78.) Not a default: on the zoo most plateaus, right ones included, move
-// by more than 0.05 when the delay doubles (docs/zoo-notes.md, section 8).
+// at tau = 39, 1.846 at 78.) Not a default: on the zoo many plateaus, right ones as often as
+// wrong ones, move by more than 0.05 when the delay doubles (docs/zoo-notes.md, section 8).
 void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
                                  std::size_t variant_delay, const CorrelationDimensionOptions& options = {});
 
