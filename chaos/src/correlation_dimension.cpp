@@ -392,6 +392,23 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   return out;
 }
 
+namespace {
+
+// A saturated plateau that a reproducibility check refuses: the status becomes not_reproduced, the
+// value and what was read off the plateau are withdrawn (the plateau stays in `plateaus`), and the
+// explanation leads with `why`, keeping the earlier one under `label`.
+void withdraw_as_not_reproduced(CorrelationDimensionResult& d2, const std::string& why, const char* label) {
+  d2.status = D2Status::not_reproduced;
+  d2.d2.reset();
+  d2.d2_interval.reset();
+  d2.scaling_region.reset();
+  d2.takens_theiler.reset();
+  d2.takens_theiler_error.reset();
+  d2.explanation = why + (d2.explanation.empty() ? "" : std::string(" [") + label + ": " + d2.explanation + "]");
+}
+
+}  // namespace
+
 void require_reproduced_by_halves(CorrelationDimensionResult& full, const CorrelationDimensionResult& first,
                                   const CorrelationDimensionResult& second, const CorrelationDimensionOptions& options) {
   options.validate();
@@ -417,13 +434,7 @@ void require_reproduced_by_halves(CorrelationDimensionResult& full, const Correl
   why << "; the full record's plateau (" << *full.d2 << " for eps in [" << full.scaling_region->low << ", "
       << full.scaling_region->high << "]) is not reproduced by its two halves, so it is not reported as D2 "
       << "(a longer record may settle it)";
-  full.status = D2Status::not_reproduced;
-  full.d2.reset();
-  full.d2_interval.reset();
-  full.scaling_region.reset();
-  full.takens_theiler.reset();
-  full.takens_theiler_error.reset();
-  full.explanation = why.str() + (full.explanation.empty() ? "" : " [full record: " + full.explanation + "]");
+  withdraw_as_not_reproduced(full, why.str(), "full record");
 }
 
 void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
@@ -445,14 +456,8 @@ void require_reproduced_at_delay(CorrelationDimensionResult& d2, const Correlati
   why << "; the plateau (" << *d2.d2 << " for eps in [" << d2.scaling_region->low << ", " << d2.scaling_region->high
       << "]) depends on the embedding, so it is not reported as D2 (D2 belongs to the attractor; smaller "
       << "scales, i.e. a longer record, may settle it)";
-  d2.status = D2Status::not_reproduced;
-  d2.d2.reset();
-  d2.d2_interval.reset();
-  d2.scaling_region.reset();
-  d2.takens_theiler.reset();
-  d2.takens_theiler_error.reset();
+  withdraw_as_not_reproduced(d2, why.str(), "chosen delay");
   d2.d2_standard_error.reset();
-  d2.explanation = why.str() + (d2.explanation.empty() ? "" : " [chosen delay: " + d2.explanation + "]");
 }
 
 }  // namespace chaos
