@@ -404,6 +404,7 @@ void withdraw_as_not_reproduced(CorrelationDimensionResult& d2, const std::strin
   d2.scaling_region.reset();
   d2.takens_theiler.reset();
   d2.takens_theiler_error.reset();
+  d2.d2_standard_error.reset();  // the error of a value no longer reported
   d2.explanation = why + (d2.explanation.empty() ? "" : std::string(" [") + label + ": " + d2.explanation + "]");
 }
 
@@ -457,7 +458,6 @@ void require_reproduced_at_delay(CorrelationDimensionResult& d2, const Correlati
       << "]) depends on the embedding, so it is not reported as D2 (D2 belongs to the attractor; smaller "
       << "scales, i.e. a longer record, may settle it)";
   withdraw_as_not_reproduced(d2, why.str(), "chosen delay");
-  d2.d2_standard_error.reset();
 }
 
 }  // namespace chaos

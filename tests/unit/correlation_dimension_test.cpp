@@ -173,11 +173,14 @@ TEST(CorrelationDimension, APlateauTheHalvesDoNotReproduceIsWithdrawn) {
   EXPECT_NEAR(*same.first_half_d2, 2.2, 1e-6);
 
   // Halves at 1.97 and 2.5 (Sprott F at N = 10^4): withdrawn, with both halves' values reported.
+  // A jackknife error (subset sums) goes with the value: none is left on a withdrawn plateau.
   auto apart = full;
+  apart.d2_standard_error = 0.01;
   chaos::require_reproduced_by_halves(apart, at(1.97), at(2.5));
   EXPECT_EQ(apart.status, chaos::D2Status::not_reproduced);
   EXPECT_FALSE(apart.d2.has_value());
   EXPECT_FALSE(apart.d2_interval.has_value());
+  EXPECT_FALSE(apart.d2_standard_error.has_value());
   EXPECT_NE(apart.explanation.find("disagree"), std::string::npos) << apart.explanation;
 
   // A half without a plateau: withdrawn too.
@@ -211,9 +214,11 @@ TEST(CorrelationDimension, APlateauThatMovesWithTheDelayIsWithdrawn) {
 
   // 0.08 apart (Rossler x at N = 10^5: 1.871 at tau = 15, 1.950 at 30): withdrawn.
   auto apart = chosen;
+  apart.d2_standard_error = 0.01;
   chaos::require_reproduced_at_delay(apart, at(1.95), 30);
   EXPECT_EQ(apart.status, chaos::D2Status::not_reproduced);
   EXPECT_FALSE(apart.d2.has_value());
+  EXPECT_FALSE(apart.d2_standard_error.has_value());
   EXPECT_FALSE(apart.scaling_region.has_value());
   EXPECT_NE(apart.explanation.find("at delay 30"), std::string::npos) << apart.explanation;
 
