@@ -149,7 +149,13 @@ void register_d2(CLI::App& app) {
   command->add_option("--projection-tolerance", args->params.dimension.projection_tolerance,
                       "no lower dimension m >= 2 D2 + 1 may read a mean local slope over the plateau more than this "
                       "fraction above it (a projection cannot have a larger dimension; inf: no check)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("FLOAT|inf");  // not the FLOAT check, which refuses infinity: the library validates it
+  command->add_option("--noise-fill-fraction", args->params.dimension.noise_fill_fraction,
+                      "a plateau is noise-limited when, at a radius below it, every saturating dimension m reads a local "
+                      "slope more than this fraction of the way from the plateau's slope to m (inf: no check)")
+      ->capture_default_str()
+      ->type_name("FLOAT|inf");
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
   add_quiet_option(*command, args->quiet);

@@ -83,6 +83,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
       .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
       .parameter("projection_tolerance", params.dimension.projection_tolerance)
+      .parameter("noise_fill_fraction", params.dimension.noise_fill_fraction)
       .parameter("halves", params.halves).parameter("delay_check", params.delay_check)
       .parameter("delay_tolerance", params.dimension.delay_tolerance)
       .parameter("min_pairs", params.dimension.min_pairs)
@@ -129,6 +130,10 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   };
   j["plateaus"] = plateaus_json(d2.plateaus);
   j["other_plateaus"] = plateaus_json(d2.other_plateaus);
+  if (d2.noise_floor)
+    j["noise_floor"] = {{"radius", *d2.noise_floor}, {"slopes", d2.noise_floor_slopes}};
+  else
+    j["noise_floor"] = nullptr;
   if (d2.steepest_lower_dimension)
     j["steepest_lower"] = {{"dimension", *d2.steepest_lower_dimension}, {"slope", *d2.steepest_lower_slope}};
   else

@@ -15,6 +15,7 @@ const char* to_string(D2Status status) noexcept {
     case D2Status::no_scaling_region: return "no_scaling_region";
     case D2Status::scale_dependent: return "scale_dependent";
     case D2Status::not_reproduced: return "not_reproduced";
+    case D2Status::noise_limited: return "noise_limited";
   }
   return "unknown";
 }
@@ -39,6 +40,10 @@ void CorrelationDimensionOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the projection check's tolerance, a fraction of the plateau's slope, must be at least 0 (got " +
                            std::to_string(projection_tolerance) + ")");
+  if (!(noise_fill_fraction > 0.0))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the noise check's fraction of the way from the plateau's slope to m must be positive (got " +
+                           std::to_string(noise_fill_fraction) + "; inf turns the check off)");
   if (!(delay_tolerance >= 0.0))
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the delay check's tolerance, an absolute difference of D2, must be at least 0 (got " +
@@ -293,6 +298,33 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     const bool projection_contradicts =
         shared && out.steepest_lower_slope &&
         *out.steepest_lower_slope > shared->slope + options.projection_tolerance * std::abs(shared->slope);
+    // Step 6: noise below the plateau. At a radius where every saturating dimension m reads a usable
+    // local slope more than noise_fill_fraction of the way from the plateau's slope to m, and not
+    // above m (1 + tolerance), the dimensions fill their space as noise does; pairs entering in
+    // bursts (the quasi-lattice of a torus sampled at small scales) read slopes above m and do not
+    // count. The regime must hold over consecutive radii whose local slopes span min_points radii,
+    // the evidence a plateau needs. noise_floor: the largest radius of the largest such run.
+    if (shared && std::isfinite(options.noise_fill_fraction)) {
+      const std::size_t hw = options.region.half_width;
+      const std::size_t needed = options.region.min_points > 2 * hw ? options.region.min_points - 2 * hw : 1;
+      std::size_t run = 0;
+      for (std::size_t k = 0; k < shared->first; ++k) {
+        std::vector<double> slopes;
+        for (const auto d : top) {
+          const auto& s = usable[d][k];
+          const double m = static_cast<double>(out.dimension[d]);
+          if (!s || !(*s > shared->slope + options.noise_fill_fraction * (m - shared->slope)) ||
+              *s > m * (1.0 + options.region.tolerance))
+            break;
+          slopes.push_back(*s);
+        }
+        run = slopes.size() == top.size() ? run + 1 : 0;
+        if (run >= needed) {
+          out.noise_floor = sums.radius[k];
+          out.noise_floor_slopes = std::move(slopes);
+        }
+      }
+    }
     if (!shared) {
       out.status = D2Status::not_saturated;
       why << "the highest dimensions share no plateau";
@@ -321,6 +353,19 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
           << " there, more than " << options.projection_tolerance * 100
           << "% higher: a projection cannot have a larger correlation dimension than the set it projects, so "
           << "this plateau is not the saturated D2 (uneven density along a curve at these scales reads like this)";
+    } else if (out.noise_floor) {
+      out.status = D2Status::noise_limited;
+      out.plateaus = {plateau(*shared)};
+      why << "local slopes of m = " << out.dimension[top.front()] << ".." << out.dimension[top.back()] << " agree on "
+          << shared->slope << " for eps in [" << out.plateaus[0].radii.low << ", " << out.plateaus[0].radii.high
+          << "], but at eps = " << *out.noise_floor << " below it they read";
+      for (std::size_t i = 0; i < top.size(); ++i) why << (i > 0 ? ", " : " ") << out.noise_floor_slopes[i];
+      why << " (m = " << out.dimension[top.front()] << ".." << out.dimension[top.back()] << "), more than "
+          << options.noise_fill_fraction * 100 << "% of the way from " << shared->slope
+          << " to m over consecutive radii down to there: the embedding dimensions fill their "
+          << "space there as measurement noise does, so the smaller scales where D2 is defined cannot be read "
+          << "and this plateau is not the attractor's D2 (reduce the noise, or read it as a large-scale "
+          << "exponent only)";
     } else {
       out.plateaus = {plateau(*shared)};
       out.status = D2Status::saturated;

@@ -259,6 +259,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "saturation_dimensions", params.dimension.saturation_dimensions);
   get(p, "min_plateau_ratio", params.dimension.min_plateau_ratio);
   get(p, "projection_tolerance", params.dimension.projection_tolerance);
+  get(p, "noise_fill_fraction", params.dimension.noise_fill_fraction);
   get(p, "min_pairs", params.dimension.min_pairs);
   get(p, "max_region_fraction", params.dimension.max_region_fraction);
   get(p, "halves", params.halves);

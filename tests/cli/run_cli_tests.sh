@@ -92,6 +92,21 @@ h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
     else false end)]')
 [[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
+# Measurement noise (1% of the standard deviation) hides Hénon's small scales: below the plateau
+# every dimension fills its space, so the status is noise_limited with the noise floor below the
+# plateau and no D2; --noise-fill-fraction inf turns the check off (and inf is accepted, as for
+# --projection-tolerance), which leaves the plateau as the saturated D2.
+"$CHAOS" generate henon -l 20000 --components x | grep -v '^#' > "$work/henon20k.dat" || fail "generate henon 20000"
+"$CHAOS" generate white_noise -l 20000 --seed 1 | grep -v '^#' > "$work/gauss20k.dat" || fail "generate white_noise"
+awk 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
+  FNR == 1 { m = s / n; for (i = 1; i <= n; ++i) q += (x[i] - m)^2; sd = sqrt(q / n) / 100 }
+  { printf "%.17g\n", x[FNR] + sd * $1 }' "$work/henon20k.dat" "$work/gauss20k.dat" > "$work/henon_noisy.dat"
+h=$("$CHAOS" d2 "$work/henon_noisy.dat" -d 1 -t 1 -M 5 --json | jq -c '
+  [.status, .d2, (.noise_floor.radius < .plateaus[0].radii[0]), (.explanation | test("noise"))]')
+[[ $h == '["noise_limited",null,true,true]' ]] && pass || fail "d2 on Hénon with 1% noise gave $h"
+h=$("$CHAOS" d2 "$work/henon_noisy.dat" -d 1 -t 1 -M 5 --noise-fill-fraction inf --projection-tolerance inf --json |
+  jq -c '[.status, .noise_floor, (.d2 > 1.1 and .d2 < 1.3)]')
+[[ $h == '["saturated",null,true]' ]] && pass || fail "d2 --noise-fill-fraction inf on noisy Hénon gave $h"
 # --delay-check: the D2 at twice the delay is reported, and the verdict follows from it (saturated
 # only within --delay-tolerance of it; otherwise not_reproduced and no D2).
 h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --delay-check --json | jq -c '

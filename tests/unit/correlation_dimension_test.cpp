@@ -408,6 +408,74 @@ TEST(CorrelationDimension, SlopesGrowingWithDimensionAreNotSaturated) {
   for (std::size_t k = 0; k < 5; ++k) EXPECT_NEAR(*r.d2_by_dimension[k], double(k + 1), 1e-9);
 }
 
+// Measurement noise of level eps_n: above it C_m ~ eps^D (D = 2, the attractor), below it every
+// dimension fills its space, C_m ~ eps^m (Kantz & Schreiber 2004, ch. 6), continuous at eps_n.
+// `below` caps the small-scale slope (infinity: m, noise; 3: another regime of dimension 3); a
+// negative `below` sets it to -below times m instead (bursts steeper than m).
+chaos::CorrelationSumResult noisy_power_law(std::size_t dims, double eps_n, std::uint64_t pairs_total,
+                                            double below = std::numeric_limits<double>::infinity()) {
+  chaos::CorrelationSumResult s;
+  s.radius = chaos::log_radii(0.01, 1.0, 30);
+  s.points = 100000;
+  for (std::size_t m = 1; m <= dims; ++m) {
+    const double d = std::min(2.0, static_cast<double>(m));
+    std::vector<double> c;
+    for (const double r : s.radius)
+      c.push_back(0.5 * std::pow(std::max(r, eps_n), d) *
+                  std::pow(std::min(r / eps_n, 1.0), below < 0.0 ? -below * static_cast<double>(m)
+                                                                 : std::min(static_cast<double>(m), std::max(d, below))));
+    add_dimension(s, m, std::move(c), pairs_total);
+  }
+  return s;
+}
+
+TEST(CorrelationDimension, APlateauBoundedBelowByNoiseIsNotD2) {
+  // eps_n = 0.05: the plateau of m = 4..6 at slope 2 spans [0.05, 1] (a factor 20); below it the
+  // slopes are m = 4, 5, 6, all of the way from 2 to m, over every radius down to 0.01, with 10^12
+  // examined pairs: noise_limited, the plateau and the noise floor reported, no D2.
+  const auto noisy = chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000));
+  EXPECT_EQ(noisy.status, chaos::D2Status::noise_limited) << noisy.explanation;
+  EXPECT_FALSE(noisy.d2.has_value());
+  ASSERT_EQ(noisy.plateaus.size(), 1u);
+  EXPECT_NEAR(noisy.plateaus[0].slope, 2.0, 0.05);
+  ASSERT_TRUE(noisy.noise_floor.has_value());
+  EXPECT_LT(*noisy.noise_floor, noisy.plateaus[0].radii.low);
+  ASSERT_EQ(noisy.noise_floor_slopes.size(), 3u);
+  EXPECT_GT(noisy.noise_floor_slopes[2], 4.0);  // m = 6: more than halfway from 2 to 6
+  EXPECT_NE(noisy.explanation.find("noise"), std::string::npos) << noisy.explanation;
+
+  // The same shape with 10^5 examined pairs: below the plateau only one radius keeps min_pairs (100)
+  // pairs, one slope is no regime, and the plateau stands.
+  const auto sparse = chaos::correlation_dimension(noisy_power_law(6, 0.05, 100000));
+  EXPECT_EQ(sparse.status, chaos::D2Status::saturated) << sparse.explanation;
+  EXPECT_FALSE(sparse.noise_floor.has_value());
+
+  // The check can be turned off; the plateau is then the saturated D2 (what a noise-free record with
+  // a plateau down to eps_n would give).
+  chaos::CorrelationDimensionOptions off;
+  off.noise_fill_fraction = std::numeric_limits<double>::infinity();
+  const auto unchecked = chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000), off);
+  EXPECT_EQ(unchecked.status, chaos::D2Status::saturated) << unchecked.explanation;
+  EXPECT_NEAR(*unchecked.d2, 2.0, 0.05);
+
+  // Slopes that rise less than halfway to m below the plateau (slope 3 for m = 4..6: a second regime
+  // of another dimension, not noise) are not noise: step 4 finds the second plateau.
+  const auto regime = chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000, 3.0));
+  EXPECT_EQ(regime.status, chaos::D2Status::scale_dependent) << regime.explanation;
+  EXPECT_FALSE(regime.noise_floor.has_value());
+
+  // Bursts: below the plateau every dimension reads 1.5 m (pairs entering at lattice distances, as in
+  // a torus sampled at small scales), above m (1 + tolerance): not noise, and the plateau stands.
+  const auto bursts = chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000, -1.5));
+  EXPECT_EQ(bursts.status, chaos::D2Status::saturated) << bursts.explanation;
+  EXPECT_FALSE(bursts.noise_floor.has_value());
+
+  // A fraction of 0 is refused (every slope above the plateau would count as noise).
+  chaos::CorrelationDimensionOptions bad;
+  bad.noise_fill_fraction = 0.0;
+  EXPECT_THROW(chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000), bad), chaos::InvalidInput);
+}
+
 TEST(CorrelationDimension, EckmannRuelleLimitIsReported) {
   // 1000 points: the limit is 2 log10(1000) = 6; D2(m) = m reaches 8.
   auto sums = power_law(8, [](std::size_t m) { return double(m); });

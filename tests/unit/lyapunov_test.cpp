@@ -661,9 +661,10 @@ TEST(LyapunovCrossCheck, HenonIsConfirmedByBothEstimators) {
   EXPECT_FALSE(lonely.fit_range_time.has_value());
 }
 
-// The check against a local-map exponent (expected outcomes from the rule's definition): only a
-// consistent local-map value can withdraw a slope, only when they differ by more than tolerance *
-// mean, and the local-map result itself is never changed (it is passed as const).
+// The check against a local-map exponent (expected outcomes from the rule's definition): a
+// consistent local-map value withdraws a slope only when they differ by more than tolerance * mean;
+// a not_deterministic one (noise at the neighbours' scale) withdraws every slope; the others
+// change nothing; the local-map result itself is never changed (it is passed as const).
 chaos::LocalMapResult local_map_result(chaos::LocalMapStatus status, std::optional<double> lambda) {
   chaos::LocalMapResult m;
   m.status = status;
@@ -694,11 +695,23 @@ TEST(LyapunovCrossCheck, ALocalMapExponentWithdrawsOnlyTheSlopesItContradicts) {
   chaos::cross_check(k, chaos::LyapunovMethod::kantz, consistent, 0.1);
   EXPECT_EQ(k.status, LyapunovStatus::unconfirmed);
   EXPECT_NE(k.explanation.find("Kantz gives 0.115"), std::string::npos) << k.explanation;
-  // A local-map result that is not consistent confirms and contradicts nothing.
-  for (const auto status : {LocalMapStatus::inconsistent, LocalMapStatus::not_deterministic, LocalMapStatus::not_positive}) {
+  // An inconsistent or non-positive local-map result confirms and contradicts nothing.
+  for (const auto status : {LocalMapStatus::inconsistent, LocalMapStatus::not_positive}) {
     r = region_fit(0.0915);
     chaos::cross_check(r, chaos::LyapunovMethod::rosenstein, local_map_result(status, std::nullopt), 0.1);
     EXPECT_EQ(r.status, LyapunovStatus::linear_region) << chaos::to_string(status);
+  }
+  // Maps that explain little of their neighbourhoods (median residual 0.87: Henon x with 1% noise)
+  // withdraw any slope, whatever its value: the divergence curves start from those neighbours.
+  auto noisy = local_map_result(LocalMapStatus::not_deterministic, std::nullopt);
+  noisy.base.median_residual = 0.87;
+  for (const auto method : {chaos::LyapunovMethod::rosenstein, chaos::LyapunovMethod::kantz}) {
+    r = region_fit(0.3544);
+    chaos::cross_check(r, method, noisy, 0.1);
+    EXPECT_EQ(r.status, LyapunovStatus::unconfirmed) << chaos::to_string(method);
+    EXPECT_FALSE(r.lambda.has_value());
+    EXPECT_NE(r.explanation.find("87% of their neighbourhoods' image spread unexplained"), std::string::npos)
+        << r.explanation;
   }
   // A fit without a region has nothing to withdraw.
   auto none = no_region_fit();

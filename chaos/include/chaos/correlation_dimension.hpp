@@ -33,6 +33,19 @@
 //     d = D2): below it the delay map folds the set onto itself, and pairs across the folds raise
 //     the slopes at finite scales. Found on a slider-crank series: m = 8..10 agreed on 0.85 at eps
 //     0.12-0.37 um of a 45 um range while m = 3 read 0.97 there; D_KY from the equations 2.00.
+//  6. Noise. Below the noise level of a measured record every embedding dimension fills its space:
+//     C_m(eps) ~ eps^m, local slope m (Kantz & Schreiber, Nonlinear Time Series Analysis, 2nd ed.
+//     2004, ch. 6). When, below the plateau, every saturating dimension m reads a local slope more
+//     than noise_fill_fraction (0.5) of the way from the plateau's slope to m, and not above
+//     m (1 + tolerance), over consecutive radii whose local slopes span min_points radii, the plateau
+//     is bounded below by noise (or by structure of higher dimension) and the smaller scales, where
+//     D2 is defined, cannot be read: the status is `noise_limited`, the plateau and the largest such
+//     radius (noise_floor) are reported, no D2 is given. (Slopes above m are pairs entering in bursts,
+//     as in the quasi-lattice of a 2-torus's samples at small scales, which reads 8.3 at m = 6: not
+//     noise.) The plateau above the noise is not the attractor's D2 in general: with 3% noise (30 dB)
+//     Sprott F reads 2.46 over eps 0.15-0.61, the plateau at large scales that its clean record also
+//     shows beside the small-scale D2 of 2.05 (D_KY 2.19); Mackey-Glass at tau = 30 with 1% noise
+//     reads 2.40 where its clean record is scale_dependent (2.39 and 3.05; docs/zoo-noise.md).
 // Scales (opt-in): max_region_fraction keeps regions at radii of at most that fraction of the
 // series' range (the max-norm diameter of the embedded set). Eckmann & Ruelle (Physica D 56, 185
 // (1992)) ask for radii small against the attractor's diameter and take a tenth of it for their
@@ -71,7 +84,7 @@
 
 namespace chaos {
 
-enum class D2Status { saturated, not_saturated, no_scaling_region, scale_dependent, not_reproduced };
+enum class D2Status { saturated, not_saturated, no_scaling_region, scale_dependent, not_reproduced, noise_limited };
 const char* to_string(D2Status status) noexcept;
 
 struct CorrelationDimensionOptions {
@@ -83,6 +96,10 @@ struct CorrelationDimensionOptions {
   // Step 5: a lower dimension's mean local slope over the shared plateau may exceed the plateau's
   // mean slope by at most this fraction of it (infinity: no check).
   double projection_tolerance = 0.1;
+  // Step 6: the fraction of the way from the plateau's slope to m that every saturating dimension's
+  // local slope must exceed over consecutive radii below the plateau for it to count as bounded by
+  // noise (infinity: no check).
+  double noise_fill_fraction = 0.5;
   std::uint64_t min_pairs = 100;
   // Regions are searched at radii <= max_region_fraction * range (CorrelationSumResult::range);
   // infinity (the default) searches every radius.
@@ -123,7 +140,8 @@ struct CorrelationDimensionResult {
   std::optional<Interval> scaling_region;   // radii [low, high] of the shared region
   std::vector<std::size_t> saturation_dimensions_used;
   // The best-supported shared plateau and, when the status is scale_dependent, the disagreeing one
-  // at smaller radii (in that order).
+  // at smaller radii (in that order). Also kept when the plateau is withdrawn (noise_limited,
+  // not_saturated by step 5, not_reproduced).
   std::vector<D2Plateau> plateaus;
   // Step 5, whenever a shared plateau was found: the dimension m >= 2 D2 + 1 below the saturating
   // ones whose mean local slope over that plateau is the largest, and that mean (nullopt: no such
@@ -145,6 +163,11 @@ struct CorrelationDimensionResult {
   // three consecutive radii: the data look like a finite set of points at smaller scales (periodic
   // with a rational period, or quantised). nullopt when the counts keep changing.
   std::optional<double> finite_set_below;
+  // Step 6, whenever a shared plateau was found: the largest radius below it that ends a run of radii
+  // where every saturating dimension fills its space as noise does (status noise_limited), and
+  // their local slopes there.
+  std::optional<double> noise_floor;
+  std::vector<double> noise_floor_slopes;
   // The halves check (require_reproduced_by_halves), when it ran: each half's status and D2.
   std::optional<D2Status> first_half_status, second_half_status;
   std::optional<double> first_half_d2, second_half_d2;

@@ -128,7 +128,12 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
 // withdrawn, and its explanation gives both values. Otherwise nothing changes. The local-map value
 // keeps its status: it has passed its own ten variants, and the disagreements found so far were the
 // divergence curves' known low bias on flows (Genesio-Tesi: Rosenstein 10% low, inside a straight
-// stretch that Kantz confirmed; docs/zoo-notes.md, section 3).
+// stretch that Kantz confirmed; docs/zoo-notes.md, section 3). Where the local-map result is
+// `not_deterministic` (the maps explain less than 75% of their neighbourhoods' image spread: noise at
+// the scale of the nearest neighbours), the fit becomes `unconfirmed` too: the divergence curves
+// start from those neighbours, and above a noise floor they rise more slowly than lambda_1 before
+// saturating, by the same amount in both methods (Henon, Lozi, Ricker and Gauss maps with 1% noise:
+// Rosenstein and Kantz 11-19% low and within 7% of each other; docs/zoo-noise.md).
 void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance = 0.1);
 // The same on a full result (its method from result.options), with the per-time values withdrawn too.
 void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance = 0.1);

@@ -189,7 +189,7 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       projection_tolerance=0.1, max_region_fraction=None, halves=False, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
+       projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=False, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
        skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
@@ -203,7 +203,10 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     ``saturation_dimensions`` dimensions agree within ``tolerance`` over a factor of at least
     ``min_plateau_ratio`` in eps; D2 is their mean there, with an interval. No lower dimension
     m >= 2 D2 + 1 may read a mean local slope over that plateau more than ``projection_tolerance`` above
-    it (a projection cannot have a larger dimension; ``float('inf')`` turns the check off). Defaults: theiler the
+    it (a projection cannot have a larger dimension; ``float('inf')`` turns the check off). A plateau below
+    which, at some radius with 1000 pairs, every saturating dimension m reads a local slope more than
+    ``noise_fill_fraction`` of the way from the plateau's slope to m is bounded by noise: status
+    ``noise_limited``, no D2 (``float('inf')`` turns the check off). Defaults: theiler the
     autocorrelation's 1/e time (or half the dominant period), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
 
@@ -219,7 +222,7 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
 
     Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
     d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
-    other_plateaus, steepest_lower, saturated,
+    other_plateaus, noise_floor, steepest_lower, saturated,
     status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
     exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``; delay_variant with
     ``delay_check=True``, which requires a saturated D2 to be reproduced at twice the delay within
@@ -231,7 +234,7 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
                   search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
                   threads=threads, tolerance=tolerance, min_points=min_points,
                   saturation_dimensions=saturation_dimensions, min_plateau_ratio=min_plateau_ratio,
-                  projection_tolerance=projection_tolerance,
+                  projection_tolerance=projection_tolerance, noise_fill_fraction=noise_fill_fraction,
                   min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, delay_check=delay_check,
                   delay_tolerance=delay_tolerance, inclusive=inclusive, fast=fast,
                   fast_target=fast_target, fast_start=fast_start)

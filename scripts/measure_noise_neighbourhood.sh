@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# The automatic pipeline on mildly noisy records: for every chaotic system of docs/zoo.md that the
+# pipeline analyses, the zoo's series at N = 10^5 plus white Gaussian measurement noise at each SNR
+# of NOISE_DB (default 40 and 30 dB), then `chaos analyze` with every choice automatic (delay,
+# Theiler window, m), as a user with a real recording would run it. The zoo itself has noisy
+# records only for Lorenz and Henon (20 and 10 dB, docs/zoo.md); this is the noise neighbourhood of
+# every system.
+#
+# Noise: y = x + sigma e, sigma = std(x) / 10^(SNR / 20) (population std, as chaos::add_noise), e
+# from `chaos generate white_noise --seed S` (unit variance; S = SEED, default 1, the same for every
+# system and level).
+#
+# Bands, fixed before the run: the clean system's, read from the same docs/zoo.md row. Noise
+# cannot change the attractor's D2 or lambda_1; it hides the small scales. So a confident D2
+# (saturated) must lie in the row's D2 band and a confident lambda_1 (Rosenstein and Kantz:
+# linear_region, local maps: consistent) within 10% of lambda_1 from the equations, or the row is
+# wrong. Any other status is unsure, which is the honest answer where the noise reaches the scales
+# the estimate needs.
+#
+# Usage: scripts/measure_noise_neighbourhood.sh [build-dir] > table.md
+# Environment: JOBS (2) parallel cases; ONLY=name,name to restrict the systems; NOISE_DB ("40 30");
+# SEED (1).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+chaos="$PWD/$build/chaos/chaos"
+[[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $build --target chaos_cli" >&2; exit 2; }
+command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
+jobs=${JOBS:-2}
+levels=${NOISE_DB:-40 30}
+seed=${SEED:-1}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# name d2_low d2_high lambda_1, from the automatic rows at N = 10^5 that got a dimension
+awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
+  on && $5 + 0 > 0 && $3 + 0 == 100000 {
+    for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
+    band = $8; gsub(/[][]/, "", band); split(band, b, ",")
+    print $2, b[1], b[2], $12 + 0 }' docs/zoo.md > "$work/systems"
+[[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
+
+"$chaos" generate white_noise -l 100000 --seed "$seed" | grep -v '^#' > "$work/noise"
+
+case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
+  local name=$1 lo=$2 hi=$3 lam=$4 dt snr json out="$work/rows.$1"
+  "$chaos" zoo --series "$name" --json > "$work/$name.json"
+  jq -r '.x[]' "$work/$name.json" > "$work/$name.dat"
+  dt=$(jq -r '.parameters.dt // empty' "$work/$name.json")
+  : > "$out"
+  for snr in $levels; do
+    # sigma from the population standard deviation of x; one noise value per sample, in order
+    awk -v snr="$snr" 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
+      FNR == 1 { mean = s / n; for (i = 1; i <= n; ++i) q += (x[i] - mean)^2; sigma = sqrt(q / n) / 10^(snr / 20) }
+      FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$work/$name.dat" "$work/noise" > "$work/$name.$snr.dat"
+    json=$("$chaos" analyze "$work/$name.$snr.dat" ${dt:+--dt $dt} --json -q 2> /dev/null) || json='{}'
+    jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" '
+      def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
+      def d2v: if .d2_status != "saturated" then "unsure"
+               elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
+      def lv(s; v; ok): if s != ok then "unsure"
+               elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+      [$name, $snr, (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
+       "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v,
+       "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
+       "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
+       "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
+       lv(.lambda_local_maps_status; .lambda_local_maps; "consistent"), $lam] | join("\t")' <<< "$json" >> "$out"
+  done
+  echo "done $name" >&2
+}
+export -f case_rows
+export chaos work levels
+
+start=$(date +%s)
+while read -r name lo hi lam; do
+  if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $lo $hi $lam"; fi
+done < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+elapsed=$(($(date +%s) - start))
+
+echo "# The automatic pipeline on noisy records (written by scripts/measure_noise_neighbourhood.sh)"
+echo
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), SNR $levels dB, noise seed $seed; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo
+echo "| system | SNR dB | tau | m (Cao) | w | D2 | D2 band (clean) | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+while read -r name _; do
+  [[ -f $work/rows.$name ]] && sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"
+done < "$work/systems"
+echo
+cat "$work"/rows.* | awk -F'\t' '{
+    key = $2; rows[key]++; d[key, $8]++; r[key, $10]++; k[key, $12]++; l[key, $14]++
+    if ($8 == "WRONG" || $10 == "WRONG" || $12 == "WRONG" || $14 == "WRONG") wrong[key] = wrong[key] " " $1
+  } END {
+    for (key in rows)
+      printf "SNR %s dB: %d rows. D2: %d in band, %d unsure, %d wrong. lambda_1 by Rosenstein: %d / %d / %d; Kantz: %d / %d / %d; local maps: %d / %d / %d (in band / unsure / wrong). Systems with a wrong row:%s.\n",
+        key, rows[key], d[key, "in_band"], d[key, "unsure"], d[key, "WRONG"], r[key, "in_band"], r[key, "unsure"], r[key, "WRONG"],
+        k[key, "in_band"], k[key, "unsure"], k[key, "WRONG"], l[key, "in_band"], l[key, "unsure"], l[key, "WRONG"],
+        (key in wrong ? wrong[key] : " none")
+  }'
