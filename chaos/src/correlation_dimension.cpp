@@ -303,7 +303,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     // above m (1 + tolerance), the dimensions fill their space as noise does; pairs entering in
     // bursts (the quasi-lattice of a torus sampled at small scales) read slopes above m and do not
     // count. The regime must hold over consecutive radii whose local slopes span min_points radii,
-    // the evidence a plateau needs. noise_floor: the largest radius of the largest such run.
+    // the evidence a plateau needs. noise_floor: the largest radius at which such a run is long enough.
     if (shared && std::isfinite(options.noise_fill_fraction)) {
       const std::size_t hw = options.region.half_width;
       const std::size_t needed = options.region.min_points > 2 * hw ? options.region.min_points - 2 * hw : 1;
