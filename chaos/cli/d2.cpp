@@ -152,8 +152,8 @@ void register_d2(CLI::App& app) {
       ->capture_default_str()
       ->type_name("FLOAT|inf");  // not the FLOAT check, which refuses infinity: the library validates it
   command->add_option("--noise-fill-fraction", args->params.dimension.noise_fill_fraction,
-                      "a plateau is noise-limited when, at a radius below it, every saturating dimension m reads a local "
-                      "slope more than this fraction of the way from the plateau's slope to m (inf: no check)")
+                      "a plateau is noise-limited when, over consecutive radii below it, every saturating dimension m reads a "
+                      "local slope more than this fraction of the way from the plateau's slope to m (inf: no check)")
       ->capture_default_str()
       ->type_name("FLOAT|inf");
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,

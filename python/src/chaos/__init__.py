@@ -204,9 +204,10 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     ``min_plateau_ratio`` in eps; D2 is their mean there, with an interval. No lower dimension
     m >= 2 D2 + 1 may read a mean local slope over that plateau more than ``projection_tolerance`` above
     it (a projection cannot have a larger dimension; ``float('inf')`` turns the check off). A plateau below
-    which, at some radius with 1000 pairs, every saturating dimension m reads a local slope more than
-    ``noise_fill_fraction`` of the way from the plateau's slope to m is bounded by noise: status
-    ``noise_limited``, no D2 (``float('inf')`` turns the check off). Defaults: theiler the
+    which, over three consecutive radii, every saturating dimension m reads a local slope more than
+    ``noise_fill_fraction`` of the way from the plateau's slope to m (and not above m) is bounded by
+    noise: status ``noise_limited``, ``noise_floor`` gives that radius, no D2 (``float('inf')`` turns
+    the check off). Defaults: theiler the
     autocorrelation's 1/e time (or half the dominant period), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
 
