@@ -513,21 +513,72 @@ Grid build_grid(const Problem& pb) {
   return g;
 }
 
+// Histogram increments of survivors' accumulators a[0..n) into h, where bin g of copy c is
+// h[g * copies + c]: consecutive survivors often share a bin, and back-to-back increments of one
+// counter wait for each other, so `copies` interleaved histograms take turns and are added up at
+// the end.
+// Which vector instructions the scans and the binning use (simd_level() below).
+enum class Simd { none, avx2, avx512 };
+
+constexpr std::size_t histogram_copies = 4;  // the unrolled loops below assume 4
+
+void bin_portable(const AccBins::Lookup& bins, const double* a, std::size_t n, Count* h) noexcept {
+  std::size_t u = 0;
+  for (; u + histogram_copies <= n; u += histogram_copies) {  // unrolled by hand: the compiler keeps the loop
+    ++h[bins.inside(a[u]) * histogram_copies];
+    ++h[bins.inside(a[u + 1]) * histogram_copies + 1];
+    ++h[bins.inside(a[u + 2]) * histogram_copies + 2];
+    ++h[bins.inside(a[u + 3]) * histogram_copies + 3];
+  }
+  for (; u < n; ++u) ++h[bins.inside(a[u]) * histogram_copies];
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The same bins in two passes: the cell numbers computed four at a time (max with the floor, shift
+// of the bit pattern, subtraction of the base: the scalar cell_of lane by lane, so the same
+// integers) into `cells`, then the table reads, the rare fix-ups and the increments.
+__attribute__((target("avx2"))) void bin_avx2(const AccBins::Lookup& bins, const double* a, std::size_t n, Count* h,
+                                              std::uint32_t* cells) noexcept {
+  const __m256d floor = _mm256_set1_pd(bins.floor);
+  const __m128i shift = _mm_cvtsi32_si128(bins.shift);
+  const __m256i base = _mm256_set1_epi64x(static_cast<long long>(bins.base));
+  // The low 32 bits of each 64-bit lane (cell numbers are below 4096), packed into the low half.
+  const __m256i low_halves = _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6);
+  const std::size_t vector_end = n / 4 * 4;
+  for (std::size_t u = 0; u < vector_end; u += 4) {
+    const __m256d v = _mm256_max_pd(_mm256_loadu_pd(a + u), floor);
+    const __m256i c = _mm256_sub_epi64(_mm256_srl_epi64(_mm256_castpd_si256(v), shift), base);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(cells + u),
+                     _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(c, low_halves)));
+  }
+  const auto bump = [&](std::size_t u, std::size_t copy) {
+    const std::int32_t e = bins.cell[cells[u]];
+    ++h[(e >= 0 ? static_cast<std::size_t>(e) : bins.fix(e, a[u])) * histogram_copies + copy];
+  };
+  for (std::size_t u = 0; u < vector_end; u += 4) {
+    bump(u, 0);
+    bump(u + 1, 1);
+    bump(u + 2, 2);
+    bump(u + 3, 3);
+  }
+  bin_portable(bins, a + vector_end, n - vector_end, h);
+}
+#endif
+
 // Survivors' accumulators per level (dimension m = 2 .. max at level m - 2), binned in batches.
 // Collecting them first keeps the filter loops free of table lookups; the binning loop then runs
-// over a short array that stays in the L1 cache. Consecutive survivors often share a bin, and
-// back-to-back increments of one counter wait for each other, so four interleaved copies of the
-// histogram take turns and are added up at the end.
+// over a short array that stays in the L1 cache.
 class Survivors {
  public:
   static constexpr std::size_t block = 256;  // candidates filtered level by level at a time
   static constexpr std::size_t batch = 512;  // survivors per level collected before binning
 
   // Levels below `first` are filtered but not binned (dimensions below min, or m = 2 when it is
-  // counted by plane_counts).
-  Survivors(const Problem& pb, Count* hist, std::size_t first)
-      : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(first),
-        acc_(new double[levels_ * capacity]), n_(levels_, 0), wide_(copies * pb.nm * pb.nr, 0) {}
+  // counted by plane_counts). `simd`: bin with bin_avx2.
+  Survivors(const Problem& pb, Count* hist, std::size_t first, Simd simd)
+      : pb_(pb), hist_(hist), levels_(pb.max_m - 1), first_(first), simd_(simd != Simd::none),
+        acc_(new double[levels_ * capacity]), cells_(new std::uint32_t[capacity]), n_(levels_, 0),
+        wide_(copies * pb.nm * pb.nr, 0) {}
   ~Survivors() {
     flush();
     for (std::size_t k = 0; k < wide_.size(); ++k) hist_[k / copies] += wide_[k];
@@ -548,27 +599,27 @@ class Survivors {
     const AccBins::Lookup bins = pb_.bins->lookup();
     for (std::size_t level = first_; level < levels_; ++level) {
       Count* h = wide_.data() + (level + 2 - pb_.min_m) * pb_.nr * copies;
-      const double* a = buffer(level);
-      const std::size_t n = n_[level];
-      std::size_t u = 0;
-      for (; u + copies <= n; u += copies) {  // unrolled by hand: the compiler keeps the loop
-        ++h[bins.inside(a[u]) * copies];
-        ++h[bins.inside(a[u + 1]) * copies + 1];
-        ++h[bins.inside(a[u + 2]) * copies + 2];
-        ++h[bins.inside(a[u + 3]) * copies + 3];
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (simd_) {
+        bin_avx2(bins, buffer(level), n_[level], h, cells_.get());
+        n_[level] = 0;
+        continue;
       }
-      for (; u < n; ++u) ++h[bins.inside(a[u]) * copies];
+#endif
+      bin_portable(bins, buffer(level), n_[level], h);
       n_[level] = 0;
     }
   }
 
  private:
-  static constexpr std::size_t copies = 4;  // the unrolled loop in flush() assumes 4
-  static constexpr std::size_t capacity = batch + block + 4;  // + 4: a packed store writes 4 lanes
+  static constexpr std::size_t copies = histogram_copies;
+  static constexpr std::size_t capacity = batch + block + 8;  // + 8: a packed store writes up to 8 lanes
   const Problem& pb_;
   Count* hist_;
   std::size_t levels_, first_;
+  bool simd_;
   std::unique_ptr<double[]> acc_;  // not zeroed: only the entries below n_[level] are read (a reference walk builds one per point)
+  std::unique_ptr<std::uint32_t[]> cells_;  // bin_avx2's scratch
   std::vector<std::size_t> n_;
   std::vector<Count> wide_;
 };
@@ -683,13 +734,65 @@ __attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const P
   if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s, t_filter);
 }
 
-bool use_avx2() {
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
-  const char* off = std::getenv("CHAOS_NO_SIMD");
-  return available && !(off != nullptr && *off != '\0' && *off != '0');
+// The same scan eight candidates at a time with AVX-512, for the maximum norm only: its lanes
+// take max and absolute value, which no compiler contracts, while the Euclidean sum of products
+// could be fused into FMA under this target and change the accumulators' last bits. Survivors are
+// packed with the compress instruction (into a register, then stored: the memory form is slow on
+// some processors).
+__attribute__((target("avx512f"), always_inline)) inline __m512d abs512(__m512d x) {
+  return _mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(0x7fffffffffffffff)));
+}
+__attribute__((target("avx512f,popcnt"))) void scan_avx512_max(const Problem& pb, const PointLayout& g, std::size_t p,
+                                                              std::size_t qb, std::size_t qe, Survivors& s, double t_filter) {
+  const std::size_t levels = s.levels(), first = s.first_stored();
+  const __m512d t = _mm512_set1_pd(t_filter);
+  const double* c0 = g.coordinate(0);
+  const __m512d a0 = _mm512_set1_pd(c0[p]);
+  alignas(64) double a[Survivors::block];
+  const std::size_t vector_end = qb + (qe - qb) / 8 * 8;  // the last few candidates go to the AVX2 scan
+  for (std::size_t q0 = qb; q0 < vector_end; q0 += Survivors::block) {
+    const std::size_t len = std::min(Survivors::block, vector_end - q0);
+    s.make_room();
+    for (std::size_t level = 0; level < levels; ++level) {
+      const double* ck = g.coordinate(level + 1) + q0;
+      const __m512d ak = _mm512_set1_pd(g.coordinate(level + 1)[p]);
+      double* out = s.buffer(level);
+      std::size_t n = s.count(level), alive = 0;
+      const bool store = level >= first;
+      for (std::size_t u = 0; u < len; u += 8) {
+        const __m512d dk = abs512(_mm512_sub_pd(ak, _mm512_loadu_pd(ck + u)));
+        const __m512d prev = level == 0 ? abs512(_mm512_sub_pd(a0, _mm512_loadu_pd(c0 + q0 + u)))
+                                        : _mm512_load_pd(a + u);
+        const __m512d v = _mm512_maskz_max_pd(0xff, prev, dk);  // maskz: GCC 12's unmasked form warns of an undefined operand
+        _mm512_store_pd(a + u, v);
+        const __mmask8 mask = _mm512_cmp_pd_mask(v, t, _CMP_LT_OQ);
+        _mm512_storeu_pd(out + n, _mm512_maskz_compress_pd(mask, v));
+        const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+        n += store ? k : 0;
+        alive += k;
+      }
+      s.count(level) = n;
+      if (alive == 0) break;
+    }
+  }
+  if (vector_end < qe) scan_avx2<MaxNorm>(pb, g, p, vector_end, qe, s, t_filter);
+}
+
+// The widest vector scan this processor runs, unless the environment narrows it:
+// CHAOS_NO_SIMD=1 selects the portable scan, CHAOS_NO_AVX512=1 the AVX2 one (so the tests check
+// every path on a machine that has them all).
+bool env_flag(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr && *v != '\0' && *v != '0';
+}
+Simd simd_level() {
+  static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+  static const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
+  if (!avx2 || env_flag("CHAOS_NO_SIMD")) return Simd::none;
+  return avx512 && !env_flag("CHAOS_NO_AVX512") ? Simd::avx512 : Simd::avx2;
 }
 #else
-bool use_avx2() { return false; }
+Simd simd_level() { return Simd::none; }
 #endif
 
 // CHAOS_NO_PLANE=1 makes the grid bin m = 2 itself, so the tests check both ways against brute force.
@@ -702,9 +805,10 @@ template <class N, bool check_window>
 // Candidates q in [qb, qe) of layout position p, kept while their accumulator is below t (at most
 // t_max: the exact walk passes t_max, a capped reference walk the largest radius still open).
 void scan_candidates(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
-                     bool simd, double t) {
+                     Simd simd, double t) {
 #if defined(__x86_64__) && defined(__GNUC__)
-  if (!check_window && simd) return scan_avx2<N>(pb, g, p, qb, qe, s, t);
+  if (!check_window && simd == Simd::avx512 && std::is_same_v<N, MaxNorm>) return scan_avx512_max(pb, g, p, qb, qe, s, t);
+  if (!check_window && simd != Simd::none) return scan_avx2<N>(pb, g, p, qb, qe, s, t);
 #endif
   (void)simd;
   scan_scalar<N, check_window>(pb, g, p, qb, qe, s, t);
@@ -737,10 +841,10 @@ void window_pairs(const Problem& pb, Count* hist) {
 template <class N, bool check_window>
 Histogram box_grid(const Problem& pb, const Grid& g, std::size_t first) {
   const double t = pb.t_max;
-  const bool simd = use_avx2();
+  const Simd simd = simd_level();
   std::vector<Histogram> parts(worker_count(pb.threads, g.chunks.size()), Histogram(pb.nm * pb.nr, 0));
   parallel_tasks(pb.threads, g.chunks.size(), [&](std::size_t c, std::size_t worker) {
-    Survivors survivors(pb, parts[worker].data(), first);
+    Survivors survivors(pb, parts[worker].data(), first, simd);
     const Grid::Chunk& chunk = g.chunks[c];
     const Grid::Row& row = g.rows[chunk.row];
     const bool has_next = chunk.row + 1 < g.rows.size() && g.rows[chunk.row + 1].id == row.id + 1;
@@ -887,7 +991,7 @@ KdLayout build_kd(const Problem& pb) {
 // Every leaf within t of the point at position p, from position `from` on, handed to
 // scan_candidates. `stack` is the caller's scratch.
 template <class N, bool check_window>
-void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_t from, Survivors& s, bool simd,
+void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_t from, Survivors& s, Simd simd,
                  double threshold, std::vector<std::size_t>& stack) {
   stack.assign(1, 0);
   while (!stack.empty()) {
@@ -906,11 +1010,11 @@ void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_
 
 template <class N, bool check_window>
 Histogram kd_counts(const Problem& pb, const KdLayout& t, std::size_t first) {
-  const bool simd = use_avx2();
+  const Simd simd = simd_level();
   const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
   std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(pb.nm * pb.nr, 0));
   parallel_tasks(pb.threads, tasks, [&](std::size_t task, std::size_t worker) {
-    Survivors survivors(pb, parts[worker].data(), first);
+    Survivors survivors(pb, parts[worker].data(), first, simd);
     std::vector<std::size_t> stack;
     const std::size_t end = std::min(pb.points, (task + 1) * chunk_points);
     for (std::size_t p = task * chunk_points; p < end; ++p)
@@ -986,7 +1090,7 @@ class GridWalk {
         row_of_[p] = r;
       }
   }
-  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, bool simd) const {
+  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, Simd simd) const {
     const Grid& g = grid_;
     const std::size_t p = position_[i], r = row_of_[p];
     const double* c0 = g.coordinate(0);
@@ -1013,7 +1117,7 @@ template <class N>
 class KdWalk {
  public:
   explicit KdWalk(const Problem& pb) : tree_(build_kd(pb)) {}
-  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, bool simd) const {
+  void partners(const Problem& pb, std::size_t i, double t, Survivors& survivors, Simd simd) const {
     thread_local std::vector<std::size_t> stack;
     kd_partners<N, false>(pb, tree_, tree_.position[i], 0, survivors, simd, t, stack);
   }
@@ -1031,7 +1135,7 @@ class KdWalk {
 template <class N, class Walk>
 class SpatialCounter final : public ReferenceCounter {
  public:
-  explicit SpatialCounter(const Problem& pb) : pb_(pb), simd_(use_avx2()) {
+  explicit SpatialCounter(const Problem& pb) : pb_(pb), simd_(simd_level()) {
     if (pb.max_m >= 2) walk_.emplace(pb);
     if (pb.min_m == 1) {
       sorted_.assign(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
@@ -1049,7 +1153,7 @@ class SpatialCounter final : public ReferenceCounter {
     if (top > 0) {
       const double t = pb_.thresholds[top - 1];
       {
-        Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0);
+        Survivors survivors(pb_, h.data(), pb_.min_m > 2 ? pb_.min_m - 2 : 0, simd_);
         walk_->partners(pb_, i, t, survivors, simd_);
       }
       // i itself and the window partners, as the scan saw them (acc < t in the first two
@@ -1095,7 +1199,7 @@ class SpatialCounter final : public ReferenceCounter {
 
  private:
   const Problem& pb_;
-  bool simd_;
+  Simd simd_;
   std::optional<Walk> walk_;   // m >= 2 only
   std::vector<double> sorted_;  // coordinate 0 of every point, sorted (m = 1)
 };

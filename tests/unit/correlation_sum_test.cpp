@@ -32,8 +32,9 @@ constexpr CorrelationSearch all_modes[] = {CorrelationSearch::brute_force, Corre
                                            CorrelationSearch::box_assisted};
 constexpr Norm both_norms[] = {Norm::max, Norm::euclidean};
 
-// The box-assisted search has an AVX2 path and a portable one; CHAOS_NO_SIMD=1 selects the
-// portable one, so both are checked against the same expectations. Likewise CHAOS_NO_PLANE=1 makes
+// The box-assisted search and the kd-tree have an AVX-512 scan (maximum norm), an AVX2 one and a
+// portable one; CHAOS_NO_AVX512=1 selects AVX2 and CHAOS_NO_SIMD=1 the portable path, so every
+// path the machine runs is checked against the same expectations. Likewise CHAOS_NO_PLANE=1 makes
 // the grid bin m = 2 itself instead of counting it by plane_counts (maximum norm, issue 15).
 class ScopedEnv {
  public:
@@ -48,6 +49,10 @@ class ScopedEnv {
 class PortablePath : public ScopedEnv {
  public:
   PortablePath() : ScopedEnv("CHAOS_NO_SIMD") {}
+};
+class Avx2Path : public ScopedEnv {
+ public:
+  Avx2Path() : ScopedEnv("CHAOS_NO_AVX512") {}
 };
 
 double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std::size_t m, std::size_t tau, Norm norm) {
@@ -104,6 +109,13 @@ void expect_all_modes_exact(const std::vector<double>& x, CorrelationSumOptions 
   for (const auto mode : all_modes) {
     o.search = mode;
     expect_matches(chaos::correlation_sum(x, o), e, describe(o));
+  }
+  {
+    const Avx2Path avx2;
+    for (const auto mode : {CorrelationSearch::kd_tree, CorrelationSearch::box_assisted}) {
+      o.search = mode;
+      expect_matches(chaos::correlation_sum(x, o), e, describe(o) + " AVX2");
+    }
   }
   o.search = CorrelationSearch::box_assisted;
   {
@@ -523,6 +535,10 @@ TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
             const auto got = chaos::correlation_sum(x, o);
             EXPECT_EQ(got.pairs, want.pairs) << what;
             EXPECT_EQ(got.examined, want.examined) << what;
+            {
+              const Avx2Path avx2;
+              EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " AVX2";
+            }
             const PortablePath portable;
             EXPECT_EQ(chaos::correlation_sum(x, o).pairs, want.pairs) << what << " portable";
           }
