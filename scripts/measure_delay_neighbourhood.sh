@@ -17,41 +17,23 @@
 # Environment: JOBS (2) parallel cases; ONLY=name,name to restrict the systems; DELAY_CHECK=1.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build}
-chaos="$PWD/$build/chaos/chaos"
-[[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $build --target chaos_cli" >&2; exit 2; }
-command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
-jobs=${JOBS:-2}
+source scripts/zoo_neighbourhood_common.sh "$@"
 check_flag=
 [[ ${DELAY_CHECK:-0} == 1 ]] && check_flag=--delay-check
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 
-# name tau w d2_low d2_high lambda_1, from the automatic rows at N = 10^5 that got a dimension
-awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-  on && $5 + 0 > 0 && $3 + 0 == 100000 {
-    for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
-    band = $8; gsub(/[][]/, "", band); split(band, b, ",")
-    print $2, $4, $6, b[1], b[2], $12 + 0 }' docs/zoo.md > "$work/systems"
+zoo_systems > "$work/systems"
 [[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
 
 case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
   local name=$1 tau=$2 w=$3 lo=$4 hi=$5 lam=$6 dt t json out="$work/rows.$1"
-  "$chaos" zoo --series "$name" --json > "$work/$name.json"
-  jq -r '.x[]' "$work/$name.json" > "$work/$name.dat"
-  dt=$(jq -r '.parameters.dt // empty' "$work/$name.json")
+  dt=$(zoo_series "$name")
   : > "$out"
   local done_delays=" "
   for t in $tau $(((tau + 1) / 2)) $(((3 * tau + 1) / 2)) $((2 * tau)); do
     [[ $done_delays == *" $t "* ]] && continue
     done_delays+="$t "
     json=$("$chaos" analyze "$work/$name.dat" -d "$t" -t "$w" ${dt:+--dt $dt} $check_flag --json -q 2> /dev/null) || json='{}'
-    jq -r --arg name "$name" --arg tau "$tau" --arg t "$t" --arg w "$w" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" '
-      def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
-      def d2v: if .d2_status != "saturated" then "unsure"
-               elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
-      def lv(s; v; ok): if s != ok then "unsure"
-               elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+    jq -r --arg name "$name" --arg tau "$tau" --arg t "$t" --arg w "$w" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
       [$name, $tau, $t, (.embedding_dimension // "-" | tostring), $w,
        "\(.d2 | num) \(.d2_status // "error")",
        (if .d2_delay_variant == null then "-" else "\(.d2_delay_variant.d2 | num) \(.d2_delay_variant.status) (tau \(.d2_delay_variant.delay))" end),
@@ -64,7 +46,7 @@ case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
   echo "done $name" >&2
 }
 export -f case_rows
-export chaos work check_flag
+export check_flag
 
 start=$(date +%s)
 while read -r name tau w lo hi lam; do
@@ -78,9 +60,7 @@ echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), delay c
 echo
 echo "| system | tau (automatic) | tau | m (Cao) | w | D2 | delay check: D2 at 2 tau | D2 band | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-while read -r name _; do
-  [[ -f $work/rows.$name ]] && sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"
-done < "$work/systems"
+zoo_table_rows
 echo
 cat "$work"/rows.* | awk -F'\t' '{
     d[$9]++; r[$11]++; k[$13]++; l[$15]++; rows++

@@ -22,31 +22,18 @@
 # SEED (1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build}
-chaos="$PWD/$build/chaos/chaos"
-[[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $build --target chaos_cli" >&2; exit 2; }
-command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
-jobs=${JOBS:-2}
+source scripts/zoo_neighbourhood_common.sh "$@"
 levels=${NOISE_DB:-40 30}
 seed=${SEED:-1}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 
-# name d2_low d2_high lambda_1, from the automatic rows at N = 10^5 that got a dimension
-awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-  on && $5 + 0 > 0 && $3 + 0 == 100000 {
-    for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
-    band = $8; gsub(/[][]/, "", band); split(band, b, ",")
-    print $2, b[1], b[2], $12 + 0 }' docs/zoo.md > "$work/systems"
+zoo_systems > "$work/systems"
 [[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
 
 "$chaos" generate white_noise -l 100000 --seed "$seed" | grep -v '^#' > "$work/noise"
 
 case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
   local name=$1 lo=$2 hi=$3 lam=$4 dt snr json out="$work/rows.$1"
-  "$chaos" zoo --series "$name" --json > "$work/$name.json"
-  jq -r '.x[]' "$work/$name.json" > "$work/$name.dat"
-  dt=$(jq -r '.parameters.dt // empty' "$work/$name.json")
+  dt=$(zoo_series "$name")
   : > "$out"
   for snr in $levels; do
     # sigma from the population standard deviation of x; one noise value per sample, in order
@@ -54,12 +41,7 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
       FNR == 1 { mean = s / n; for (i = 1; i <= n; ++i) q += (x[i] - mean)^2; sigma = sqrt(q / n) / 10^(snr / 20) }
       FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$work/$name.dat" "$work/noise" > "$work/$name.$snr.dat"
     json=$("$chaos" analyze "$work/$name.$snr.dat" ${dt:+--dt $dt} --json -q 2> /dev/null) || json='{}'
-    jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" '
-      def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
-      def d2v: if .d2_status != "saturated" then "unsure"
-               elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
-      def lv(s; v; ok): if s != ok then "unsure"
-               elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+    jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
       [$name, $snr, (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
        "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v,
        "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
@@ -70,10 +52,10 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
   echo "done $name" >&2
 }
 export -f case_rows
-export chaos work levels
+export levels
 
 start=$(date +%s)
-while read -r name lo hi lam; do
+while read -r name _ _ lo hi lam; do
   if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $lo $hi $lam"; fi
 done < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
 elapsed=$(($(date +%s) - start))
@@ -84,9 +66,7 @@ echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), SNR $le
 echo
 echo "| system | SNR dB | tau | m (Cao) | w | D2 | D2 band (clean) | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-while read -r name _; do
-  [[ -f $work/rows.$name ]] && sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"
-done < "$work/systems"
+zoo_table_rows
 echo
 cat "$work"/rows.* | awk -F'\t' '{
     key = $2; rows[key]++; d[key, $8]++; r[key, $10]++; k[key, $12]++; l[key, $14]++

@@ -1,0 +1,54 @@
+# Shared by scripts/measure_delay_neighbourhood.sh and scripts/measure_noise_neighbourhood.sh, which
+# run `chaos analyze` on the zoo's series away from the zoo's own choices and judge every confident
+# estimate against the bands of the same system's row in docs/zoo.md. Sourced from the repository
+# root with the build directory as $1 (default build).
+#
+# Sets chaos (the command), jobs (JOBS, default 2) and work (a scratch directory, removed on exit),
+# and defines:
+#   zoo_systems     one line "name tau w d2_low d2_high lambda_1" per automatic-choice row of
+#                   docs/zoo.md at N = 10^5 that got an embedding dimension, in the file's order
+#   zoo_series N    the case's series (N = 10^5) into $work/N.dat; prints its sampling step (empty
+#                   for a map)
+#   zoo_verdicts    jq definitions: num (4 decimals, "-" for none), d2v (a D2 against $lo and $hi)
+#                   and lv(status; value; confident status) (a lambda_1 within 10% of $lam); a
+#                   confident estimate outside its band is WRONG, anything not confident is unsure
+#   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
+
+zoo_build=${1:-build}
+chaos="$PWD/$zoo_build/chaos/chaos"
+[[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $zoo_build --target chaos_cli" >&2; exit 2; }
+command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
+jobs=${JOBS:-2}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+zoo_systems() {
+  awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
+    on && $5 + 0 > 0 && $3 + 0 == 100000 {
+      for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
+      band = $8; gsub(/[][]/, "", band); split(band, b, ",")
+      print $2, $4, $6, b[1], b[2], $12 + 0 }' docs/zoo.md
+}
+
+zoo_series() {
+  "$chaos" zoo --series "$1" --json > "$work/$1.json"
+  jq -r '.x[]' "$work/$1.json" > "$work/$1.dat"
+  jq -r '.parameters.dt // empty' "$work/$1.json"
+}
+
+zoo_verdicts='
+  def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
+  def d2v: if .d2_status != "saturated" then "unsure"
+           elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
+  def lv(s; v; ok): if s != ok then "unsure"
+           elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;'
+
+zoo_table_rows() {
+  local name
+  while read -r name _; do
+    if [[ -f $work/rows.$name ]]; then sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"; fi
+  done < "$work/systems"
+}
+
+export -f zoo_series
+export chaos work zoo_verdicts
