@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by scripts/measure_delay_neighbourhood.sh and scripts/measure_noise_neighbourhood.sh, which
 # run `chaos analyze` on the zoo's series away from the zoo's own choices and judge every confident
 # estimate against the bands of the same system's row in docs/zoo.md. Sourced from the repository
@@ -18,6 +19,7 @@ zoo_build=${1:-build}
 chaos="$PWD/$zoo_build/chaos/chaos"
 [[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $zoo_build --target chaos_cli" >&2; exit 2; }
 command -v jq > /dev/null || { echo "jq is needed" >&2; exit 2; }
+# shellcheck disable=SC2034  # read by the scripts that source this file
 jobs=${JOBS:-2}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -36,6 +38,7 @@ zoo_series() {
   jq -r '.parameters.dt // empty' "$work/$1.json"
 }
 
+# shellcheck disable=SC2016,SC2089,SC2090  # a jq program: its $ names are jq's, passed as one word
 zoo_verdicts='
   def num: if . == null then "-" else (. * 10000 | round / 10000 | tostring) end;
   def d2v: if .d2_status != "saturated" then "unsure"
@@ -51,4 +54,5 @@ zoo_table_rows() {
 }
 
 export -f zoo_series
+# shellcheck disable=SC2090
 export chaos work zoo_verdicts
