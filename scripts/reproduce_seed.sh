@@ -111,6 +111,10 @@ fig7() {  # the correlation-dimension pipeline for c_t = 0.5 mm at 5000 rpm, the
   # The evidence behind D2: log C and the local slopes d ln C / d ln eps for m = 1..12 with the
   # automatic scaling region, at the MI delay and at the seed's tau = 18.
   local tau theiler
+  if ! jq -e .analysis > /dev/null "$RUNS/fig7.json"; then  # a run that did not complete has no analysis
+    echo "fig7: no local slopes: the simulation ended with $(jq -r '.simulation.status + ": " + .simulation.message' "$RUNS/fig7.json")" >&2
+    return 0
+  fi
   tau=$(jq .analysis.delay_samples "$RUNS/fig7.json")
   theiler=$(jq .analysis.theiler_samples "$RUNS/fig7.json")
   if [[ $tau != null ]]; then
