@@ -662,10 +662,8 @@ void scan_scalar(const Problem& pb, const PointLayout& g, std::size_t p, std::si
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-// The same scan four candidates at a time with AVX2. The operations are the scalar ones lane by
-// lane (subtract, absolute value, max or multiply-then-add without fusing: AVX2 alone does not
-// enable FMA), so the accumulators are bit-identical. Survivors are packed into the level buffer
-// with a permutation chosen by the comparison mask.
+// For each 4-lane comparison mask, the permutation that moves the kept lanes to the front (AVX2
+// has no compress instruction).
 struct CompressTable {
   alignas(32) std::int32_t index[16][8];
 };
@@ -684,98 +682,124 @@ constexpr CompressTable make_compress_table() {
 }
 constexpr CompressTable compress_table = make_compress_table();
 
-template <class N>
-__attribute__((target("avx2,popcnt"))) void scan_avx2(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb,
-                                                       std::size_t qe, Survivors& s, double t_filter) {
+// The loops the vector scans share: blocks of candidates, and in each block the levels (one more
+// coordinate each) until no candidate of the block survives. `pass(q0, len, level, out, n, store)`
+// filters one level of the block [q0, q0 + len), `width` candidates at a time, appends the
+// survivors to `out` from position n, advances n by their number where the level is stored, and
+// returns that number. Returns where the candidates that fill whole vectors end; the caller scans
+// the rest. (The passes carry the target attributes; a lambda would not.)
+template <std::size_t width, class Pass>
+std::size_t scan_vector_blocks(std::size_t qb, std::size_t qe, Survivors& s, Pass& pass) {
   const std::size_t levels = s.levels(), first = s.first_stored();
-  const __m256d sign = _mm256_set1_pd(-0.0);
-  const __m256d t = _mm256_set1_pd(t_filter);
-  const double* c0 = g.coordinate(0);
-  const __m256d a0 = _mm256_set1_pd(c0[p]);
-  alignas(32) double a[Survivors::block];
-  const std::size_t vector_end = qb + (qe - qb) / 4 * 4;  // the last few candidates go to the scalar scan
+  const std::size_t vector_end = qb + (qe - qb) / width * width;
   for (std::size_t q0 = qb; q0 < vector_end; q0 += Survivors::block) {
     const std::size_t len = std::min(Survivors::block, vector_end - q0);
     s.make_room();
-    for (std::size_t level = 0; level < levels; ++level) {
-      const double* ck = g.coordinate(level + 1) + q0;
-      const __m256d ak = _mm256_set1_pd(g.coordinate(level + 1)[p]);
-      double* out = s.buffer(level);
-      std::size_t n = s.count(level), alive = 0;
-      const bool store = level >= first;
-      for (std::size_t u = 0; u < len; u += 4) {
-        const __m256d dk = _mm256_andnot_pd(sign, _mm256_sub_pd(ak, _mm256_loadu_pd(ck + u)));
-        __m256d v;
-        if (level == 0) {
-          const __m256d d0 = _mm256_andnot_pd(sign, _mm256_sub_pd(a0, _mm256_loadu_pd(c0 + q0 + u)));
-          if constexpr (std::is_same_v<N, MaxNorm>)
-            v = _mm256_max_pd(d0, dk);
-          else
-            v = _mm256_add_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(dk, dk));
-        } else {
-          const __m256d prev = _mm256_load_pd(a + u);
-          if constexpr (std::is_same_v<N, MaxNorm>)
-            v = _mm256_max_pd(prev, dk);
-          else
-            v = _mm256_add_pd(prev, _mm256_mul_pd(dk, dk));
-        }
-        _mm256_store_pd(a + u, v);
-        const int mask = _mm256_movemask_pd(_mm256_cmp_pd(v, t, _CMP_LT_OQ));
-        const __m256i perm = _mm256_load_si256(reinterpret_cast<const __m256i*>(compress_table.index[mask]));
-        _mm256_storeu_ps(reinterpret_cast<float*>(out + n), _mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
-        const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
-        n += store ? k : 0;
-        alive += k;
-      }
-      s.count(level) = n;
-      if (alive == 0) break;
-    }
+    for (std::size_t level = 0; level < levels; ++level)
+      if (pass(q0, len, level, s.buffer(level), s.count(level), level >= first) == 0) break;
   }
-  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s, t_filter);
+  return vector_end;
 }
 
-// The same scan eight candidates at a time with AVX-512, for the maximum norm only: its lanes
-// take max and absolute value, which no compiler contracts, while the Euclidean sum of products
-// could be fused into FMA under this target and change the accumulators' last bits. Survivors are
-// packed with the compress instruction (into a register, then stored: the memory form is slow on
-// some processors).
+// Four candidates at a time with AVX2. The operations are the scalar ones lane by lane (subtract,
+// absolute value, max or multiply-then-add without fusing: AVX2 alone does not enable FMA), so the
+// accumulators are bit-identical. Survivors are packed with a permutation chosen by the mask.
+template <class N>
+struct Avx2Pass {
+  Avx2Pass(const PointLayout& layout, std::size_t point, double threshold)
+      : c0(layout.coordinate(0)), g(layout), p(point), t(threshold) {}
+  const double* c0;  // coordinate 0 of every position
+  const PointLayout& g;
+  std::size_t p;
+  double t;
+  alignas(32) double a[Survivors::block];  // the block's accumulators, written at level 0 before any read
+
+  __attribute__((target("avx2,popcnt"))) std::size_t operator()(std::size_t q0, std::size_t len, std::size_t level,
+                                                                 double* out, std::size_t& count, bool store) {
+    const __m256d sign = _mm256_set1_pd(-0.0), tv = _mm256_set1_pd(t), a0 = _mm256_set1_pd(c0[p]);
+    const double* ck = g.coordinate(level + 1) + q0;
+    const __m256d ak = _mm256_set1_pd(g.coordinate(level + 1)[p]);
+    std::size_t n = count, alive = 0;
+    for (std::size_t u = 0; u < len; u += 4) {
+      const __m256d dk = _mm256_andnot_pd(sign, _mm256_sub_pd(ak, _mm256_loadu_pd(ck + u)));
+      __m256d v;
+      if (level == 0) {
+        const __m256d d0 = _mm256_andnot_pd(sign, _mm256_sub_pd(a0, _mm256_loadu_pd(c0 + q0 + u)));
+        if constexpr (std::is_same_v<N, MaxNorm>)
+          v = _mm256_max_pd(d0, dk);
+        else
+          v = _mm256_add_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(dk, dk));
+      } else {
+        const __m256d prev = _mm256_load_pd(a + u);
+        if constexpr (std::is_same_v<N, MaxNorm>)
+          v = _mm256_max_pd(prev, dk);
+        else
+          v = _mm256_add_pd(prev, _mm256_mul_pd(dk, dk));
+      }
+      _mm256_store_pd(a + u, v);
+      const int mask = _mm256_movemask_pd(_mm256_cmp_pd(v, tv, _CMP_LT_OQ));
+      const __m256i perm = _mm256_load_si256(reinterpret_cast<const __m256i*>(compress_table.index[mask]));
+      _mm256_storeu_ps(reinterpret_cast<float*>(out + n), _mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
+      const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+      n += store ? k : 0;
+      alive += k;
+    }
+    count = n;
+    return alive;
+  }
+};
+
+template <class N>
+void scan_avx2(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+               double t) {
+  Avx2Pass<N> pass(g, p, t);
+  const std::size_t vector_end = scan_vector_blocks<4>(qb, qe, s, pass);
+  if (vector_end < qe) scan_scalar<N, false>(pb, g, p, vector_end, qe, s, t);
+}
+
+// Eight candidates at a time with AVX-512, for the maximum norm only: its lanes take max and
+// absolute value, which no compiler contracts, while the Euclidean sum of products could be fused
+// into FMA under this target and change the accumulators' last bits. Survivors are packed with the
+// compress instruction (into a register, then stored: the memory form is slow on some processors).
 __attribute__((target("avx512f"), always_inline)) inline __m512d abs512(__m512d x) {
   return _mm512_castsi512_pd(_mm512_and_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(0x7fffffffffffffff)));
 }
-__attribute__((target("avx512f,popcnt"))) void scan_avx512_max(const Problem& pb, const PointLayout& g, std::size_t p,
-                                                              std::size_t qb, std::size_t qe, Survivors& s, double t_filter) {
-  const std::size_t levels = s.levels(), first = s.first_stored();
-  const __m512d t = _mm512_set1_pd(t_filter);
-  const double* c0 = g.coordinate(0);
-  const __m512d a0 = _mm512_set1_pd(c0[p]);
+struct Avx512MaxPass {
+  Avx512MaxPass(const PointLayout& layout, std::size_t point, double threshold)
+      : c0(layout.coordinate(0)), g(layout), p(point), t(threshold) {}
+  const double* c0;
+  const PointLayout& g;
+  std::size_t p;
+  double t;
   alignas(64) double a[Survivors::block];
-  const std::size_t vector_end = qb + (qe - qb) / 8 * 8;  // the last few candidates go to the AVX2 scan
-  for (std::size_t q0 = qb; q0 < vector_end; q0 += Survivors::block) {
-    const std::size_t len = std::min(Survivors::block, vector_end - q0);
-    s.make_room();
-    for (std::size_t level = 0; level < levels; ++level) {
-      const double* ck = g.coordinate(level + 1) + q0;
-      const __m512d ak = _mm512_set1_pd(g.coordinate(level + 1)[p]);
-      double* out = s.buffer(level);
-      std::size_t n = s.count(level), alive = 0;
-      const bool store = level >= first;
-      for (std::size_t u = 0; u < len; u += 8) {
-        const __m512d dk = abs512(_mm512_sub_pd(ak, _mm512_loadu_pd(ck + u)));
-        const __m512d prev = level == 0 ? abs512(_mm512_sub_pd(a0, _mm512_loadu_pd(c0 + q0 + u)))
-                                        : _mm512_load_pd(a + u);
-        const __m512d v = _mm512_maskz_max_pd(0xff, prev, dk);  // maskz: GCC 12's unmasked form warns of an undefined operand
-        _mm512_store_pd(a + u, v);
-        const __mmask8 mask = _mm512_cmp_pd_mask(v, t, _CMP_LT_OQ);
-        _mm512_storeu_pd(out + n, _mm512_maskz_compress_pd(mask, v));
-        const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
-        n += store ? k : 0;
-        alive += k;
-      }
-      s.count(level) = n;
-      if (alive == 0) break;
+
+  __attribute__((target("avx512f,popcnt"))) std::size_t operator()(std::size_t q0, std::size_t len, std::size_t level,
+                                                                   double* out, std::size_t& count, bool store) {
+    const __m512d tv = _mm512_set1_pd(t), a0 = _mm512_set1_pd(c0[p]);
+    const double* ck = g.coordinate(level + 1) + q0;
+    const __m512d ak = _mm512_set1_pd(g.coordinate(level + 1)[p]);
+    std::size_t n = count, alive = 0;
+    for (std::size_t u = 0; u < len; u += 8) {
+      const __m512d dk = abs512(_mm512_sub_pd(ak, _mm512_loadu_pd(ck + u)));
+      const __m512d prev = level == 0 ? abs512(_mm512_sub_pd(a0, _mm512_loadu_pd(c0 + q0 + u))) : _mm512_load_pd(a + u);
+      const __m512d v = _mm512_maskz_max_pd(0xff, prev, dk);  // maskz: GCC 12's unmasked form warns of an undefined operand
+      _mm512_store_pd(a + u, v);
+      const __mmask8 mask = _mm512_cmp_pd_mask(v, tv, _CMP_LT_OQ);
+      _mm512_storeu_pd(out + n, _mm512_maskz_compress_pd(mask, v));
+      const auto k = static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask)));
+      n += store ? k : 0;
+      alive += k;
     }
+    count = n;
+    return alive;
   }
-  if (vector_end < qe) scan_avx2<MaxNorm>(pb, g, p, vector_end, qe, s, t_filter);
+};
+
+void scan_avx512_max(const Problem& pb, const PointLayout& g, std::size_t p, std::size_t qb, std::size_t qe, Survivors& s,
+                     double t) {
+  Avx512MaxPass pass(g, p, t);
+  const std::size_t vector_end = scan_vector_blocks<8>(qb, qe, s, pass);
+  if (vector_end < qe) scan_avx2<MaxNorm>(pb, g, p, vector_end, qe, s, t);  // fewer than 8 left
 }
 
 // The widest vector scan this processor runs, unless the environment narrows it:
