@@ -513,13 +513,13 @@ Grid build_grid(const Problem& pb) {
   return g;
 }
 
+// Which vector instructions the scans and the binning use (simd_level() below).
+enum class Simd { none, avx2, avx512 };
+
 // Histogram increments of survivors' accumulators a[0..n) into h, where bin g of copy c is
 // h[g * copies + c]: consecutive survivors often share a bin, and back-to-back increments of one
 // counter wait for each other, so `copies` interleaved histograms take turns and are added up at
 // the end.
-// Which vector instructions the scans and the binning use (simd_level() below).
-enum class Simd { none, avx2, avx512 };
-
 constexpr std::size_t histogram_copies = 4;  // the unrolled loops below assume 4
 
 void bin_portable(const AccBins::Lookup& bins, const double* a, std::size_t n, Count* h) noexcept {
