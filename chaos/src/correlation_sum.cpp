@@ -600,13 +600,11 @@ class Survivors {
     for (std::size_t level = first_; level < levels_; ++level) {
       Count* h = wide_.data() + (level + 2 - pb_.min_m) * pb_.nr * copies;
 #if defined(__x86_64__) && defined(__GNUC__)
-      if (simd_) {
+      if (simd_)
         bin_avx2(bins, buffer(level), n_[level], h, cells_.get());
-        n_[level] = 0;
-        continue;
-      }
+      else
 #endif
-      bin_portable(bins, buffer(level), n_[level], h);
+        bin_portable(bins, buffer(level), n_[level], h);
       n_[level] = 0;
     }
   }
@@ -659,6 +657,12 @@ void scan_scalar(const Problem& pb, const PointLayout& g, std::size_t p, std::si
       if (alive == 0) break;
     }
   }
+}
+
+// A switch set in the environment (not empty and not "0"): the tests use these to reach every path.
+bool env_flag(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr && *v != '\0' && *v != '0';
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -805,10 +809,6 @@ void scan_avx512_max(const Problem& pb, const PointLayout& g, std::size_t p, std
 // The widest vector scan this processor runs, unless the environment narrows it:
 // CHAOS_NO_SIMD=1 selects the portable scan, CHAOS_NO_AVX512=1 the AVX2 one (so the tests check
 // every path on a machine that has them all).
-bool env_flag(const char* name) {
-  const char* v = std::getenv(name);
-  return v != nullptr && *v != '\0' && *v != '0';
-}
 Simd simd_level() {
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
   static const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
@@ -820,10 +820,7 @@ Simd simd_level() { return Simd::none; }
 #endif
 
 // CHAOS_NO_PLANE=1 makes the grid bin m = 2 itself, so the tests check both ways against brute force.
-bool plane_disabled() {
-  const char* off = std::getenv("CHAOS_NO_PLANE");
-  return off != nullptr && *off != '\0' && *off != '0';
-}
+bool plane_disabled() { return env_flag("CHAOS_NO_PLANE"); }
 
 template <class N, bool check_window>
 // Candidates q in [qb, qe) of layout position p, kept while their accumulator is below t (at most
