@@ -211,12 +211,15 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
+  // The same estimator over each half of the record: a linear region must be reproduced.
+  if (params.halves) check_record_halves(r, x, params.options, params.fit);
   std::optional<LyapunovResult> check;
   if (params.cross_check) {
     LyapunovOptions other = params.options;
     other.method = other.method == LyapunovMethod::rosenstein ? LyapunovMethod::kantz : LyapunovMethod::rosenstein;
     other.progress = params.check_progress;
     check = largest_lyapunov(x, other, params.fit, in.dt);
+    if (params.halves) check_record_halves(*check, x, other, params.fit);
     if (other.method == LyapunovMethod::kantz)
       cross_check(r, *check, params.fit.tolerance);
     else
@@ -243,7 +246,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
       .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
       .parameter("min_steps", r.fit.min_steps).parameter("period", params.fit.period)
       .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions)
-      .parameter("cross_check", params.cross_check);
+      .parameter("cross_check", params.cross_check).parameter("halves", params.halves);
   auto& j = report.json();
   j["lambda"] = optional_json(lambda);
   j["lambda_interval"] = interval_json(lambda_interval);

@@ -55,6 +55,22 @@ void check_record_halves(CorrelationDimensionResult& d2, std::span<const double>
   }
 }
 
+void check_record_halves(LyapunovResult& result, std::span<const double> x, LyapunovOptions options,
+                         const LyapunovFitOptions& fit) {
+  if (result.fit.status != LyapunovStatus::linear_region) return;
+  const auto [first, second] = record_halves(x);
+  options.progress = nullptr;  // the progress shown is the whole record's curve
+  try {
+    require_reproduced_by_halves(result, largest_lyapunov(first, options, fit, result.dt),
+                                 largest_lyapunov(second, options, fit, result.dt), fit.tolerance);
+  } catch (const InvalidInput& e) {
+    // A half too short for the curve's steps in the highest dimension: the slope cannot be reproduced.
+    const LyapunovResult none;  // no_neighbours
+    require_reproduced_by_halves(result, none, none, fit.tolerance);
+    result.fit.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
+  }
+}
+
 void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
                          const CorrelationDimensionOptions& options) {
   if (d2.status != D2Status::saturated) return;
@@ -169,7 +185,9 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
       l.progress = [&options, method](double f) {
         options.progress(std::string("Lyapunov exponent (") + to_string(method) + ")", f);
       };
-    return largest_lyapunov(x, l, automatic_lyapunov_fit(a.scales), dt);
+    LyapunovResult r = largest_lyapunov(x, l, automatic_lyapunov_fit(a.scales), dt);
+    if (options.check_halves) check_record_halves(r, x, l, automatic_lyapunov_fit(a.scales));
+    return r;
   };
   try {
     if (options.rosenstein) a.rosenstein = lyapunov(LyapunovMethod::rosenstein);

@@ -158,6 +158,7 @@ const char* to_string(LyapunovStatus status) noexcept {
     case LyapunovStatus::not_diverging: return "not_diverging";
     case LyapunovStatus::no_neighbours: return "no_neighbours";
     case LyapunovStatus::unconfirmed: return "unconfirmed";
+    case LyapunovStatus::not_reproduced: return "not_reproduced";
   }
   return "unknown";
 }
@@ -512,8 +513,8 @@ std::string verdict(const char* name, const LyapunovFit& fit) {
   return s.str();
 }
 
-void withdraw(LyapunovFit& fit, const std::string& why) {
-  fit.status = LyapunovStatus::unconfirmed;
+void withdraw(LyapunovFit& fit, const std::string& why, LyapunovStatus status = LyapunovStatus::unconfirmed) {
+  fit.status = status;
   fit.explanation = why + " (the estimate alone: " + fit.explanation + ")";
   fit.lambda.reset();
   fit.lambda_interval.reset();
@@ -587,6 +588,29 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
 void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance) {
   cross_check(result.fit, result.options.method, local_maps, tolerance);
   withdraw_per_time(result);
+}
+
+void require_reproduced_by_halves(LyapunovFit& full, const LyapunovFit& first, const LyapunovFit& second,
+                                  double tolerance) {
+  require_cross_check_tolerance(tolerance);
+  if (full.status != LyapunovStatus::linear_region) return;
+  const bool a = first.status == LyapunovStatus::linear_region, b = second.status == LyapunovStatus::linear_region;
+  const bool contradicted = (a && !agree(*full.lambda, *first.lambda, tolerance)) ||
+                            (b && !agree(*full.lambda, *second.lambda, tolerance));
+  if ((a || b) && !contradicted) return;
+  std::ostringstream why;
+  why << "the halves of the record do not reproduce this slope: " << verdict("the first half", first) << ", "
+      << verdict("the second half", second);
+  if (contradicted) why << ", more than " << tolerance * 100 << "% from the whole record's";
+  why << "; a straight stretch that no part of the record shows on its own is not trusted (a longer record may "
+      << "settle it)";
+  withdraw(full, why.str(), LyapunovStatus::not_reproduced);
+}
+
+void require_reproduced_by_halves(LyapunovResult& full, const LyapunovResult& first, const LyapunovResult& second,
+                                  double tolerance) {
+  require_reproduced_by_halves(full.fit, first.fit, second.fit, tolerance);
+  withdraw_per_time(full);
 }
 
 LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options,

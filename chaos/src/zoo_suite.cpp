@@ -398,6 +398,30 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           }
         }
         const LyapunovFitOptions fit = automatic_lyapunov_fit(a.scales);
+        // The halves check of a linear region, as in the pipeline (check_record_halves): the same
+        // curves on each half of the record, computed the first time a fit needs them.
+        using HalfCurves = std::pair<DivergenceCurve, DivergenceCurve>;
+        std::vector<std::optional<HalfCurves>> rosenstein_halves(6), kantz_halves(6);
+        const auto check_halves = [&](LyapunovFit& f, LyapunovMethod method, std::size_t k) {
+          if (f.status != LyapunovStatus::linear_region) return;
+          auto& cache = method == LyapunovMethod::rosenstein ? rosenstein_halves : kantz_halves;
+          const auto [first, second] = record_halves(x);
+          try {
+            std::vector<DivergenceCurve> one, two;
+            for (std::size_t j = k; j < k + 3; ++j) {
+              if (!cache[j]) {
+                const LyapunovOptions o = automatic_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method);
+                cache[j].emplace(divergence_curve(first, o), divergence_curve(second, o));
+              }
+              one.push_back(cache[j]->first);
+              two.push_back(cache[j]->second);
+            }
+            require_reproduced_by_halves(f, fit_divergence(one, fit), fit_divergence(two, fit), fit.tolerance);
+          } catch (const InvalidInput& e) {
+            require_reproduced_by_halves(f, LyapunovFit{}, LyapunovFit{}, fit.tolerance);
+            f.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
+          }
+        };
         for (std::size_t m = m0; m <= m0 + 3; ++m) {
           ZooRow row;
           row.n = n;
@@ -412,9 +436,11 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
             if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return std::nullopt;
             return fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit);
           };
-          // As in the pipeline: each fit is checked against the other and against a consistent
-          // local-map exponent (cross_check).
+          // As in the pipeline: each fit is checked against the record's halves, against the other
+          // fit and against a consistent local-map exponent (cross_check).
           std::optional<LyapunovFit> r = fit_of(rosenstein), q = fit_of(kantz);
+          if (r) check_halves(*r, LyapunovMethod::rosenstein, k);
+          if (q) check_halves(*q, LyapunovMethod::kantz, k);
           if (r && q) cross_check(*r, *q, fit.tolerance);
           const LocalMaps maps = local_maps_at(x, m, *a.delay, w, c.dt);
           if (maps.result) {

@@ -294,6 +294,7 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "min_steps", params.fit.min_steps);
   get(p, "min_rise", params.fit.min_rise);
   get(p, "cross_check", params.cross_check);
+  get(p, "halves", params.halves);
   // With the cross-check the other method's curve is the second half of the work.
   const std::function<void(double)> hook = progress_hook(std::move(progress));
   if (hook && params.cross_check) {

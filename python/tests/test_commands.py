@@ -107,6 +107,8 @@ def test_lyapunov_henon(data_dir):
     single = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-cross-check"],
                    cross_check=False)
     assert single["cross_check"] is None and single["parameters"]["cross_check"] is False
+    halves = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--halves"], halves=True)
+    assert halves["parameters"]["halves"] is True
 
 
 @pytest.mark.parametrize("cli_args, kwargs", [

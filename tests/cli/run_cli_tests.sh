@@ -165,6 +165,17 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --dt 0.5 --json | jq -c '[.per, (.lambda
 l=$("$CHAOS" lyapunov "$work/noise.dat" --json | jq -c '[.lambda, .lambda_interval, .status]')
 [[ $l == '[null,null,"no_linear_region"]' ]] && pass || fail "lyapunov on white noise gave $l"
 "$CHAOS" lyapunov "$work/noise.dat" | grep -q "^# lambda = none" && pass || fail "lyapunov text output for noise lacks 'lambda = none'"
+# lyapunov --halves: Henon x (3000 iterations) diverges at one rate in each half, so both methods keep their values.
+l=$("$CHAOS" lyapunov "$work/henon.dat" --halves --json | jq -c '[.status, .cross_check.status, .parameters.halves]')
+[[ $l == '["linear_region","linear_region",true]' ]] && pass || fail "lyapunov --halves on henon gave $l"
+# The zoo's Genesio-Tesi x, its first 10^4 samples, at m = 6, tau = 31, w = 63: a confident-wrong grid row of
+# docs/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
+# from the equations). Neither half of 5000 samples has a linear region, so with --halves both are not_reproduced.
+"$CHAOS" zoo --series genesio_tesi -o "$work/genesio_tesi.dat" || fail "zoo --series genesio_tesi"
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 -q --json | jq -c '[.status, .cross_check.status]')
+[[ $l == '["linear_region","linear_region"]' ]] && pass || fail "lyapunov on the short Genesio-Tesi record gave $l"
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --halves -q --json | jq -c '[.status, .cross_check.status, .lambda]')
+[[ $l == '["not_reproduced","not_reproduced",null]' ]] && pass || fail "lyapunov --halves on the short Genesio-Tesi record gave $l"
 expect_error 3 "method must be rosenstein or kantz" -- lyapunov --method wolf "$work/henon.dat"
 expect_error 3 "too short.*N = 5.*steps = 20" -- lyapunov "$work/five.dat"
 expect_error 3 "eps must be positive.*-1" -- lyapunov --method kantz -r -1 "$work/henon.dat"

@@ -15,8 +15,10 @@
 //   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
 //      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
 //      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
-//      reference points; the two fits are then checked against each other (cross_check): a linear
-//      region that only one of them finds, or two slopes more than 10% apart, leaves both unconfirmed;
+//      reference points; a linear region must be reproduced by the record's two halves
+//      (require_reproduced_by_halves, as for D2); the two fits are then checked against each other
+//      (cross_check): a linear region that only one of them finds, or two slopes more than 10% apart,
+//      leaves both unconfirmed;
 //   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp); where it is consistent, a
 //      Rosenstein or Kantz slope more than 10% from it is unconfirmed as well.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
@@ -44,7 +46,7 @@ struct AutomaticAnalysisOptions {
   std::size_t max_dimension = 10;    // of Cao's method
   std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
   std::size_t radii = 40;            // log-spaced from range/1000 to range/4
-  bool check_halves = true;          // a saturated D2 must be reproduced by the record's two halves
+  bool check_halves = true;          // a saturated D2 and a divergence slope must be reproduced by the record's two halves
   // ... and at twice the delay. Off by default: on the zoo it withdrew more right values than wrong
   // ones (docs/zoo-notes.md, "The delay neighbourhood").
   bool check_delay = false;
@@ -92,6 +94,12 @@ CorrelationDimensionResult automatic_correlation_dimension(std::span<const doubl
 // counts as not reproducing the plateau, and the explanation says why.
 void check_record_halves(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
                          const CorrelationDimensionOptions& options = {});
+// The halves check for a divergence fit already computed from x with `options` and `fit`: when it
+// found a linear region, the same estimator with the same options over each half (the Kantz radius
+// found by the same rule on each half, the same steps). A half too short for the curve counts as not
+// reproducing the slope, and the explanation says why.
+void check_record_halves(LyapunovResult& result, std::span<const double> x, LyapunovOptions options,
+                         const LyapunovFitOptions& fit);
 // The delay check for a D2 already computed from x with `sums` and `options`: when it saturated, the
 // same sums and rules at twice sums.delay (require_reproduced_at_delay). A record too short to embed
 // at that delay counts as not reproducing the plateau, and the explanation says why.

@@ -103,6 +103,7 @@ enum class LyapunovStatus {
   not_diverging,     // no local slope is positive: the curve does not rise, no exponential divergence
   no_neighbours,     // no reference point had a neighbour: nothing to fit
   unconfirmed,       // a linear region, but another estimator finds none or another slope (cross_check)
+  not_reproduced,    // a linear region, but the record's two halves do not both show it at one slope
 };
 const char* to_string(LyapunovStatus status) noexcept;
 
@@ -184,5 +185,23 @@ LyapunovResult largest_lyapunov_kantz(std::span<const double> x, LyapunovOptions
 void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance = 0.1);
 // The same on full results, with the per-time values withdrawn as well.
 void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance = 0.1);
+
+// Reproducibility, as for D2 (require_reproduced_by_halves in correlation_dimension.hpp): `first`
+// and `second` are the same estimator, with the same options and fit settings, on the first and the
+// second half of the record. A linear region of `full` stays only when at least one half finds one,
+// and every half that finds one agrees with `full` within `tolerance` times their mean (cross_check's
+// sense of agreement); otherwise `full` becomes not_reproduced, its value and region withdrawn, and
+// its explanation gives both halves' verdicts. Two disjoint records of one attractor diverge at one
+// rate; a straight stretch that no part of the record shows on its own came from that record's few
+// close pairs. (Genesio-Tesi x, N = 10^4, m = 6..8, tau = 31, w = 63: Rosenstein reads 0.0858 per
+// time unit, 16% below lambda_1 = 0.1019, and Kantz 0.0935 confirms it within 10%, while neither
+// half has a linear region.) One silent half is allowed: a half's nearest neighbours lie about
+// 2^(1/D2) times farther apart, so its curve has less room to rise before saturation, and requiring
+// both halves withdrew 63 right values on the zoo for these 3 wrong ones (docs/lyapunov.md).
+void require_reproduced_by_halves(LyapunovFit& full, const LyapunovFit& first, const LyapunovFit& second,
+                                  double tolerance = 0.1);
+// The same on full results, with the per-time values withdrawn as well.
+void require_reproduced_by_halves(LyapunovResult& full, const LyapunovResult& first, const LyapunovResult& second,
+                                  double tolerance = 0.1);
 
 }  // namespace chaos

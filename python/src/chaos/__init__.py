@@ -252,7 +252,8 @@ correlation_sum = d2  # the correlation sums are part of d2's result (correlatio
 
 def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
              radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, cross_check=True, progress=None, dt=None, column=1, skip=0, length=None):
+             min_steps=0, min_rise=2.0, cross_check=True, halves=False, progress=None, dt=None, column=1, skip=0,
+             length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
     Rosenstein: S(k) = < ln d_i(k) >, d_i(k) the distance after k steps of point i and its nearest
@@ -264,7 +265,9 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
 
     ``cross_check`` (default) also runs the other method with the same settings: a linear region it
     does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
-    method's verdict is under ``cross_check``).
+    method's verdict is under ``cross_check``). ``halves=True`` runs the estimator over each half of
+    the record as well: a linear region the halves do not both show, at slopes within ``tolerance``,
+    gives status ``not_reproduced`` (as ``analyze`` does).
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
 
@@ -278,7 +281,7 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
                      period=period, dimensions=dimensions, radius=radius,
                      min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
                      threads=threads, tolerance=tolerance, half_width=half_width,
-                     min_steps=min_steps, min_rise=min_rise, cross_check=cross_check))
+                     min_steps=min_steps, min_rise=min_rise, cross_check=cross_check, halves=halves))
 
 
 def lyapunov_maps(x, *, dimension=2, delay=1, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
