@@ -135,9 +135,9 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     out.explanation = why.str();
     return out;
   }
-  CorrelationSumOptions first = sums;
-  first.reference_points = counted;
-  CorrelationSumResult total = correlation_sum(x, first);
+  // One search structure for every round's subset.
+  const CorrelationSumSubsets subsets(x, sums);
+  CorrelationSumResult total = subsets.count(0, counted);
   CorrelationDimensionResult total_d2 = correlation_dimension(total, dimension);
   for (;;) {
     if (counted > points / 16) {  // the next round would count more than an eighth of the points
@@ -147,10 +147,7 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
           << "(the next round would count more than an eighth of the " << points << " points)";
       break;
     }
-    CorrelationSumOptions next = sums;
-    next.reference_offset = counted;
-    next.reference_points = counted;
-    const CorrelationSumResult other = correlation_sum(x, next);
+    const CorrelationSumResult other = subsets.count(counted, counted);
     const CorrelationDimensionResult other_d2 = correlation_dimension(other, dimension);
     CorrelationSumResult merged = merge(std::move(total), other);
     CorrelationDimensionResult merged_d2 = correlation_dimension(merged, dimension);

@@ -1340,33 +1340,146 @@ std::vector<std::size_t> reference_order(std::size_t points, std::size_t count, 
 }
 
 template <class N>
-Totals compute(const Problem& pb, const CorrelationSumOptions& options) {
-  const bool exact = options.pairs_per_radius == 0 && options.reference_points == 0;
-  if (exact) {
-    std::vector<std::vector<Count>> pairs;
-    switch (options.search) {
-      case CorrelationSearch::brute_force: pairs = cumulate(brute_exact<N>(pb), pb.nm, pb.nr); break;
-      case CorrelationSearch::kd_tree: pairs = kd_exact<N>(pb); break;
-      case CorrelationSearch::box_assisted: pairs = box_exact<N>(pb); break;
-    }
-    const std::size_t span = pb.points - pb.w - 1;  // validated: P >= w + 2
-    const Count all = static_cast<Count>(span) * static_cast<Count>(span + 1) / 2;
-    Totals exact_totals;
-    exact_totals.pairs = std::move(pairs);
-    exact_totals.examined.assign(pb.nm, std::vector<Count>(pb.nr, all));
-    return exact_totals;
+Totals exact_totals(const Problem& pb, CorrelationSearch search) {
+  std::vector<std::vector<Count>> pairs;
+  switch (search) {
+    case CorrelationSearch::brute_force: pairs = cumulate(brute_exact<N>(pb), pb.nm, pb.nr); break;
+    case CorrelationSearch::kd_tree: pairs = kd_exact<N>(pb); break;
+    case CorrelationSearch::box_assisted: pairs = box_exact<N>(pb); break;
   }
-  const std::size_t count = options.reference_points > 0 ? options.reference_points : pb.points;
-  std::vector<std::size_t> order = reference_order(pb.points, options.reference_offset + count, options.seed);
-  order.erase(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(options.reference_offset));
-  const std::uint64_t cap = options.pairs_per_radius;
-  const std::size_t groups = options.jackknife_groups;
-  switch (options.search) {
-    case CorrelationSearch::brute_force: return reference_walk(pb, BruteCounter<N>(pb), order, cap, groups);
-    case CorrelationSearch::kd_tree: return reference_walk(pb, SpatialCounter<N, KdWalk<N>>(pb), order, cap, groups);
+  const std::size_t span = pb.points - pb.w - 1;  // validated: P >= w + 2
+  const Count all = static_cast<Count>(span) * static_cast<Count>(span + 1) / 2;
+  Totals totals;
+  totals.pairs = std::move(pairs);
+  totals.examined.assign(pb.nm, std::vector<Count>(pb.nr, all));
+  return totals;
+}
+
+// The per-reference-point counter of a search mode (its structure is built here, once).
+template <class N>
+std::unique_ptr<ReferenceCounter> make_counter(const Problem& pb, CorrelationSearch search) {
+  switch (search) {
+    case CorrelationSearch::brute_force: return std::make_unique<BruteCounter<N>>(pb);
+    case CorrelationSearch::kd_tree: return std::make_unique<SpatialCounter<N, KdWalk<N>>>(pb);
     case CorrelationSearch::box_assisted: break;
   }
-  return reference_walk(pb, SpatialCounter<N, GridWalk<N>>(pb), order, cap, groups);
+  return std::make_unique<SpatialCounter<N, GridWalk<N>>>(pb);
+}
+
+std::unique_ptr<ReferenceCounter> make_counter(const Problem& pb, const CorrelationSumOptions& options) {
+  return options.norm == Norm::max ? make_counter<MaxNorm>(pb, options.search)
+                                   : make_counter<EuclideanNorm>(pb, options.search);
+}
+
+// Reference points offset .. offset + count - 1 of the seeded order, under the options' cap.
+Totals subset_totals(const Problem& pb, const ReferenceCounter& counter, const CorrelationSumOptions& options,
+                     std::size_t offset, std::size_t count) {
+  std::vector<std::size_t> order = reference_order(pb.points, offset + count, options.seed);
+  order.erase(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(offset));
+  return reference_walk(pb, counter, order, options.pairs_per_radius, options.jackknife_groups);
+}
+
+void require_subset(std::size_t points, std::size_t offset, std::size_t count) {
+  if (count > points)
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "correlation sum: reference_points must not exceed the " + std::to_string(points) +
+                           " embedded points N - (m-1)*tau (got " + std::to_string(count) + ")");
+  if (offset > 0 && (count == 0 || offset > points || count > points - offset))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "correlation sum: a reference offset needs a subset that fits after it: offset + reference_points "
+                       "<= the " + std::to_string(points) + " embedded points (got offset " + std::to_string(offset) +
+                           ", reference_points " + std::to_string(count) + ")");
+}
+
+// The counting problem: the series checked, scaled for the Euclidean norm, the radii as
+// accumulator thresholds. Built in place and never copied, as pb points into the other members.
+struct Prepared {
+  Prepared() = default;
+  Prepared(const Prepared&) = delete;
+  Prepared& operator=(const Prepared&) = delete;
+  CorrelationSumOptions options;
+  std::vector<double> scaled;
+  std::optional<AccBins> bins;
+  Problem pb;
+  double range = 0.0;
+};
+
+void prepare(Prepared& p, std::span<const double> x, const CorrelationSumOptions& options) {
+  options.validate();
+  require_finite(x, "correlation sum");
+  require_not_constant(x, "correlation sum");
+  const std::size_t tau = options.delay, w = options.theiler, top = options.max_dimension;
+  const std::size_t minimum = add_sat(add_sat(mul_sat(top - 1, tau), w), 2);
+  require_length(x, minimum, "correlation sum",
+                 "the reference set i < N - (m-1)*tau for m up to " + std::to_string(top) + " with tau = " +
+                     std::to_string(tau) + " needs at least one pair outside the Theiler window w = " +
+                     std::to_string(w) + ": N >= (m-1)*tau + w + 2 = " + std::to_string(top - 1) + "*" +
+                     std::to_string(tau) + " + " + std::to_string(w) + " + 2");
+  p.options = options;
+
+  // For the Euclidean norm the series and radii are multiplied by a power of two that brings
+  // max |x| into [0.5, 1): exact, so every comparison d < r keeps its outcome, while squares can
+  // neither overflow nor underflow. The maximum norm needs no squares and is used as given.
+  std::vector<double> radii = options.radii;
+  std::span<const double> y = x;
+  if (options.norm == Norm::euclidean) {
+    double largest = 0.0;
+    for (const double v : x) largest = std::max(largest, std::abs(v));
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    p.scaled.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) p.scaled[i] = std::ldexp(x[i], -exponent);
+    for (double& r : radii) r = std::ldexp(r, -exponent);
+    y = p.scaled;
+  }
+
+  // d <= r is d < r+, the next double above r (d is a double): the counting loops keep their strict
+  // comparison. For the Euclidean norm this comes after the exact power-of-two scaling above.
+  if (options.inclusive)
+    for (double& r : radii) r = std::nextafter(r, infinity);
+
+  std::vector<double> thresholds(radii.size());
+  for (std::size_t k = 0; k < radii.size(); ++k) thresholds[k] = threshold(options.norm, radii[k]);
+  p.bins.emplace(thresholds);
+  Problem& pb = p.pb;
+  pb.y = y;
+  pb.radii = radii;
+  pb.thresholds = thresholds;
+  pb.r_max = radii.back();
+  pb.t_max = thresholds.back();
+  pb.tau = tau;
+  pb.w = w;
+  pb.points = x.size() - (top - 1) * tau;
+  pb.min_m = options.min_dimension;
+  pb.max_m = top;
+  pb.nm = top - options.min_dimension + 1;
+  pb.nr = radii.size();
+  pb.norm = options.norm;
+  pb.threads = options.threads;
+  pb.bins = &*p.bins;
+  pb.progress = p.options.progress ? &p.options.progress : nullptr;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  p.range = *hi - *lo;
+}
+
+CorrelationSumResult assemble(const Prepared& p, Totals totals, std::size_t reference_points) {
+  const Problem& pb = p.pb;
+  CorrelationSumResult result;
+  for (std::size_t m = pb.min_m; m <= pb.max_m; ++m) result.dimension.push_back(m);
+  result.radius = p.options.radii;
+  result.correlation_sum.assign(pb.nm, std::vector<double>(pb.nr, 0.0));
+  for (std::size_t mi = 0; mi < pb.nm; ++mi)
+    for (std::size_t k = 0; k < pb.nr; ++k)
+      if (totals.examined[mi][k] > 0)
+        result.correlation_sum[mi][k] =
+            static_cast<double>(totals.pairs[mi][k]) / static_cast<double>(totals.examined[mi][k]);
+  result.pairs = std::move(totals.pairs);
+  result.examined = std::move(totals.examined);
+  result.group_pairs = std::move(totals.group_pairs);
+  result.group_examined = std::move(totals.group_examined);
+  result.points = reference_points > 0 ? reference_points : pb.points;
+  result.range = p.range;
+  return result;
 }
 
 }  // namespace
@@ -1442,91 +1555,44 @@ std::vector<double> log_radii(double r_min, double r_max, std::size_t n) {
 }
 
 CorrelationSumResult correlation_sum(std::span<const double> x, const CorrelationSumOptions& options) {
-  options.validate();
-  require_finite(x, "correlation sum");
-  require_not_constant(x, "correlation sum");
-  const std::size_t tau = options.delay, w = options.theiler, top = options.max_dimension;
-  const std::size_t minimum = add_sat(add_sat(mul_sat(top - 1, tau), w), 2);
-  require_length(x, minimum, "correlation sum",
-                 "the reference set i < N - (m-1)*tau for m up to " + std::to_string(top) + " with tau = " +
-                     std::to_string(tau) + " needs at least one pair outside the Theiler window w = " +
-                     std::to_string(w) + ": N >= (m-1)*tau + w + 2 = " + std::to_string(top - 1) + "*" +
-                     std::to_string(tau) + " + " + std::to_string(w) + " + 2");
-  const std::size_t points = x.size() - (top - 1) * tau;
-  if (options.reference_points > points)
-    throw InvalidInput(ErrorCode::invalid_parameter,
-                       "correlation sum: reference_points must not exceed the " + std::to_string(points) +
-                           " embedded points N - (m-1)*tau (got " + std::to_string(options.reference_points) + ")");
-  if (options.reference_offset > 0 && (options.reference_points == 0 || options.reference_offset > points ||
-                                       options.reference_points > points - options.reference_offset))
-    throw InvalidInput(ErrorCode::invalid_parameter,
-                       "correlation sum: a reference offset needs a subset that fits after it: offset + reference_points "
-                       "<= the " + std::to_string(points) + " embedded points (got offset " +
-                           std::to_string(options.reference_offset) + ", reference_points " +
-                           std::to_string(options.reference_points) + ")");
-
-  // For the Euclidean norm the series and radii are multiplied by a power of two that brings
-  // max |x| into [0.5, 1): exact, so every comparison d < r keeps its outcome, while squares can
-  // neither overflow nor underflow. The maximum norm needs no squares and is used as given.
-  std::vector<double> scaled;
-  std::vector<double> radii = options.radii;
-  std::span<const double> y = x;
-  if (options.norm == Norm::euclidean) {
-    double largest = 0.0;
-    for (const double v : x) largest = std::max(largest, std::abs(v));
-    int exponent = 0;
-    std::frexp(largest, &exponent);
-    scaled.resize(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) scaled[i] = std::ldexp(x[i], -exponent);
-    for (double& r : radii) r = std::ldexp(r, -exponent);
-    y = scaled;
+  Prepared p;
+  prepare(p, x, options);
+  require_subset(p.pb.points, options.reference_offset, options.reference_points);
+  if (options.pairs_per_radius == 0 && options.reference_points == 0) {
+    Totals totals = options.norm == Norm::max ? exact_totals<MaxNorm>(p.pb, options.search)
+                                              : exact_totals<EuclideanNorm>(p.pb, options.search);
+    return assemble(p, std::move(totals), 0);
   }
+  // A cap without a subset: every point is a reference point, in the seeded order.
+  const std::size_t count = options.reference_points > 0 ? options.reference_points : p.pb.points;
+  const std::unique_ptr<ReferenceCounter> counter = make_counter(p.pb, options);
+  return assemble(p, subset_totals(p.pb, *counter, options, options.reference_offset, count),
+                  options.reference_points);
+}
 
-  // d <= r is d < r+, the next double above r (d is a double): the counting loops keep their strict
-  // comparison. For the Euclidean norm this comes after the exact power-of-two scaling above.
-  if (options.inclusive)
-    for (double& r : radii) r = std::nextafter(r, infinity);
+struct CorrelationSumSubsets::State {
+  Prepared prepared;
+  std::unique_ptr<ReferenceCounter> counter;
+};
 
-  std::vector<double> thresholds(radii.size());
-  for (std::size_t k = 0; k < radii.size(); ++k) thresholds[k] = threshold(options.norm, radii[k]);
-  const AccBins bins(thresholds);
-  Problem pb;
-  pb.y = y;
-  pb.radii = radii;
-  pb.thresholds = thresholds;
-  pb.r_max = radii.back();
-  pb.t_max = thresholds.back();
-  pb.tau = tau;
-  pb.w = w;
-  pb.points = points;
-  pb.min_m = options.min_dimension;
-  pb.max_m = top;
-  pb.nm = top - options.min_dimension + 1;
-  pb.nr = radii.size();
-  pb.norm = options.norm;
-  pb.threads = options.threads;
-  pb.bins = &bins;
-  if (options.progress) pb.progress = &options.progress;
+CorrelationSumSubsets::CorrelationSumSubsets(std::span<const double> x, const CorrelationSumOptions& options)
+    : state_(std::make_unique<State>()) {
+  prepare(state_->prepared, x, options);
+  state_->counter = make_counter(state_->prepared.pb, options);
+}
 
-  Totals totals = options.norm == Norm::max ? compute<MaxNorm>(pb, options) : compute<EuclideanNorm>(pb, options);
+CorrelationSumSubsets::~CorrelationSumSubsets() = default;
 
-  CorrelationSumResult result;
-  for (std::size_t m = options.min_dimension; m <= top; ++m) result.dimension.push_back(m);
-  result.radius = options.radii;
-  result.correlation_sum.assign(pb.nm, std::vector<double>(pb.nr, 0.0));
-  for (std::size_t mi = 0; mi < pb.nm; ++mi)
-    for (std::size_t k = 0; k < pb.nr; ++k)
-      if (totals.examined[mi][k] > 0)
-        result.correlation_sum[mi][k] =
-            static_cast<double>(totals.pairs[mi][k]) / static_cast<double>(totals.examined[mi][k]);
-  result.pairs = std::move(totals.pairs);
-  result.examined = std::move(totals.examined);
-  result.group_pairs = std::move(totals.group_pairs);
-  result.group_examined = std::move(totals.group_examined);
-  result.points = options.reference_points > 0 ? options.reference_points : points;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  result.range = *hi - *lo;
-  return result;
+std::size_t CorrelationSumSubsets::points() const noexcept { return state_->prepared.pb.points; }
+
+CorrelationSumResult CorrelationSumSubsets::count(std::size_t reference_offset, std::size_t reference_points) const {
+  const Prepared& p = state_->prepared;
+  if (reference_points == 0)
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "correlation sum subsets: a subset needs at least one reference point (got 0)");
+  require_subset(p.pb.points, reference_offset, reference_points);
+  return assemble(p, subset_totals(p.pb, *state_->counter, p.options, reference_offset, reference_points),
+                  reference_points);
 }
 
 }  // namespace chaos

@@ -507,6 +507,54 @@ TEST(CorrelationSum, ReferenceOffsetCountsTheNextPointsOfTheOrder) {
   EXPECT_TRUE(refused_with(x, o, "offset + reference_points <= the 1449 embedded points (got offset 80, reference_points 1370)"));
 }
 
+TEST(CorrelationSum, SubsetsShareOneStructureAndGiveTheSameCounts) {
+  // CorrelationSumSubsets builds the search structure once; each count(offset, R) must equal the
+  // documented walk above over the same stretch of the seeded order, and correlation_sum with that
+  // offset and subset, for every mode and norm, with and without a cap, several subsets in turn.
+  const auto x = chaos::lorenz(1500).components[0];
+  for (const auto mode : all_modes)
+    for (const auto norm : both_norms)
+      for (const std::uint64_t cap : {0u, 3000u}) {
+        auto o = options(17, 1, 4, 30, chaos::log_radii(0.3, 5.0, 12), norm);
+        o.search = mode;
+        o.seed = 4;
+        o.pairs_per_radius = cap;
+        const chaos::CorrelationSumSubsets subsets(x, o);
+        EXPECT_EQ(subsets.points(), x.size() - 3 * 17);
+        for (const auto [offset, count] : {std::pair<std::size_t, std::size_t>{0, 60}, {60, 60}, {120, 240}, {0, 60}}) {
+          o.reference_offset = offset;
+          o.reference_points = count;
+          const std::string what = describe(o) + " cap " + std::to_string(cap) + " offset " + std::to_string(offset);
+          const auto got = subsets.count(offset, count);
+          const Walk want = reference_walk(x, o);
+          EXPECT_EQ(got.pairs, want.pairs) << what;
+          EXPECT_EQ(got.examined, want.examined) << what;
+          EXPECT_EQ(got.group_pairs, want.group_pairs) << what;
+          const auto alone = chaos::correlation_sum(x, o);
+          EXPECT_EQ(got.correlation_sum, alone.correlation_sum) << what;
+          EXPECT_EQ(got.points, count);
+          EXPECT_EQ(got.range, alone.range);
+          EXPECT_EQ(got.radius, alone.radius);
+        }
+      }
+  auto o = options(17, 1, 4, 30, chaos::log_radii(0.3, 5.0, 12));
+  const chaos::CorrelationSumSubsets subsets(x, o);
+  const auto refused = [&](std::size_t offset, std::size_t count, const std::string& fragment) {
+    try {
+      (void)subsets.count(offset, count);
+    } catch (const chaos::InvalidInput& e) {
+      return std::string(e.what()).find(fragment) != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused(0, 0, "at least one reference point (got 0)"));
+  EXPECT_TRUE(refused(0, 1450, "must not exceed the 1449 embedded points N - (m-1)*tau (got 1450)"));
+  EXPECT_TRUE(refused(1400, 50, "(got offset 1400, reference_points 50)"));
+  // What correlation_sum refuses, the constructor refuses.
+  o.delay = 0;
+  EXPECT_THROW(chaos::CorrelationSumSubsets(x, o), chaos::InvalidInput);
+}
+
 TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
   // Issue 15: the box-assisted reference walk scans the exact walk's grid (only as far as the
   // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards;
