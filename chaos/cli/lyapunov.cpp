@@ -167,8 +167,8 @@ void register_lyapunov(CLI::App& app) {
                    "skip the other method's check: the status is then this estimator's alone (by default a linear "
                    "region the other method does not confirm within the tolerance is 'unconfirmed')");
   command->add_flag("--halves", args->params.halves,
-                    "also run the estimator over each half of the record: a linear region the halves do not both show, "
-                    "at slopes within the tolerance, is 'not_reproduced' (as chaos analyze does)");
+                    "also run the estimator over each half of the record: a linear region that neither half shows, or "
+                    "that a half puts more than the tolerance away, is 'not_reproduced' (as chaos analyze does)");
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

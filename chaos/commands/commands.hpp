@@ -122,8 +122,8 @@ struct LyapunovParams {
   // (lyapunov.hpp, cross_check); its progress goes to check_progress.
   bool cross_check = true;
   std::function<void(double)> check_progress;
-  // Run the same estimator over each half of the record: a linear region the halves do not both
-  // show at one slope is not_reproduced (check_record_halves), before the cross-check.
+  // Run the same estimator over each half of the record: a linear region that neither half shows,
+  // or that a half contradicts, is not_reproduced (check_record_halves), before the cross-check.
   bool halves = false;
 };
 struct LyapunovRun {

@@ -103,7 +103,7 @@ enum class LyapunovStatus {
   not_diverging,     // no local slope is positive: the curve does not rise, no exponential divergence
   no_neighbours,     // no reference point had a neighbour: nothing to fit
   unconfirmed,       // a linear region, but another estimator finds none or another slope (cross_check)
-  not_reproduced,    // a linear region, but the record's two halves do not both show it at one slope
+  not_reproduced,    // a linear region that neither half of the record shows, or that a half contradicts
 };
 const char* to_string(LyapunovStatus status) noexcept;
 

@@ -266,8 +266,8 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
     ``cross_check`` (default) also runs the other method with the same settings: a linear region it
     does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
     method's verdict is under ``cross_check``). ``halves=True`` runs the estimator over each half of
-    the record as well: a linear region the halves do not both show, at slopes within ``tolerance``,
-    gives status ``not_reproduced`` (as ``analyze`` does).
+    the record as well: a linear region that neither half shows, or that a half puts more than
+    ``tolerance`` away, gives status ``not_reproduced`` (as ``analyze`` does).
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
 
