@@ -38,10 +38,7 @@ case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
        "\(.d2 | num) \(.d2_status // "error")",
        (if .d2_delay_variant == null then "-" else "\(.d2_delay_variant.d2 | num) \(.d2_delay_variant.status) (tau \(.d2_delay_variant.delay))" end),
        "[\($lo), \($hi)]", d2v,
-       "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
-       "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
-       "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
-       lv(.lambda_local_maps_status; .lambda_local_maps; "consistent"), $lam] | join("\t")' <<< "$json" >> "$out"
+       lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
   done
   echo "done $name" >&2
 }

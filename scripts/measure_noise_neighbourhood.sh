@@ -44,10 +44,7 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
     jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
       [$name, $snr, (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
        "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v,
-       "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
-       "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
-       "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
-       lv(.lambda_local_maps_status; .lambda_local_maps; "consistent"), $lam] | join("\t")' <<< "$json" >> "$out"
+       lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
   done
   echo "done $name" >&2
 }
@@ -55,9 +52,7 @@ export -f case_rows
 export levels
 
 start=$(date +%s)
-while read -r name _ _ lo hi lam; do
-  if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $lo $hi $lam"; fi
-done < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+zoo_band_cases | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
 elapsed=$(($(date +%s) - start))
 
 echo "# The automatic pipeline on noisy records (written by scripts/measure_noise_neighbourhood.sh)"

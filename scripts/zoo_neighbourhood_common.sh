@@ -12,7 +12,11 @@
 #                   for a map)
 #   zoo_verdicts    jq definitions: num (4 decimals, "-" for none), d2v (a D2 against $lo and $hi)
 #                   and lv(status; value; confident status) (a lambda_1 within 10% of $lam); a
-#                   confident estimate outside its band is WRONG, anything not confident is unsure
+#                   confident estimate outside its band is WRONG, anything not confident is unsure; and
+#                   lambda_columns (the six lambda_1 columns: value and status, verdict, for
+#                   Rosenstein, Kantz and local maps, from analyze's JSON)
+#   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
+#                   (name,name; empty: all) selects
 #   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
 
 zoo_build=${1:-build}
@@ -44,7 +48,19 @@ zoo_verdicts='
   def d2v: if .d2_status != "saturated" then "unsure"
            elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
   def lv(s; v; ok): if s != ok then "unsure"
-           elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;'
+           elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+  def lambda_columns:
+    "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
+    "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
+    "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
+    lv(.lambda_local_maps_status; .lambda_local_maps; "consistent");'
+
+zoo_band_cases() {
+  local name
+  while read -r name _ _ lo hi lam; do
+    if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $lo $hi $lam"; fi
+  done < "$work/systems"
+}
 
 zoo_table_rows() {
   local name
