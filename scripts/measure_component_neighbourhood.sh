@@ -15,9 +15,8 @@
 # same ones (Takens 1981; Sauer, Yorke & Casdagli 1991). A confident D2 (saturated) must lie in the
 # row's D2 band and a confident lambda_1 (Rosenstein and Kantz: linear_region, local maps:
 # consistent) within 10% of lambda_1 from the equations, or the row is wrong. Any other status is
-# unsure. Observables that are not generic are marked in the notes column where known: a symmetric
-# one (Lorenz z, invariant under (x, y) -> (-x, -y), sees the attractor folded onto itself: locally
-# the same D2 and lambda_1) or a wrapped angle (discontinuous).
+# unsure. A symmetric observable (Lorenz z, invariant under (x, y) -> (-x, -y)) sees the attractor
+# folded onto itself, which changes neither D2 nor lambda_1 locally, so it keeps the bands.
 #
 # Usage: scripts/measure_component_neighbourhood.sh [build-dir] > table.md
 # Environment: JOBS (2) parallel cases; ONLY=name,name to restrict the systems.
@@ -50,9 +49,7 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
     cut -f"$c" "$work/$name.cols" > "$work/$name.$c.dat"
     json=$("$chaos" analyze "$work/$name.$c.dat" ${dt:+--dt $dt} --json -q 2> /dev/null) || json='{}'
     jq -r --arg name "$name" --arg var "$var" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
-      [$name, $var, (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
-       "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v,
-       lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
+      [$name, $var, automatic_columns, lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
   done
   echo "done $name" >&2
 }

@@ -42,9 +42,7 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
       FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$work/$name.dat" "$work/noise" > "$work/$name.$snr.dat"
     json=$("$chaos" analyze "$work/$name.$snr.dat" ${dt:+--dt $dt} --json -q 2> /dev/null) || json='{}'
     jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
-      [$name, $snr, (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
-       "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v,
-       lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
+      [$name, $snr, automatic_columns, lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
   done
   echo "done $name" >&2
 }

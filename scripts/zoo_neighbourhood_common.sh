@@ -12,8 +12,9 @@
 #                   for a map)
 #   zoo_verdicts    jq definitions: num (4 decimals, "-" for none), d2v (a D2 against $lo and $hi)
 #                   and lv(status; value; confident status) (a lambda_1 within 10% of $lam); a
-#                   confident estimate outside its band is WRONG, anything not confident is unsure; and
-#                   lambda_columns (the six lambda_1 columns: value and status, verdict, for
+#                   confident estimate outside its band is WRONG, anything not confident is unsure;
+#                   automatic_columns (analyze's own delay, m and w, then D2 with its status, the
+#                   band and the verdict) and lambda_columns (the six lambda_1 columns: value and status, verdict, for
 #                   Rosenstein, Kantz and local maps, from analyze's JSON)
 #   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
 #                   (name,name; empty: all) selects
@@ -49,6 +50,9 @@ zoo_verdicts='
            elif .d2 >= ($lo | tonumber) and .d2 <= ($hi | tonumber) then "in_band" else "WRONG" end;
   def lv(s; v; ok): if s != ok then "unsure"
            elif v >= 0.9 * ($lam | tonumber) and v <= 1.1 * ($lam | tonumber) then "in_band" else "WRONG" end;
+  def automatic_columns:
+    (.delay // "-" | tostring), (.embedding_dimension // "-" | tostring), (.theiler // "-" | tostring),
+    "\(.d2 | num) \(.d2_status // .stopped // "error")", "[\($lo), \($hi)]", d2v;
   def lambda_columns:
     "\(.lambda | num) \(.lambda_status // "error")", lv(.lambda_status; .lambda; "linear_region"),
     "\(.lambda_kantz | num) \(.lambda_kantz_status // "error")", lv(.lambda_kantz_status; .lambda_kantz; "linear_region"),
