@@ -159,7 +159,11 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
                         {"status_a", to_string(r.status_a)}, {"d2_a", optional_json(r.d2_a)},
                         {"status_b", to_string(r.status_b)}, {"d2_b", optional_json(r.d2_b)},
                         {"status_merged", to_string(r.status_merged)}, {"d2_merged", optional_json(r.d2_merged)},
-                        {"agreed", r.agreed}, {"stable", r.stable}, {"competing_plateau", optional_json(r.competing)}});
+                        {"region_a", interval_json(r.region_a)}, {"region_b", interval_json(r.region_b)},
+                        {"region_merged", interval_json(r.region_merged)},
+                        {"standard_error", optional_json(r.standard_error)}, {"agreed", r.agreed},
+                        {"region_shift", optional_json(r.region_shift)}, {"same_region", r.same_region},
+                        {"precise", r.precise}, {"stable", r.stable}, {"competing_plateau", optional_json(r.competing)}});
     j["fast"] = {{"target", params.adaptive.target},
                  {"reference_points", fast->exact ? nlohmann::ordered_json("exact") : nlohmann::ordered_json(fast->reference_points)},
                  {"exact", fast->exact},

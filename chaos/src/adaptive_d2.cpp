@@ -12,6 +12,9 @@ void AdaptiveD2Options::validate() const {
   if (!(target > 0.0) || !std::isfinite(target))
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the fast D2's target agreement must be positive and finite (got " + std::to_string(target) + ")");
+  if (!(confidence > 0.0) || !std::isfinite(confidence))
+    throw InvalidInput(ErrorCode::invalid_parameter, "the fast D2's confidence factor must be positive and finite (got " +
+                                                         std::to_string(confidence) + ")");
   if (initial_reference_points < 2)
     throw InvalidInput(ErrorCode::invalid_parameter, "the fast D2 needs at least 2 initial reference points (got " +
                                                          std::to_string(initial_reference_points) + ")");
@@ -59,6 +62,16 @@ CorrelationSumResult merge(CorrelationSumResult a, const CorrelationSumResult& b
 
 bool overlap(const std::optional<Interval>& a, const std::optional<Interval>& b) {
   return a && b && std::max(a->low, b->low) <= std::min(a->high, b->high);
+}
+
+// How far apart two scaling regions lie, in steps of the radius grid: the larger of the two ends'
+// distances (a region's ends are radii of the grid).
+std::size_t region_distance(const std::vector<double>& radius, const Interval& a, const Interval& b) {
+  const auto index = [&](double r) {
+    return static_cast<std::ptrdiff_t>(std::lower_bound(radius.begin(), radius.end(), r) - radius.begin());
+  };
+  return static_cast<std::size_t>(
+      std::max(std::abs(index(a.low) - index(b.low)), std::abs(index(a.high) - index(b.high))));
 }
 
 // The counts with jackknife group g left out (no groups of their own).
@@ -142,8 +155,9 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
   for (;;) {
     if (counted > points / 16) {  // the next round would count more than an eighth of the points
       exact();
-      why << "the subsets did not agree within " << options.target << " on one unambiguous plateau that leaving out "
-          << "any group of reference points keeps, up to " << counted << " reference points; exact counts instead "
+      why << "the subsets did not agree within " << options.target << " on one unambiguous plateau and scaling "
+          << "region, precisely enough, that leaving out any group of reference points keeps, up to " << counted
+          << " reference points; exact counts instead "
           << "(the next round would count more than an eighth of the " << points << " points)";
       break;
     }
@@ -159,10 +173,19 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     round.d2_a = total_d2.d2;
     round.d2_b = other_d2.d2;
     round.d2_merged = merged_d2.d2;
+    round.region_a = total_d2.scaling_region;
+    round.region_b = other_d2.scaling_region;
+    round.region_merged = merged_d2.scaling_region;
+    round.standard_error = merged_d2.d2_standard_error;
     round.agreed = total_d2.d2 && other_d2.d2 && merged_d2.d2 && std::abs(*total_d2.d2 - *other_d2.d2) <= options.target &&
                    overlap(merged_d2.scaling_region, total_d2.scaling_region) &&
                    overlap(merged_d2.scaling_region, other_d2.scaling_region);
-    round.stable = round.agreed && stable_choice(merged, merged_d2, dimension, options.target);
+    if (round.agreed)
+      round.region_shift = std::max(region_distance(merged.radius, *merged_d2.scaling_region, *total_d2.scaling_region),
+                                    region_distance(merged.radius, *merged_d2.scaling_region, *other_d2.scaling_region));
+    round.same_region = round.agreed && *round.region_shift <= options.region_slack;
+    round.precise = round.standard_error && options.confidence * *round.standard_error <= options.target;
+    round.stable = round.same_region && round.precise && stable_choice(merged, merged_d2, dimension, options.target);
     if (round.stable) {
       round.competing = competing_plateau(merged_d2, options.target);
       round.stable = !round.competing;
@@ -176,9 +199,11 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
       out.d2 = std::move(total_d2);
       out.reference_points = counted;
       why << "two disjoint subsets of " << round.reference_points << " reference points agree (D2 " << *round.d2_a
-          << " and " << *round.d2_b << ", within " << options.target << ", on overlapping plateaus), leaving out "
-          << "any group of them keeps the plateau, and no other plateau reads another D2; D2 from all " << counted
-          << " of them";
+          << " and " << *round.d2_b << ", within " << options.target << ", on scaling regions within "
+          << options.region_slack << " radii of the merged one at both ends), the merged D2's standard error "
+          << *round.standard_error << " is at most " << options.target << " / " << options.confidence
+          << ", leaving out any group of them keeps the plateau, and no other plateau reads another D2; D2 from all "
+          << counted << " of them";
       break;
     }
   }

@@ -19,6 +19,8 @@
 #include <type_traits>
 #include <utility>
 
+#include <boost/sort/pdqsort/pdqsort.hpp>
+
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
 #include "chaos/random.hpp"
@@ -341,7 +343,7 @@ Histogram brute_exact(const Problem& pb) {
 template <class N>
 std::vector<Count> box_dimension_one(const Problem& pb) {
   std::vector<double> v(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
-  std::sort(v.begin(), v.end());
+  boost::sort::pdqsort(v.begin(), v.end());
   const auto acc = [](double a, double b) { return N::add(0.0, std::abs(a - b)); };
   std::vector<Count> pairs(pb.nr, 0);
   for (std::size_t k = 0; k < pb.nr; ++k) {
@@ -489,13 +491,32 @@ Grid build_grid(const Problem& pb) {
     std::size_t i;
   };
   std::vector<Key> keys(n);
+  std::int64_t last_row = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double q = (pb.at(i, 1) - lo) / h;  // h may be infinite (a radius beyond all distances): one row
     keys[i] = {static_cast<std::int64_t>(std::isfinite(q) ? q : 0.0), pb.at(i, 0), i};
+    last_row = std::max(last_row, keys[i].row);
   }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    return a.row != b.row ? a.row < b.row : (a.c0 != b.c0 ? a.c0 < b.c0 : a.i < b.i);
-  });
+  // Sorted by (row, c0, i). With no more rows than points (the usual case: h >= r_max), a counting
+  // sort by row (stable, so index order within a row) and then each row by (c0, i): the same order
+  // in about half the time of sorting the triples, which is most of the grid's build and counts in
+  // `chaos d2 --fast` (Lorenz x 10^5: 10 of 100 ms).
+  const auto by_c0 = [](const Key& a, const Key& b) { return a.c0 != b.c0 ? a.c0 < b.c0 : a.i < b.i; };
+  if (static_cast<std::uint64_t>(last_row) < n) {
+    std::vector<std::size_t> start(static_cast<std::size_t>(last_row) + 2, 0);
+    for (const Key& k : keys) ++start[static_cast<std::size_t>(k.row) + 1];
+    for (std::size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
+    std::vector<Key> grouped(n);
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (const Key& k : keys) grouped[next[static_cast<std::size_t>(k.row)]++] = k;
+    for (std::size_t r = 0; r + 1 < start.size(); ++r)
+      boost::sort::pdqsort_branchless(grouped.begin() + static_cast<std::ptrdiff_t>(start[r]),
+                                      grouped.begin() + static_cast<std::ptrdiff_t>(start[r + 1]), by_c0);
+    keys.swap(grouped);
+  } else {
+    std::sort(keys.begin(), keys.end(),
+              [&](const Key& a, const Key& b) { return a.row != b.row ? a.row < b.row : by_c0(a, b); });
+  }
   Grid g;
   g.size = n;
   g.coords.resize(n * pb.max_m);
@@ -1160,7 +1181,7 @@ class SpatialCounter final : public ReferenceCounter {
     if (pb.max_m >= 2) walk_.emplace(pb);
     if (pb.min_m == 1) {
       sorted_.assign(pb.y.begin(), pb.y.begin() + static_cast<std::ptrdiff_t>(pb.points));
-      std::sort(sorted_.begin(), sorted_.end());
+      boost::sort::pdqsort(sorted_.begin(), sorted_.end());  // branchless for doubles: half std::sort's time
     }
   }
 

@@ -114,6 +114,30 @@ TEST(ReadSeries, LineEndsRangeAndBinary) {
   expect_refusal([] { chaos::read_series("/tmp"); }, ErrorCode::io, {"/tmp: is a directory"});
 }
 
+// The reader takes the input in blocks of 2^16 bytes: a CR LF split across two blocks is one line
+// end, a line longer than a block is one line, and every line of a long file arrives once, in
+// order, with a lone CR and the last line's missing end honoured after many blocks. Expected values
+// are the numbers written into the text.
+TEST(ReadSeries, LinesAcrossReadBlocks) {
+  constexpr std::size_t block = std::size_t{1} << 16;
+  for (std::size_t shift = 0; shift < 3; ++shift) {  // the CR LF at block - 2, - 1 (split) and + 0
+    std::string text(block - 3 + shift, ' ');          // blank padding on line 1, then its value
+    text += "1\r\n2\n";
+    EXPECT_EQ(read(text).values, (std::vector<double>{1, 2})) << "shift " << shift;
+  }
+  std::string long_line(3 * block, ' ');
+  EXPECT_EQ(read(long_line + "7 8\n9").values, (std::vector<double>{7, 9}));
+  std::string many;
+  std::vector<double> expected;
+  for (int i = 0; i < 50000; ++i) {
+    many += std::to_string(i) + (i % 3 == 0 ? "\r\n" : i % 3 == 1 ? "\r" : "\n");
+    expected.push_back(i);
+  }
+  many += "50000";  // no line end at all
+  expected.push_back(50000);
+  EXPECT_EQ(read(many).values, expected);
+}
+
 // `chaos section` counted the columns with a splitter of its own that knew no lone CR line end
 // ("no data columns" for a CR file); it shares the reader's now.
 TEST(ReadSeries, CountColumns) {

@@ -13,17 +13,29 @@
 // merges them. A round is accepted when
 //   - both subsets and the merged counts saturate, the two D2 agree within `target`, and the
 //     merged plateau overlaps both subsets' plateaus (the same scales, not another phase);
+//   - both subsets' scaling regions end within `region_slack` radii of the merged one's, at both
+//     ends: the region has stopped moving as the budget doubles. A subset's local slopes at small
+//     radii are too uncertain to join a plateau that the exact counts extend further down, and
+//     where the slope drifts across the plateau (within the 5% tolerance) the region's ends move
+//     D2. On Rikitake x (N = 10^5, seed 1) two subsets of 250 points agreed on 2.026 and 2.031 on
+//     regions starting at radius 13 of 40; the merged region started at 10, and the exact one at 3
+//     reads 2.073, 0.037 away;
+//   - the merged D2's jackknife standard error times `confidence` is at most `target`. One
+//     agreement of two draws is weak evidence where each draw spreads by about the target: on
+//     Lorenz-84 x two subsets of 500 points agreed within 0.015, and the merged 2.279 (standard
+//     error 0.016) lay 0.025 from the exact 2.304;
 //   - the merged counts keep that plateau, within target / 2, with any one of their jackknife
 //     groups of reference points left out;
 //   - no other admissible plateau of the saturating dimensions, above or below, reads a slope more
 //     than `target` away. Two readings of one set of counts mean that a near-tie in support picks
 //     the answer: two disjoint subsets of 8000 Henon points (seed 2) both read 1.13 at eps
 //     0.005-0.015, where the exact counts choose 1.234 at 0.019-0.053, and only this test sees it.
-// The merged D2, from 2T points, is then within about target / 2 of the large-budget limit: the
-// difference of two independent estimates has sqrt(2) times the spread of one, the merge
-// 1/sqrt(2). When the next round would count more than an eighth of the points, the exact counts
-// are used instead: a budget that has not settled by then saves little, and the rounds already
-// spent cost about a third of the exact job on top of it (Henon, N = 10^5: 1.3 times the exact job).
+// The two middle conditions came from `scripts/measure_fast_d2.sh` (docs/correlation_dimension.md):
+// without them, on the zoo's chaotic series at N = 10^5 (three seeds, first rounds of 250 points), 7
+// of 62 accepted budgets lay 0.020-0.041 from the exact D2; with them, none (docs/fast-d2-zoo.md). When the next round would count more than an eighth of the points, the
+// exact counts are used instead: a budget that has not settled by then saves little, and the rounds
+// already spent cost about a third of the exact job on top of it (Henon, N = 10^5: 1.3 times the
+// exact job).
 
 #include <cstddef>
 #include <optional>
@@ -39,6 +51,8 @@ namespace chaos {
 struct AdaptiveD2Options {
   double target = 0.02;                     // two disjoint subsets' D2 must agree within this
   std::size_t initial_reference_points = 500;  // T of the first round (each subset)
+  std::size_t region_slack = 1;             // radii by which a subset's scaling region may end away from the merged one's
+  double confidence = 2.5;                  // the merged D2's standard error times this is at most the target
   void validate() const;
 };
 
@@ -48,9 +62,14 @@ struct AdaptiveD2Round {
   D2Status status_a = D2Status::no_scaling_region, status_b = D2Status::no_scaling_region,
            status_merged = D2Status::no_scaling_region;
   std::optional<double> d2_a, d2_b, d2_merged;
+  std::optional<Interval> region_a, region_b, region_merged;  // the scaling regions (radii)
+  std::optional<double> standard_error;  // the merged D2's, jackknife over groups of reference points
   bool agreed = false;  // a and b saturate and agree within the target on overlapping plateaus
-  bool stable = false;  // and the merged plateau survives leaving out any jackknife group, with no
-                        // competing plateau (accepted)
+  std::optional<std::size_t> region_shift;  // agreed: the farthest either subset's region ends from the merged one's, in radii
+  bool same_region = false;  // agreed, with region_shift at most region_slack
+  bool precise = false;      // confidence * standard_error <= target
+  bool stable = false;  // same_region and precise, the merged plateau survives leaving out any
+                        // jackknife group, and no competing plateau (accepted)
   std::optional<double> competing;  // the slope of another plateau more than the target from D2
 };
 
