@@ -86,7 +86,7 @@ knobs() {
 # seeds CASE DATA ARGS...: a fixed subset of 1000 reference points and --fast over seeds 1-5 (one
 # run each), against the exact D2 of run CASE-exact: what a fixed budget risks and what --fast does.
 seeds() {
-  local case=$1 data=$2 s kind id seconds status d2 diff budget exact
+  local case=$1 data=$2 s kind id seconds status d2 budget exact
   shift 2
   exact=$(jq -r '.d2' "$work/$case-exact.json")
   echo "| setting | seed | wall s | status | d2 | \\|d2 - exact d2\\| | scaling region (eps) | reference points |"
@@ -100,6 +100,7 @@ seeds() {
         /usr/bin/time -f '%e' -o "$work/time" "$chaos" d2 "$data" "$@" --fast --seed "$s" --json > "$work/$id.json"
       fi
       seconds=$(cat "$work/time")
+      # shellcheck disable=SC2016  # Markdown code spans: the backticks are literal
       jq -r --arg setting "$([[ $kind == subset ]] && echo '`--reference-points 1000`' || echo '`--fast`')" \
         --arg seed "$s" --arg seconds "$seconds" --argjson exact "$exact" '
         [$setting, $seed, $seconds, .status,
@@ -282,7 +283,8 @@ notes() {
   echo
   echo "One run each; the exact D2 is the exact row's above. A fixed budget of 1000 reference points gives a"
   echo "saturated D2 whatever it lands on; \`--fast\` doubles the subset until two disjoint subsets agree on one"
-  echo "unambiguous plateau, or uses the exact counts (its last column: \"exact\"). How it decides:"
+  echo "unambiguous plateau and scaling region, precisely enough, or uses the exact counts (its last column:"
+  echo "\"exact\"). How it decides:"
   echo "\`chaos/include/chaos/adaptive_d2.hpp\` and docs/correlation_dimension.md."
   echo
   echo "Lorenz x:"
