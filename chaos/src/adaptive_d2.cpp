@@ -180,9 +180,11 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     round.agreed = total_d2.d2 && other_d2.d2 && merged_d2.d2 && std::abs(*total_d2.d2 - *other_d2.d2) <= options.target &&
                    overlap(merged_d2.scaling_region, total_d2.scaling_region) &&
                    overlap(merged_d2.scaling_region, other_d2.scaling_region);
-    if (round.agreed)
-      round.region_shift = std::max(region_distance(merged.radius, *merged_d2.scaling_region, *total_d2.scaling_region),
-                                    region_distance(merged.radius, *merged_d2.scaling_region, *other_d2.scaling_region));
+    if (round.agreed) {
+      const Interval& region = *merged_d2.scaling_region;
+      round.region_shift = std::max(region_distance(merged.radius, region, *total_d2.scaling_region),
+                                    region_distance(merged.radius, region, *other_d2.scaling_region));
+    }
     round.same_region = round.agreed && *round.region_shift <= options.region_slack;
     round.precise = round.standard_error && options.confidence * *round.standard_error <= options.target;
     round.stable = round.same_region && round.precise && stable_choice(merged, merged_d2, dimension, options.target);
@@ -200,8 +202,9 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
       out.reference_points = counted;
       why << "two disjoint subsets of " << round.reference_points << " reference points agree (D2 " << *round.d2_a
           << " and " << *round.d2_b << ", within " << options.target << ", on scaling regions within "
-          << options.region_slack << " radii of the merged one at both ends), the merged D2's standard error "
-          << *round.standard_error << " is at most " << options.target << " / " << options.confidence
+          << options.region_slack << (options.region_slack == 1 ? " radius" : " radii")
+          << " of the merged one at both ends), the merged D2's standard error " << *round.standard_error
+          << " is at most " << options.target << " / " << options.confidence
           << ", leaving out any group of them keeps the plateau, and no other plateau reads another D2; D2 from all "
           << counted << " of them";
       break;

@@ -85,14 +85,15 @@ TEST(AdaptiveD2, AcceptedBudgetsLandWithinTheTargetOfTheExactD2) {
   expect_promise_kept(chaos::henon(20'000).components[0], henon_options(), 250, "Henon x");
 }
 
-// Two systems --fast was not built on, where the rounds without the region and precision tests
-// accepted budgets more than 0.02 from the exact D2 at N = 10^5 (scripts/measure_fast_d2.sh); a
-// shorter record here, so the unit tier stays fast.
+// Two systems --fast was not built on, with the zoo's choices. Without the region and precision
+// tests (region_slack and confidence so loose they never refuse) seed 1 broke the promise on both:
+// Chen 2.241 against the exact 2.175, Rössler 1.874 against 1.896 (docs/fast-d2-zoo.md has the same
+// failure at N = 10^5 on seven runs of 135).
 TEST(AdaptiveD2, PromiseHoldsOutOfSample) {
-  const auto rikitake = chaos::zoo_trajectory(chaos::zoo_system("rikitake"), 20'000).components[0];
-  expect_promise_kept(rikitake, zoo_options(rikitake, 29, 34, 6), 250, "Rikitake x");
-  const auto rf = chaos::zoo_trajectory(chaos::zoo_system("rabinovich_fabrikant"), 20'000).components[0];
-  expect_promise_kept(rf, zoo_options(rf, 31, 64, 7), 250, "Rabinovich-Fabrikant x");
+  const auto chen = chaos::zoo_trajectory(chaos::zoo_system("chen"), 20'000).components[0];
+  expect_promise_kept(chen, zoo_options(chen, 10, 26, 7), 250, "Chen x");
+  const auto rossler = chaos::zoo_trajectory(chaos::zoo_system("rossler"), 20'000).components[0];
+  expect_promise_kept(rossler, zoo_options(rossler, 15, 29, 6), 250, "Rossler x");
 }
 
 TEST(AdaptiveD2, ShortSeriesGoStraightToTheExactCounts) {
