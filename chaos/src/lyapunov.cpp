@@ -272,7 +272,12 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
         return c;
       };
       Census c = census(eps);
-      for (int doublings = 0; c.covered < 0.5 && doublings < 60; ++doublings) c = census(eps *= 2.0);
+      // Beyond the embedded set's diameter every point is already a neighbour, so doubling on
+      // cannot cover more (min_neighbours above the points' count: 60 censuses of every pair).
+      const double diameter =
+          (*hi - *lo) * (options.norm == Norm::euclidean ? std::sqrt(static_cast<double>(m)) : 1.0);
+      for (int doublings = 0; c.covered < 0.5 && doublings < 60 && eps <= diameter; ++doublings)
+        c = census(eps *= 2.0);
       for (int halvings = 0; c.mean > default_neighbours && halvings < 60; ++halvings) {
         const Census smaller = census(eps / 2.0);
         if (smaller.covered < 0.5) break;
