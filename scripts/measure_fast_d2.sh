@@ -26,15 +26,8 @@ seeds=${SEEDS:-1 2 3}
 starts=${STARTS:-500}
 target=${TARGET:-0.02}
 
-# name tau m w, from the automatic-choice rows at N = 10^5 that got an embedding dimension.
-awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-  on && $5 + 0 > 0 && $3 + 0 == 100000 { for (i = 2; i <= 6; ++i) gsub(/ /, "", $i); print $2, $4, $5, $6 }' \
-  docs/zoo.md > "$work/systems"
-[[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
-if [[ -n ${ONLY:-} ]]; then
-  grep -E "^($(tr ',' '|' <<< "$ONLY")) " "$work/systems" > "$work/systems.only" || true
-  mv "$work/systems.only" "$work/systems"
-fi
+zoo_choices | zoo_only > "$work/systems"
+[[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md (or none ONLY selects)" >&2; exit 3; }
 
 timed() {  # out-json time-file args...: chaos d2 with its wall time
   local json=$1 tfile=$2
@@ -87,9 +80,7 @@ echo "($(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -1)); seeds
 echo
 echo "| system | tau | m | w | exact D2 | exact s | start | seed | budget | fast D2 | \\|fast - exact\\| | fast s | verdict |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-while read -r name _; do
-  [[ -s $work/rows.$name ]] && sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"
-done < "$work/systems"
+zoo_table_rows
 echo
 cat "$work"/rows.* | awk -F'\t' '{ n[$7] += 1; v[$7 " " $13] += 1 }
   END { for (s in n) { printf "- first round %s: %d runs: ok %d, exact fallback %d, unsure %d, MISS %d\n", s, n[s],

@@ -16,8 +16,10 @@
 #                   automatic_columns (analyze's own delay, m and w, then D2 with its status, the
 #                   band and the verdict) and lambda_columns (the six lambda_1 columns: value and status, verdict, for
 #                   Rosenstein, Kantz and local maps, from analyze's JSON)
+#   zoo_choices     one line "name tau m w" per such row (the zoo's delay, Cao's m and window)
+#   zoo_only        the lines of standard input whose first word ONLY (name,name; empty: all) selects
 #   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
-#                   (name,name; empty: all) selects
+#                   selects
 #   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
 
 zoo_build=${1:-build}
@@ -59,11 +61,24 @@ zoo_verdicts='
     "\(.lambda_local_maps | num) \(.lambda_local_maps_status // "error")",
     lv(.lambda_local_maps_status; .lambda_local_maps; "consistent");'
 
+# zoo_choices: one line "name tau m w" per automatic-choice row of docs/zoo.md at N = 10^5 that got an
+# embedding dimension (the delay, Cao's m and the Theiler window the zoo used), in the file's order.
+zoo_choices() {
+  awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
+    on && $5 + 0 > 0 && $3 + 0 == 100000 { for (i = 2; i <= 6; ++i) gsub(/ /, "", $i); print $2, $4, $5, $6 }' docs/zoo.md
+}
+
+# zoo_only: the lines of standard input whose first word is a system ONLY (name,name; empty: all) selects.
+zoo_only() {
+  local name rest
+  while read -r name rest; do
+    if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $rest"; fi
+  done
+}
+
 zoo_band_cases() {
   local name
-  while read -r name _ _ lo hi lam; do
-    if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $lo $hi $lam"; fi
-  done < "$work/systems"
+  while read -r name _ _ lo hi lam; do echo "$name $lo $hi $lam"; done < <(zoo_only < "$work/systems")
 }
 
 zoo_table_rows() {
