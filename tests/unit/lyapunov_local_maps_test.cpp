@@ -133,6 +133,51 @@ TEST(LocalMaps, WhiteNoiseIsNotDeterministic) {
   }
 }
 
+TEST(LocalMaps, AFailingBaseSkipsTheVariants) {
+  // Property: the status of a base that fails its own tests (here not_deterministic) cannot depend on
+  // the variants, so they are not computed; the result lists the base and its chain's halves only.
+  chaos::Random random(11);
+  std::vector<double> x(5000);
+  for (auto& v : x) v = random.gaussian();
+  const auto r = chaos::largest_lyapunov_local_maps(x, options(3));
+  ASSERT_EQ(r.status, LocalMapStatus::not_deterministic) << r.explanation;
+  ASSERT_EQ(r.variants.size(), 3u);
+  EXPECT_EQ(r.variants[0].name, "base");
+  EXPECT_EQ(r.variants[1].name, "first half");
+  EXPECT_EQ(r.variants[2].name, "second half");
+}
+
+// The variants that keep the base's chain (k = 3m and 8m, the cutoffs, the residual limit) are
+// computed together on one neighbour search of 8m neighbours. Expected values: the same variants run
+// one by one with local_map_exponent, each with its own search (brute force in the sense that no
+// search is shared). Checked bit for bit on Henon x at two delays and on quantised data, where many
+// neighbours tie in distance and only the index order decides which k are the nearest.
+TEST(LocalMaps, VariantsOnOneSearchEqualSeparateRuns) {
+  auto quantised = henon_x(6000);
+  for (auto& v : quantised) v = std::round(v * 512.0) / 512.0;  // distances are multiples of 2^-9
+  const std::vector<std::pair<std::vector<double>, LocalMapOptions>> cases = {
+      {henon_x(6000), options(2)}, {henon_x(6000), options(3, 2, 2)}, {quantised, options(2)}};
+  for (const auto& [x, o] : cases) {
+    const auto r = chaos::largest_lyapunov_local_maps(x, o);
+    ASSERT_GE(r.variants.size(), 9u) << r.explanation;
+    std::size_t checked = 0;
+    for (const auto& v : r.variants) {
+      if (v.name == "first half" || v.name == "second half") continue;
+      LocalMapOptions alone = o;
+      alone.step = r.base.step;
+      alone.dimension = v.dimension;
+      alone.delay = v.delay;
+      alone.neighbours = v.neighbours;
+      if (v.name == "cutoff / 2") alone.cutoff = o.cutoff / 2.0;
+      if (v.name == "cutoff x 2") alone.cutoff = std::min(2.0 * o.cutoff, (1.0 + o.cutoff) / 2.0);
+      if (v.name == "residual limit x 2") alone.max_residual = std::min(2.0 * o.max_residual, 1.0);
+      EXPECT_EQ(chaos::local_map_exponent(x, alone).lambda, v.lambda) << v.name << " at tau = " << o.delay;
+      ++checked;
+    }
+    EXPECT_GE(checked, 7u);
+  }
+}
+
 TEST(LocalMaps, SineHasNoValue) {
   // A sine at an irrational period: a closed curve, on which the tangent vector's growth over a
   // period is exactly 1, so no positive exponent may be reported.

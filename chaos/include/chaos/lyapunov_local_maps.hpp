@@ -117,7 +117,10 @@ struct LocalMapResult {
 // (the average has converged). `consistent` needs
 // every variant within tolerance * |base| of the base, a positive base, and a median fit residual of
 // at most options.max_residual (white noise leaves about 90% of the image spread unexplained). A
-// variant the series is too short for makes the result `inconsistent`.
+// variant the series is too short for makes the result `inconsistent`. Where the base already fails
+// (median residual above the limit, no map averaged, or a base that is not positive) the variants are
+// not computed and `variants` holds the base and the halves. The variants that keep the base's chain
+// (k, cutoff, residual limit) share one neighbour search; the values equal separate runs bit for bit.
 LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const LocalMapOptions& options,
                                            std::optional<double> dt = std::nullopt, double tolerance = 0.05);
 

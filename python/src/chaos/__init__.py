@@ -297,10 +297,12 @@ def lyapunov_maps(x, *, dimension=2, delay=1, theiler=None, step=0, neighbours=0
     Rev. Mod. Phys. 57, 617 (1985); M. Sano & Y. Sawada, Phys. Rev. Lett. 55, 1082 (1985).
     docs/lyapunov-maps.md.
 
-    A value is given only with status ``consistent``: eight variants of the estimator's own choices
-    (k = 3m and 8m, m + 1, half and twice the cutoff, twice the residual limit, the chain's halves)
-    all lie within ``tolerance`` of the base (listed under ``variants``). Otherwise ``lambda`` is
-    None and ``status`` (not_deterministic, not_positive, inconsistent) and ``explanation`` say why.
+    A value is given only with status ``consistent``: the variants of the estimator's own choices
+    (k = 3m and 8m, m + 1, half and twice the cutoff, twice the residual limit, the delay -+ tau/4
+    when tau >= 2, the chain's halves) all lie within ``tolerance`` of the base (listed under
+    ``variants``). Otherwise ``lambda`` is None and ``status`` (not_deterministic, not_positive,
+    inconsistent) and ``explanation`` say why; a base that is not deterministic or not positive
+    lists only itself and its halves, as no variant could change that status.
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
     """
