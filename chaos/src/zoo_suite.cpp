@@ -4,6 +4,7 @@
 #include <atomic>
 #include <exception>
 #include <thread>
+#include <utility>
 #include <chrono>
 #include <numbers>
 #include <cmath>
@@ -332,6 +333,38 @@ CorrelationSumResult truncated(const CorrelationSumResult& sums, std::size_t top
   return t;
 }
 
+// Exact sums of one series at the grid's Theiler windows, counted together at the first request
+// (correlation_sums_over_theiler_windows: one walk of the pairs, the same counts as one call per
+// window). If that refuses some window, each request is counted alone by correlation_sum, so a
+// window is answered or refused exactly as a call per window would answer or refuse it.
+class SumsOverWindows {
+ public:
+  SumsOverWindows(std::span<const double> x, const CorrelationSumOptions& options, std::vector<std::size_t> windows)
+      : x_(x), options_(options), windows_(std::move(windows)) {}
+
+  CorrelationSumResult at(std::size_t q) {
+    if (!tried_) {
+      tried_ = true;
+      try {
+        together_ = correlation_sums_over_theiler_windows(x_, options_, windows_);
+      } catch (const InvalidInput&) {
+        together_.clear();
+      }
+    }
+    if (!together_.empty()) return together_[q];
+    CorrelationSumOptions alone = options_;
+    alone.theiler = windows_[q];
+    return correlation_sum(x_, alone);
+  }
+
+ private:
+  std::span<const double> x_;
+  CorrelationSumOptions options_;
+  std::vector<std::size_t> windows_;
+  bool tried_ = false;
+  std::vector<CorrelationSumResult> together_;
+};
+
 }  // namespace
 
 ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSuiteOptions& options) {
@@ -362,21 +395,23 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       if (!grid || !a.dimension || !a.delay) continue;
 
       const std::size_t m0 = *a.dimension;
-      for (const double factor : {1.0, 2.0, 3.0}) {
-        const std::size_t w = static_cast<std::size_t>(factor) * a.theiler;
-        const CorrelationSumOptions sum_options = automatic_correlation_sum_options(x, *a.delay, w, m0 + 3);
-        const CorrelationSumResult sums = correlation_sum(x, sum_options);
-        // The halves check, as in the pipeline (automatic_correlation_dimension), computed once per w
-        // and only when some dimension saturates.
+      const std::vector<std::size_t> windows{a.theiler, 2 * a.theiler, 3 * a.theiler};
+      const CorrelationSumOptions sum_options = automatic_correlation_sum_options(x, *a.delay, a.theiler, m0 + 3);
+      SumsOverWindows whole(x, sum_options, windows);
+      const auto [first_half, second_half] = record_halves(x);
+      SumsOverWindows first(first_half, sum_options, windows), second(second_half, sum_options, windows);
+      for (std::size_t q = 0; q < windows.size(); ++q) {
+        const double factor = static_cast<double>(q + 1);
+        const std::size_t w = windows[q];
+        const CorrelationSumResult sums = whole.at(q);
+        // The halves check, as in the pipeline (automatic_correlation_dimension), counted only when
+        // some dimension saturates.
         std::optional<std::pair<CorrelationSumResult, CorrelationSumResult>> halves;
         const auto d2_at = [&](std::size_t m) {
           CorrelationDimensionResult d2 = correlation_dimension(truncated(sums, m));
           if (d2.status != D2Status::saturated) return d2;
           try {
-            if (!halves) {
-              const auto [first, second] = record_halves(x);
-              halves.emplace(correlation_sum(first, sum_options), correlation_sum(second, sum_options));
-            }
+            if (!halves) halves.emplace(first.at(q), second.at(q));
             require_reproduced_by_halves(d2, correlation_dimension(truncated(halves->first, m)),
                                          correlation_dimension(truncated(halves->second, m)));
           } catch (const InvalidInput&) {

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -505,6 +506,63 @@ TEST(CorrelationSum, ReferenceOffsetCountsTheNextPointsOfTheOrder) {
   EXPECT_TRUE(refused_with(x, o, "got offset 80, reference_points 0"));
   o.reference_points = points - 79;
   EXPECT_TRUE(refused_with(x, o, "offset + reference_points <= the 1449 embedded points (got offset 80, reference_points 1370)"));
+}
+
+// correlation_sums_over_theiler_windows walks the pairs once at the smallest window and subtracts
+// the extra lags of each larger one. Expected values: the brute force above at each window (the
+// definition), and correlation_sum at that window in the same mode. Windows unsorted and repeated;
+// one above P/8 (where the grid tests the window in its scan instead of subtracting it); min m 1 and
+// 3; quantised data, whose distances tie with each other and with the radii; 1 and 3 threads.
+TEST(CorrelationSum, SeveralTheilerWindowsEqualOneCallEach) {
+  const auto lorenz = chaos::lorenz(900).components[0];
+  auto quantised = chaos::henon(900).components[0];
+  for (auto& v : quantised) v = std::round(v * 16.0) / 16.0;
+  const std::vector<std::size_t> windows{40, 0, 200, 40, 7};
+  for (const auto& [x, tau, radii] :
+       {std::tuple{lorenz, std::size_t{9}, chaos::log_radii(0.3, 6.0, 10)},
+        std::tuple{quantised, std::size_t{1}, std::vector<double>{0.0625, 0.125, 0.25, 0.5, 0.75}}})
+    for (const auto norm : both_norms)
+      for (const std::size_t min_m : {1u, 3u}) {
+        std::vector<Expected> expected;
+        for (const std::size_t w : windows) expected.push_back(brute_force(x, options(tau, min_m, 4, w, radii, norm)));
+        for (const auto mode : all_modes)
+          for (const std::size_t threads : {1u, 3u}) {
+            auto o = options(tau, min_m, 4, 0, radii, norm);
+            o.search = mode;
+            o.threads = threads;
+            const auto all = chaos::correlation_sums_over_theiler_windows(x, o, windows);
+            ASSERT_EQ(all.size(), windows.size());
+            for (std::size_t q = 0; q < windows.size(); ++q) {
+              o.theiler = windows[q];
+              const std::string what = describe(o);
+              expect_matches(all[q], expected[q], what);
+              const auto alone = chaos::correlation_sum(x, o);
+              EXPECT_EQ(all[q].correlation_sum, alone.correlation_sum) << what;
+              EXPECT_EQ(all[q].dimension, alone.dimension) << what;
+              EXPECT_EQ(all[q].radius, alone.radius) << what;
+              EXPECT_EQ(all[q].points, alone.points) << what;
+              EXPECT_EQ(all[q].range, alone.range) << what;
+            }
+          }
+      }
+  const auto refused = [&](CorrelationSumOptions o, std::vector<std::size_t> w, const std::string& fragment) {
+    try {
+      (void)chaos::correlation_sums_over_theiler_windows(lorenz, o, w);
+    } catch (const chaos::InvalidInput& e) {
+      return std::string(e.what()).find(fragment) != std::string::npos;
+    }
+    return false;
+  };
+  const auto o = options(9, 1, 4, 0, chaos::log_radii(0.3, 6.0, 10));
+  EXPECT_TRUE(refused(o, {}, "no window given"));
+  auto capped = o;
+  capped.pairs_per_radius = 100;
+  EXPECT_TRUE(refused(capped, {5}, "exact counts only (got a pair cap of 100 and 0 reference points"));
+  auto subset = o;
+  subset.reference_points = 50;
+  EXPECT_TRUE(refused(subset, {5}, "exact counts only (got a pair cap of 0 and 50 reference points"));
+  // The largest window is checked as correlation_sum checks it: 900 - 27 points leave no pair beyond w = 872.
+  EXPECT_TRUE(refused(o, {5, 872}, "N >= (m-1)*tau + w + 2 = 3*9 + 872 + 2"));
 }
 
 TEST(CorrelationSum, SubsetsShareOneStructureAndGiveTheSameCounts) {

@@ -83,6 +83,17 @@ std::vector<double> log_radii(double r_min, double r_max, std::size_t n);
 
 CorrelationSumResult correlation_sum(std::span<const double> x, const CorrelationSumOptions& options);
 
+// Exact correlation sums at several Theiler windows: element q equals correlation_sum(x, options)
+// with options.theiler = theilers[q], count for count (options.theiler is not used). The pairs are
+// walked once, at the smallest window; for each larger window the pairs with lags between the two
+// are enumerated and subtracted: P (w_max - w_min) pairs instead of a walk of every close pair per
+// window. For checking that D2 holds over a neighbourhood of w (docs/correlation_sum.md). Exact
+// counts only: refuses a pair cap or a reference subset, and whatever correlation_sum refuses at
+// any of the windows.
+std::vector<CorrelationSumResult> correlation_sums_over_theiler_windows(std::span<const double> x,
+                                                                        const CorrelationSumOptions& options,
+                                                                        std::span<const std::size_t> theilers);
+
 // Correlation sums of one series over several reference subsets, with the search structure (grid
 // or kd-tree, and the sorted values for m = 1) built once instead of once per subset: `chaos d2
 // --fast` counts disjoint subsets of one series round after round. count(offset, points) equals
