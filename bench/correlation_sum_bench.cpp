@@ -17,6 +17,8 @@
 //   Henon x (a = 1.4, b = 0.3), N = 10^5, tau = 1, m = 1..4, 40 radii 0.005 .. 0.4, w = 10;
 //   Lorenz x as above,          N = 10^5, tau = 17, m = 1..6, 40 radii 0.25 .. 5, w = 200;
 // each with 1 and 2 threads (real time is reported, as the threads share the work).
+// BM_TheilerWindowsLorenz: the Lorenz job at three Theiler windows, one call each against one call
+// for all three.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -121,5 +123,32 @@ void targets(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_TargetHenon)->Apply(targets);
 BENCHMARK(BM_TargetLorenz)->Apply(targets);
+
+// The Lorenz target job at three Theiler windows (200, 400, 600: the zoo grid's 1, 2 and 3 times
+// w), one correlation_sum per window (range(0) = 0) against correlation_sums_over_theiler_windows
+// (range(0) = 1); one thread. docs/correlation_sum.md, "Several Theiler windows".
+void BM_TheilerWindowsLorenz(benchmark::State& state) {
+  const std::vector<double>& x = lorenz_x(100'000);
+  chaos::CorrelationSumOptions o;
+  o.delay = 17;
+  o.max_dimension = 6;
+  o.radii = chaos::log_radii(0.25, 5.0, 40);
+  const std::vector<std::size_t> windows{200, 400, 600};
+  std::vector<chaos::CorrelationSumResult> r;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      r.clear();
+      for (const std::size_t w : windows) {
+        o.theiler = w;
+        r.push_back(chaos::correlation_sum(x, o));
+      }
+    } else {
+      r = chaos::correlation_sums_over_theiler_windows(x, o, windows);
+    }
+    benchmark::DoNotOptimize(r.data());
+  }
+  report(state, r.back());
+}
+BENCHMARK(BM_TheilerWindowsLorenz)->Arg(0)->Arg(1)->ArgName("together")->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
