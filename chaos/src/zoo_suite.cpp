@@ -399,11 +399,11 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       const CorrelationSumOptions sum_options = automatic_correlation_sum_options(x, *a.delay, a.theiler, m0 + 3);
       SumsOverWindows whole(x, sum_options, windows);
       const auto [first_half, second_half] = record_halves(x);
-      SumsOverWindows first(first_half, sum_options, windows), second(second_half, sum_options, windows);
-      for (std::size_t q = 0; q < windows.size(); ++q) {
-        const double factor = static_cast<double>(q + 1);
-        const std::size_t w = windows[q];
-        const CorrelationSumResult sums = whole.at(q);
+      SumsOverWindows first_sums(first_half, sum_options, windows), second_sums(second_half, sum_options, windows);
+      for (std::size_t wi = 0; wi < windows.size(); ++wi) {
+        const double factor = static_cast<double>(wi + 1);
+        const std::size_t w = windows[wi];
+        const CorrelationSumResult sums = whole.at(wi);
         // The halves check, as in the pipeline (automatic_correlation_dimension), counted only when
         // some dimension saturates.
         std::optional<std::pair<CorrelationSumResult, CorrelationSumResult>> halves;
@@ -411,7 +411,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           CorrelationDimensionResult d2 = correlation_dimension(truncated(sums, m));
           if (d2.status != D2Status::saturated) return d2;
           try {
-            if (!halves) halves.emplace(first.at(q), second.at(q));
+            if (!halves) halves.emplace(first_sums.at(wi), second_sums.at(wi));
             require_reproduced_by_halves(d2, correlation_dimension(truncated(halves->first, m)),
                                          correlation_dimension(truncated(halves->second, m)));
           } catch (const InvalidInput&) {
