@@ -61,7 +61,10 @@ Parsed parse_double(std::string_view token, double& value) {
 // a 10^5-row file). A line ends at LF, CR LF or a lone CR (a classic Mac file, or lines mixed by
 // editors): with only LF as the end, a CR-separated file read as one line of many columns, and
 // column 1 of it as a one-sample series (issue 16, corrupt-file tier). It reads ahead of the line
-// it returns, so the stream is spent once the reader is done with it.
+// it returns, so the stream is spent once the reader is done with it. A UTF-8 byte-order mark at
+// the start of the first line (spreadsheet exports) is not part of the line.
+constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
+
 class LineReader {
  public:
   explicit LineReader(std::istream& in) : in_(in) {}
@@ -76,7 +79,7 @@ class LineReader {
       // A CR last in what has been read may be the first half of a CR LF: read on before deciding.
       const bool undecided = end + 1 == rest.size() && rest[end] == '\r' && !spent_;
       if (end < rest.size() && !undecided) {
-        line = rest.substr(0, end);
+        deliver(line, rest.substr(0, end));
         const bool crlf = rest[end] == '\r' && end + 1 < rest.size() && rest[end + 1] == '\n';
         pos_ += end + (crlf ? 2 : 1);
         scanned_ = 0;
@@ -90,7 +93,7 @@ class LineReader {
         in_.setstate(std::ios::eofbit);
         return false;
       }
-      line = rest;  // the last line has no end
+      deliver(line, rest);  // the last line has no end
       pos_ = buffer_.size();
       scanned_ = 0;
       return true;
@@ -98,6 +101,12 @@ class LineReader {
   }
 
  private:
+  void deliver(std::string_view& line, std::string_view text) {
+    if (first_ && text.substr(0, byte_order_mark.size()) == byte_order_mark) text.remove_prefix(byte_order_mark.size());
+    first_ = false;
+    line = text;
+  }
+
   // Appends the next block after dropping what was returned; at the end of the input, spent_.
   void fill() {
     constexpr std::size_t block = std::size_t{1} << 16;
@@ -115,9 +124,8 @@ class LineReader {
   std::size_t pos_ = 0;      // start of the next line in buffer_
   std::size_t scanned_ = 0;  // bytes after pos_ known to hold no line end
   bool spent_ = false;       // the stream has nothing more to give
+  bool first_ = true;        // the next line is the first
 };
-
-constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";
 
 // The length of the valid UTF-8 sequence at the start of `s` (2 to 4 bytes), or 0.
 std::size_t utf8_sequence(std::string_view s) {
@@ -201,7 +209,6 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   const auto where = [&] { return source_name + ":" + std::to_string(line_number) + ": "; };
   while (series.values.size() < options.length && reader.next(line)) {
     ++line_number;
-    if (line_number == 1 && line.substr(0, 3) == byte_order_mark) line.remove_prefix(3);
     tokenize(line, tokens);
     if (tokens.empty()) continue;  // blank line or comment
     if (first) {
@@ -292,8 +299,7 @@ std::size_t count_columns(std::istream& in) {
   LineReader reader(in);
   std::string_view line;
   std::vector<std::string_view> tokens;
-  for (std::size_t number = 1; reader.next(line); ++number) {
-    if (number == 1 && line.substr(0, 3) == byte_order_mark) line.remove_prefix(3);
+  while (reader.next(line)) {
     tokenize(line, tokens);
     if (!tokens.empty()) return tokens.size();
   }

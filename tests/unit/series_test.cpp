@@ -62,6 +62,8 @@ TEST(ReadSeries, NumberFormats) {
 TEST(ReadSeries, HeaderRowByteOrderMarkAndColumnNames) {
   const std::string csv = "\xEF\xBB\xBFtime,value\n0,1.5\n1,2.5\n2,3.5\n";
   EXPECT_EQ(read(csv).values, (std::vector<double>{0, 1, 2}));
+  // The mark also on a one-line file with no line end, and only at the start of the first line.
+  EXPECT_EQ(read("\xEF\xBB\xBF" "1.5").values, (std::vector<double>{1.5}));
   ReadOptions by_name;
   by_name.column_name = "value";
   const chaos::Series named = read(csv, by_name);
