@@ -1595,26 +1595,27 @@ namespace {
 
 // The pairs whose lag j - i falls in (windows[s - 1], windows[s]] for s = 1 .. S - 1 (windows sorted,
 // distinct) and that are closer than the largest radius, binned per segment s and dimension:
-// h[((s - 1) * nm + mi) * (nr + 1) + bin]. The accumulators are those of every exact walk
-// (coordinate 0 first, then one more per dimension), so each pair lands in the bin the walk gave it.
+// h[((s - 1) * nm + mi) * nr + bin] (below t_max a bin is at most nr - 1). The accumulators are those
+// of every exact walk (coordinate 0 first, then one more per dimension), so each pair lands in the
+// bin the walk gave it. window_pairs enumerates lags 1 .. w the same way for the grid and kd-tree.
 template <class N>
 Histogram lag_band_pairs(const Problem& pb, const std::vector<std::size_t>& windows) {
-  const std::size_t segments = windows.size() - 1, width = pb.nr + 1;
+  const std::size_t segments = windows.size() - 1;
   const std::size_t tasks = (pb.points + chunk_points - 1) / chunk_points;
   const AccBins::Lookup bins = pb.bins->lookup();
-  std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(segments * pb.nm * width, 0));
+  std::vector<Histogram> parts(worker_count(pb.threads, tasks), Histogram(segments * pb.nm * pb.nr, 0));
   parallel_tasks(pb.threads, tasks, [&](std::size_t t, std::size_t worker) {
     Count* h = parts[worker].data();
     const std::size_t end = std::min(pb.points, (t + 1) * chunk_points);
     for (std::size_t i = t * chunk_points; i < end; ++i)
       for (std::size_t s = 1; s <= segments; ++s) {
-        Count* hs = h + (s - 1) * pb.nm * width;
+        Count* hs = h + (s - 1) * pb.nm * pb.nr;
         for (std::size_t j = i + windows[s - 1] + 1; j <= i + windows[s] && j < pb.points; ++j) {
           double acc = N::add(0.0, std::abs(pb.at(i, 0) - pb.at(j, 0)));
           for (std::size_t m = 1; m <= pb.max_m; ++m) {
             if (m > 1) acc = N::add(acc, std::abs(pb.at(i, m - 1) - pb.at(j, m - 1)));
             if (!(acc < pb.t_max)) break;  // beyond every radius here and in every higher dimension
-            if (m >= pb.min_m) ++hs[(m - pb.min_m) * width + bins.inside(acc)];
+            if (m >= pb.min_m) ++hs[(m - pb.min_m) * pb.nr + bins.inside(acc)];
           }
         }
       }
@@ -1655,7 +1656,6 @@ std::vector<CorrelationSumResult> correlation_sums_over_theiler_windows(std::spa
   const Histogram band = windows.size() < 2 ? Histogram{}
                          : options.norm == Norm::max ? lag_band_pairs<MaxNorm>(pb, windows)
                                                      : lag_band_pairs<EuclideanNorm>(pb, windows);
-  const std::size_t width = pb.nr + 1;
   std::vector<CorrelationSumResult> out;
   out.reserve(theilers.size());
   for (std::size_t q = 0; q < theilers.size(); ++q) {
@@ -1665,7 +1665,7 @@ std::vector<CorrelationSumResult> correlation_sums_over_theiler_windows(std::spa
     totals.pairs = base.pairs;
     for (std::size_t mi = 0; mi < pb.nm; ++mi)
       for (std::size_t s = 1; s <= segment; ++s) {
-        const Count* h = band.data() + ((s - 1) * pb.nm + mi) * width;
+        const Count* h = band.data() + ((s - 1) * pb.nm + mi) * pb.nr;
         Count closer = 0;  // pairs of this segment closer than radius k
         for (std::size_t k = 0; k < pb.nr; ++k) totals.pairs[mi][k] -= closer += h[k];
       }
