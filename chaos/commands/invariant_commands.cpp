@@ -455,11 +455,13 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     j["lambda_local_maps"] = optional_json(per_time ? l.lambda_per_time : l.lambda);
     j["lambda_local_maps_interval"] = interval_json(per_time ? l.lambda_per_time_interval : l.lambda_interval);
     j["lambda_local_maps_status"] = to_string(l.status);
+    j["lambda_local_maps_dimension"] = l.variants.front().dimension;  // m, or m + 1 (automatic_analysis.hpp, step 6)
     j["lambda_local_maps_explanation"] = l.explanation;
   } else {
     j["lambda_local_maps"] = nullptr;
     j["lambda_local_maps_interval"] = nullptr;
     j["lambda_local_maps_status"] = "not_run";
+    j["lambda_local_maps_dimension"] = nullptr;
     j["lambda_local_maps_explanation"] = a.local_maps_refusal.empty() ? a.stopped : a.local_maps_refusal;
   }
   if (nonlinear)

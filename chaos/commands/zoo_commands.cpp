@@ -32,6 +32,7 @@ std::string estimate(const ZooEstimate& e) {
   std::string s = num(e.value);
   if (e.interval) s += " [" + num(e.interval->low, 3) + ", " + num(e.interval->high, 3) + "]";
   s += " " + e.status;
+  if (e.dimension) s += " at m = " + std::to_string(*e.dimension);
   if (e.verdict == ZooVerdict::wrong) s += " **WRONG**";
   return s;
 }
@@ -71,7 +72,7 @@ struct Tally {
 
 nlohmann::ordered_json estimate_json(const ZooEstimate& e) {
   return {{"value", optional_json(e.value)}, {"interval", interval_json(e.interval)}, {"status", e.status},
-          {"verdict", to_string(e.verdict)}};
+          {"verdict", to_string(e.verdict)}, {"dimension", optional_json(e.dimension)}};
 }
 
 }  // namespace

@@ -199,13 +199,36 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
   }
   if (options.local_maps) {
-    LocalMapOptions l = automatic_local_map_options(*a.dimension, *a.delay, a.theiler);
-    l.threads = options.threads;
+    const auto local_maps_at = [&](std::size_t m) {
+      LocalMapOptions l = automatic_local_map_options(m, *a.delay, a.theiler);
+      l.threads = options.threads;
+      return largest_lyapunov_local_maps(x, l, dt);
+    };
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.0);
     try {
-      a.local_maps = largest_lyapunov_local_maps(x, l, dt);
+      a.local_maps = local_maps_at(*a.dimension);
     } catch (const InvalidInput& e) {
       a.local_maps_refusal = e.what();
+    }
+    // Only an inconsistent run is tried again: noise (not_deterministic) and a series without
+    // exponential divergence (not_positive) are what the data are, not an effect of m.
+    if (options.local_maps_next_dimension && a.local_maps && a.local_maps->status == LocalMapStatus::inconsistent) {
+      const std::size_t m = *a.dimension + 1;
+      if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.5);
+      try {
+        LocalMapResult next = local_maps_at(m);
+        if (next.status == LocalMapStatus::consistent) {
+          next.explanation = "at m = " + std::to_string(m) + ": " + next.explanation + "; at m = " +
+                             std::to_string(*a.dimension) + ", inconsistent: " + a.local_maps->explanation;
+          a.local_maps_at_m = std::move(a.local_maps);
+          a.local_maps = std::move(next);
+        } else {
+          a.local_maps->explanation += "; at m = " + std::to_string(m) + ", " + to_string(next.status) + ": " +
+                                       next.explanation;
+        }
+      } catch (const InvalidInput& e) {
+        a.local_maps->explanation += "; at m = " + std::to_string(m) + " not run: " + e.what();
+      }
     }
     // A divergence slope that the consistent local-map exponent contradicts is withdrawn too.
     if (options.cross_check && a.local_maps) {

@@ -391,6 +391,8 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       base.local_maps = a.local_maps                   ? local_maps_estimate(*a.local_maps, c.lambda_band)
                         : !a.local_maps_refusal.empty() ? not_run("not_run: " + a.local_maps_refusal)
                                                         : not_run("not_run");
+      if (a.local_maps && a.local_maps->variants.front().dimension != base.dimension)
+        base.local_maps.dimension = a.local_maps->variants.front().dimension;
       result.rows.push_back(base);
       if (!grid || !a.dimension || !a.delay) continue;
 

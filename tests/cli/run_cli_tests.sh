@@ -417,10 +417,16 @@ l=$("$CHAOS" analyze "$work/logistic.dat" --json | jq -c '[.delay, (.delay_sourc
 [[ $l == '[1,true,false,"saturated",true,true]' ]] && pass || fail "analyze on the logistic map gave $l"
 # The local-maps exponent in analyze: ln 2 for the logistic map at r = 4 (within the zoo's 10%); not run
 # on a random walk, with the pipeline's reason.
-l=$("$CHAOS" analyze "$work/logistic.dat" --json | jq -c '[.lambda_local_maps_status, (.lambda_local_maps > 0.6238 and .lambda_local_maps < 0.7625)]')
-[[ $l == '["consistent",true]' ]] && pass || fail "analyze local maps on the logistic map gave $l"
-l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.lambda_local_maps, .lambda_local_maps_status]')
-[[ $l == '[null,"not_run"]' ]] && pass || fail "analyze local maps on a random walk gave $l"
+# Consistent at Cao's m, so reported at that m (the pipeline tries m + 1 only after an inconsistent run).
+l=$("$CHAOS" analyze "$work/logistic.dat" --json | jq -c '[.lambda_local_maps_status, (.lambda_local_maps > 0.6238 and .lambda_local_maps < 0.7625), .lambda_local_maps_dimension == .embedding_dimension]')
+[[ $l == '["consistent",true,true]' ]] && pass || fail "analyze local maps on the logistic map gave $l"
+# Henon x at N = 10^4: inconsistent at Cao's m = 2, consistent at m = 3 (measured), which analyze
+# reports with both reasons; lambda_1 = 0.41922 (Sprott 2003, App. A) within the zoo's 10%.
+"$CHAOS" generate henon -l 10000 --components x > "$work/henon10k.dat" || fail "generate henon 10000"
+l=$("$CHAOS" analyze "$work/henon10k.dat" --json | jq -c '[.embedding_dimension, .lambda_local_maps_dimension, .lambda_local_maps_status, (.lambda_local_maps > 0.3773 and .lambda_local_maps < 0.4611), (.lambda_local_maps_explanation | test("^at m = 3: .*; at m = 2, inconsistent: "))]')
+[[ $l == '[2,3,"consistent",true,true]' ]] && pass || fail "analyze local maps on Henon x 10^4 gave $l"
+l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.lambda_local_maps, .lambda_local_maps_status, .lambda_local_maps_dimension]')
+[[ $l == '[null,"not_run",null]' ]] && pass || fail "analyze local maps on a random walk gave $l"
 "$CHAOS" analyze "$work/logistic.dat" | grep -q "^largest_lyapunov_exponent_local_maps	0.6" && pass || fail "analyze text lacks the local-maps line"
 
 # Issue 16, negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and

@@ -19,8 +19,12 @@
 //      (require_reproduced_by_halves, as for D2); the two fits are then checked against each other
 //      (cross_check): a linear region that only one of them finds, or two slopes more than 10% apart,
 //      leaves both unconfirmed;
-//   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp); where it is consistent, a
-//      Rosenstein or Kantz slope more than 10% from it is unconfirmed as well.
+//   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp) at m; where its variants
+//      disagree (inconsistent), once more at m + 1, which is reported when it is consistent: Cao's m
+//      is the least dimension that unfolds the attractor, and the folds left at it put false
+//      neighbours into the neighbourhoods the maps are fitted to (docs/lyapunov-maps.md, "In the
+//      pipeline"). Where the reported value is consistent, a Rosenstein or Kantz slope more than 10%
+//      from it is unconfirmed as well.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
@@ -53,6 +57,7 @@ struct AutomaticAnalysisOptions {
   bool rosenstein = true, kantz = true;
   bool cross_check = true;           // a lambda_1 the other estimators contradict or do not support is unconfirmed
   bool local_maps = true;            // lambda_1 from local linear maps too (lyapunov_local_maps.hpp)
+  bool local_maps_next_dimension = true;  // ... and at m + 1 where the run at m is inconsistent
   std::size_t threads = 1;           // results identical for any number
   // Called with the step running ("Cao's method", "correlation sums", ...) and its fraction done,
   // for a progress display; the analysis does not depend on it.
@@ -68,9 +73,13 @@ struct AutomaticAnalysis {
   std::optional<CaoResult> cao;
   std::optional<CorrelationDimensionResult> d2;
   std::optional<LyapunovResult> rosenstein, kantz;
-  // lambda_1 from local linear maps at (m, tau, w) with the estimator's defaults; empty when not run
-  // or refused (local_maps_refusal says why).
+  // lambda_1 from local linear maps at (m, tau, w) with the estimator's defaults, or at (m + 1, tau,
+  // w) where the run at m was inconsistent and that one is consistent (its variants' first entry
+  // gives the dimension; its explanation names the run at m, which local_maps_at_m keeps). Where
+  // both are unsure, the run at m, its explanation extended by the retry's. Empty when not run or
+  // refused (local_maps_refusal says why).
   std::optional<LocalMapResult> local_maps;
+  std::optional<LocalMapResult> local_maps_at_m;
   std::string local_maps_refusal;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };

@@ -76,6 +76,9 @@ struct ZooEstimate {
   std::optional<Interval> interval;
   std::string status;
   ZooVerdict verdict = ZooVerdict::unsure;
+  // The embedding dimension the estimate used, where it is not the row's: the pipeline's local maps
+  // at m + 1 (automatic_analysis.hpp, step 6).
+  std::optional<std::size_t> dimension;
 };
 
 // One row: a case at one point of the grid (N, Theiler window, dimension).

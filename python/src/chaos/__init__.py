@@ -594,8 +594,9 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
     Result keys: parameters, wrong (confident estimates outside their band: the command exits 4
     when there is one), chaotic, d2_covered, lambda_covered (coverage at the automatic choices),
     wall_seconds, rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
-    theiler_factor, d2 / rosenstein / kantz / local_maps as value, interval, status, verdict, note, seconds,
-    error), markdown (the report ``chaos zoo`` writes).
+    theiler_factor, d2 / rosenstein / kantz / local_maps as value, interval, status, verdict and dimension
+    (the m the estimate used where it is not the row's: the pipeline's local maps at m + 1), note,
+    seconds, error), markdown (the report ``chaos zoo`` writes).
     """
     if isinstance(only, str):
         only = [name for name in only.split(",") if name]
