@@ -20,11 +20,12 @@
 //      (cross_check): a linear region that only one of them finds, or two slopes more than 10% apart,
 //      leaves both unconfirmed;
 //   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp) at m; where its variants
-//      disagree (inconsistent), once more at m + 1, which is reported when it is consistent: Cao's m
-//      is the least dimension that unfolds the attractor, and the folds left at it put false
-//      neighbours into the neighbourhoods the maps are fitted to (docs/lyapunov-maps.md, "In the
-//      pipeline"). Where the reported value is consistent, a Rosenstein or Kantz slope more than 10%
-//      from it is unconfirmed as well.
+//      disagree (inconsistent), once more at m + 1, which is reported when it is consistent. Cao's m
+//      is the least dimension that unfolds the attractor at the chosen delay, so the variants that
+//      embed differently (above all the delay + tau/4 one) can fall short of it and disagree because
+//      of the embedding, not the exponent; m + 1 is the estimator's own `m + 1` variant, checked by
+//      ten variants of its own (docs/lyapunov-maps.md, "In the pipeline"). Where the reported value is
+//      consistent, a Rosenstein or Kantz slope more than 10% from it is unconfirmed as well.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
