@@ -8,8 +8,9 @@
 // The series were chosen for the branch they reach, measured before the test was written: Henon x at
 // N = 5000 is inconsistent at m = 2 (the m + 1 variant reads 6% lower) and consistent at m = 3;
 // Henon x at N = 20000 is consistent at m = 2; Lorenz x at N = 20000 (tau 19, w 31) is inconsistent
-// at m = 3 and at m = 4; white noise is not_deterministic. The tests assert those preconditions, so a change to the estimator that
-// moves a series to another branch fails loudly instead of testing nothing.
+// at m = 3 and at m = 4; white noise is not_deterministic. The tests assert those preconditions, so
+// a change to the estimator that moves a series to another branch fails loudly instead of testing
+// nothing.
 #include "chaos/automatic_analysis.hpp"
 
 #include <gtest/gtest.h>
