@@ -170,7 +170,8 @@ ZooRun run_zoo(const ZooParams& params,
      << "status is *unsure*. "
      << "What the remaining wrong rows have in common, and what was measured about them, is in docs/zoo-notes.md.\n\n"
      << "## Summary\n\n"
-     << "- Confident and wrong: **" << wrong << "** over every row (automatic choices and grid).\n";
+     << "- Confident and wrong: **" << wrong << "** over every row ("
+     << (params.grid && !params.fast ? "automatic choices and grid" : "automatic choices only: no grid in this run") << ").\n";
   if (chaotic > 0)
     md << "- Coverage with the automatic choices at N = " << (params.fast ? "10^4" : "10^5") << ": D2 confident and in band for **"
        << d2_covered << " of " << chaotic << "** chaotic systems (" << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), 3)
