@@ -1,7 +1,8 @@
 // chaos zoo: the out-of-sample regression suite (zoo_suite.hpp) over the zoo's chaotic systems and
 // the controls, in parallel on threads (run_zoo, commands.hpp), written as a Markdown report
-// (docs/zoo.md is made by `chaos zoo --threads 2 -o docs/zoo.md`). Exits with the
-// validation-failure code when any estimate is confident and outside its band.
+// (docs/zoo.md is made by `chaos zoo --threads 2 -o docs/zoo.md`, resumable with --checkpoint,
+// zoo_checkpoint.hpp). Exits with the validation-failure code when any estimate is confident and
+// outside its band.
 
 #include <fstream>
 #include <iostream>
@@ -21,6 +22,7 @@ struct ZooArgs {
   std::vector<std::string> only;
   std::size_t threads = 1;
   std::string output;
+  std::string checkpoint;  // finished cases appended here; those it holds are not run again
   bool quiet = false;
   std::string series;  // write this case's series instead of running the suite
   bool json = false;   // --series as one JSON object
@@ -63,6 +65,7 @@ void run(const ZooArgs& args) {
   params.grid = !args.no_grid;
   params.only = args.only;
   params.threads = args.threads;
+  params.checkpoint = args.checkpoint;
   const ZooRun run = run_zoo(params, [&](std::size_t done, std::size_t total, const ZooCase& c, const ZooCaseResult& r) {
     if (!args.quiet)
       std::cerr << "zoo: " << done << "/" << total << " " << c.name << " (" << seconds(r.seconds, 3) << " s)"
@@ -78,7 +81,8 @@ void run(const ZooArgs& args) {
   if (!args.quiet)
     std::cerr << "zoo: " << run.wrong << " confident and wrong; D2 coverage " << run.d2_covered << "/" << run.chaotic
               << ", lambda coverage " << run.lambda_covered << "/" << run.chaotic << "; " << seconds(run.wall_seconds, 4)
-              << " s\n";
+              << " s" << (run.resumed > 0 ? " (" + std::to_string(run.resumed) + " case(s) read from " + args.checkpoint + ")" : "")
+              << "\n";
   if (run.wrong > 0) throw ValidationFailed{};
 }
 
@@ -96,6 +100,9 @@ void register_zoo(CLI::App& app) {
   command->add_option("--threads", args->threads, "cases run in parallel (the report does not depend on it)")
       ->capture_default_str();
   command->add_option("-o,--output", args->output, "write the Markdown report here (default: standard output)");
+  command->add_option("--checkpoint", args->checkpoint,
+                      "append each finished case to this file (JSON lines) and skip the cases it already holds, so that "
+                      "a stopped run resumes; the file belongs to one build and one choice of --fast and --no-grid");
   command->add_flag("-q,--quiet", args->quiet, "no progress on standard error");
   command->add_option("--series", args->series,
                       "write the series of this case (full precision, one value per line) instead of running the suite");

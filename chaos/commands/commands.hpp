@@ -372,19 +372,21 @@ struct ZooParams {
   bool grid = true;                 // chaotic systems over the neighbourhood grid
   std::vector<std::string> only;    // these cases (empty: every case)
   std::size_t threads = 1;          // cases run in parallel (the report does not depend on it)
+  std::string checkpoint;           // append each finished case here and skip those it holds (zoo_checkpoint.hpp)
 };
 struct ZooRun {
   std::vector<ZooCase> cases;
   std::vector<ZooCaseResult> results;  // one per case, in case order
-  double wall_seconds = 0.0;
+  double wall_seconds = 0.0;           // this run's; cases read from a checkpoint keep their own times
+  std::size_t resumed = 0;             // cases read from the checkpoint, not run
   std::size_t wrong = 0;               // confident estimates outside their band, over every row
   std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;  // coverage at the automatic choices
   std::string markdown;                // the report `chaos zoo` writes (docs/zoo.md)
   nlohmann::ordered_json json;         // the same as data: parameters, counts, one entry per row
 };
-// `each` is called after every case (serialised, from the worker threads) with the number of cases
-// done, their total, the case and its result; it may throw to stop (the other threads finish their
-// case first).
+// `each` is called after every case run (serialised, from the worker threads) with the number of
+// cases done (those read from the checkpoint included), their total, the case and its result; it may
+// throw to stop (the other threads finish their case first, and the checkpoint keeps it).
 ZooRun run_zoo(const ZooParams& params,
                const std::function<void(std::size_t, std::size_t, const ZooCase&, const ZooCaseResult&)>& each = nullptr);
 

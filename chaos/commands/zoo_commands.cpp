@@ -14,6 +14,7 @@
 #include "chaos/error.hpp"
 #include "chaos/zoo_suite.hpp"
 #include "commands.hpp"
+#include "zoo_checkpoint.hpp"
 
 namespace chaos::cli {
 
@@ -85,21 +86,35 @@ ZooRun run_zoo(const ZooParams& params,
   options.grid = params.grid;
   options.only = params.only;
   options.threads = params.threads;
+  // Opened first, so that a refused file is reported before the spectra behind the bands are computed.
+  std::optional<ZooCheckpoint> checkpoint;
+  if (!params.checkpoint.empty()) checkpoint.emplace(params.checkpoint, params.fast, params.grid && !params.fast);  // --fast has no grid
   const auto start = std::chrono::steady_clock::now();
   const std::vector<ZooCase> cases = zoo_cases(options);
   if (cases.empty()) throw InvalidInput(ErrorCode::invalid_parameter, "zoo: no case matches --only");
 
+  // Cases a checkpoint holds are read, not run.
+  std::vector<ZooCaseResult> results(cases.size());
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (checkpoint)
+      if (const auto stored = checkpoint->results().find(cases[i].name); stored != checkpoint->results().end()) {
+        results[i] = stored->second;
+        results[i].case_index = i;
+        continue;
+      }
+    order.push_back(i);
+  }
+  const std::size_t resumed = cases.size() - order.size();
+
   // Cases are handed out largest first (grids before single points) and stored by index, so the
   // report is the same for any thread count.
-  std::vector<ZooCaseResult> results(cases.size());
-  std::vector<std::size_t> order(cases.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return cases[a].grid * cases[a].length > cases[b].grid * cases[b].length;
   });
   std::atomic<std::size_t> next{0};
   std::mutex progress;
-  std::size_t done = 0;
+  std::size_t done = resumed;
   std::exception_ptr failure;  // the first exception from `each`: the others stop after their case
   const auto worker = [&] {
     try {
@@ -107,6 +122,7 @@ ZooRun run_zoo(const ZooParams& params,
         const std::size_t i = order[k];
         results[i] = run_zoo_case(cases[i], i, options);
         const std::lock_guard<std::mutex> lock(progress);
+        if (checkpoint) checkpoint->append(cases[i].name, results[i]);
         ++done;
         if (each) each(done, cases.size(), cases[i], results[i]);
       }
@@ -117,7 +133,7 @@ ZooRun run_zoo(const ZooParams& params,
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < std::min(params.threads, cases.size()); ++t) pool.emplace_back(worker);
+  for (std::size_t t = 0; t < std::min(params.threads, order.size()); ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -161,7 +177,15 @@ ZooRun run_zoo(const ZooParams& params,
      << "Made by `chaos zoo" << (params.fast ? " --fast" : "") << (!params.grid ? " --no-grid" : "")
      << " --threads " << params.threads << "` (chaos/cli/zoo.cpp, rules in chaos/include/chaos/zoo_suite.hpp and "
      << "automatic_analysis.hpp). Machine: " << machine() << ". Wall time: " << num(wall, 4) << " s on "
-     << params.threads << " thread(s).\n\n"
+     << params.threads << " thread(s)";
+  if (resumed > 0) {
+    double sum = 0.0;
+    for (const auto& r : results) sum += r.seconds;
+    md << ", running " << cases.size() - resumed << " of the " << cases.size() << " cases; the other " << resumed
+       << " were read from a checkpoint written by earlier runs of the same build (`--checkpoint`). The cases' own "
+       << "times sum to " << num(sum, 4) << " s";
+  }
+  md << ".\n\n"
      << "Bands, fixed before any run (zoo_suite.hpp): D2 within +-0.1 of a cited literature D2, else not above "
      << "D_KY + 0.1 (D_KY from the equations); lambda_1 within 10% of lambda_1 from the equations (`chaos spectrum`); "
      << "noise, surrogates and random walks: no confident value at all; periodic and quasi-periodic signals: "
@@ -242,6 +266,7 @@ ZooRun run_zoo(const ZooParams& params,
 
   ZooRun run;
   run.wall_seconds = wall;
+  run.resumed = resumed;
   run.wrong = wrong;
   run.chaotic = chaotic;
   run.d2_covered = d2_covered;
@@ -249,12 +274,14 @@ ZooRun run_zoo(const ZooParams& params,
   run.markdown = md.str();
   auto& j = run.json;
   j["command"] = "zoo";
-  j["parameters"] = {{"fast", params.fast}, {"grid", params.grid}, {"only", params.only}, {"threads", params.threads}};
+  j["parameters"] = {{"fast", params.fast}, {"grid", params.grid}, {"only", params.only}, {"threads", params.threads},
+                      {"checkpoint", params.checkpoint}};
   j["wrong"] = wrong;
   j["chaotic"] = chaotic;
   j["d2_covered"] = d2_covered;
   j["lambda_covered"] = lambda_covered;
   j["wall_seconds"] = wall;
+  j["resumed"] = resumed;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < cases.size(); ++i)
     for (const ZooRow& r : results[i].rows)

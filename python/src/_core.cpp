@@ -522,6 +522,7 @@ py::object zoo_run(const py::dict& p, py::object progress) {
   get(p, "fast", params.fast);
   get(p, "grid", params.grid);
   get(p, "threads", params.threads);
+  get(p, "checkpoint", params.checkpoint);
   if (has(p, "only"))
     for (const auto& v : p["only"]) {
       if (!py::isinstance<py::str>(v)) type_error("only must hold case names (strings)");

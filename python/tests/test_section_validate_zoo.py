@@ -229,6 +229,29 @@ def test_zoo_equals_the_command():
             assert (estimate["verdict"] != "unsure") == confident
 
 
+def test_zoo_checkpoint_resumes_and_belongs_to_one_build(tmp_path):
+    path = tmp_path / "zoo.jsonl"
+    first = chaos.zoo("random_walk", fast=True, checkpoint=path)
+    assert first.resumed == 0 and first.parameters["checkpoint"] == str(path)
+    seen = []
+    second = chaos.zoo(["random_walk", "white_noise"], fast=True, checkpoint=path, progress=seen.append)
+    # The stored case is read, not run: one case left to run, and its row is the first run's,
+    # seconds included.
+    assert second.resumed == 1 and seen == [1.0]
+    walk = [row for row in second.to_dict()["rows"] if row["case"] == "random_walk"]
+    assert walk == first.to_dict()["rows"]
+    assert "the other 1 were read from a checkpoint" in second.markdown
+    # The command is another build (another binary) than this module: it refuses the file, and
+    # this module refuses the command's.
+    before = path.read_bytes()
+    p = run_cli("zoo", "--fast", "--only", "random_walk", "--checkpoint", str(path), "-q", check=False)
+    assert p.returncode == 3 and "another build" in p.stderr and path.read_bytes() == before
+    command_file = tmp_path / "command.jsonl"
+    run_cli("zoo", "--fast", "--only", "random_walk", "--checkpoint", str(command_file), "-q")
+    with pytest.raises(ValueError, match="another build or with other options"):
+        chaos.zoo("random_walk", fast=True, checkpoint=command_file)
+
+
 def test_zoo_refuses_what_the_command_refuses():
     p = run_cli("zoo", "--only", "no_such_case", "-q", check=False)
     assert p.returncode == 3

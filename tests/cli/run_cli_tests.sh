@@ -377,6 +377,18 @@ expect_error 3 "png or .svg" -- density "$work/pv.dat" --plot "$work/density.gif
 grep -q "Confident and wrong: \*\*0\*\*" "$work/zoo.md" && pass || fail "zoo.md does not report 0 confident-wrong"
 grep -q "^| random_walk | random_walk |.*not_run" "$work/zoo.md" && pass || fail "zoo: the random walk was analysed"
 expect_error 3 "no case matches --only" -- zoo --only no_such_case -q
+# zoo --checkpoint: the second run reads the case the first one appended instead of running it, and
+# says so; a run with other options (the full suite) refuses the file (exit 3) and leaves it as it was.
+"$CHAOS" zoo --fast --only random_walk --checkpoint "$work/zoo.ckpt" -o "$work/zoo1.md" 2>/dev/null \
+  && pass || fail "zoo --checkpoint: the first run failed"
+"$CHAOS" zoo --fast --only random_walk --checkpoint "$work/zoo.ckpt" -o "$work/zoo2.md" 2>"$work/zoo2.err" \
+  && pass || fail "zoo --checkpoint: the resumed run failed"
+grep -q "1 case(s) read from $work/zoo.ckpt" "$work/zoo2.err" && grep -q "the other 1 were read from a checkpoint" "$work/zoo2.md" \
+  && pass || fail "zoo --checkpoint: the resumed run did not read the stored case"
+[[ $(wc -l < "$work/zoo.ckpt") == 2 ]] && pass || fail "zoo --checkpoint: not one first line and one case"
+cp "$work/zoo.ckpt" "$work/zoo.ckpt.before"
+expect_error 3 "another build or with other options" -- zoo --only random_walk --checkpoint "$work/zoo.ckpt" -q
+cmp -s "$work/zoo.ckpt" "$work/zoo.ckpt.before" && pass || fail "zoo --checkpoint: a refused file was changed"
 expect_error 3 "threads must be at least 1" -- zoo --fast --threads 0 -q
 # zoo --series writes a case's exact series: the sine at a period of 317/3 samples has exactly 317
 # distinct values (control_signals.hpp: odd p, pure sine) in the full 10^5-sample record.

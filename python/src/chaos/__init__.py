@@ -575,7 +575,7 @@ def validation_cases(filter=None):
     return _core.validate_list(dict(filter=filter))
 
 
-def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
+def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progress=None):
     """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
     controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
     short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
@@ -588,12 +588,15 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
     ``only``: case names (a list, or a comma-separated string; default every case); ``fast``: the CI
     subset (4 systems and 5 controls at N = 10^4, automatic choices only); ``grid=False``: automatic
     choices only (``--no-grid``); ``threads``: cases run in parallel (nothing depends on it).
+    ``checkpoint``: a file path (``--checkpoint``): each finished case is appended to it and the
+    cases it already holds are read instead of run, so that a stopped run resumes; the file belongs
+    to one build and one choice of ``fast`` and ``grid``, and any other run refuses it.
     ``progress``: True for a bar on stderr, or a callable taking the fraction of cases done; Ctrl-C
     stops after the cases being run.
 
     Result keys: parameters, wrong (confident estimates outside their band: the command exits 4
     when there is one), chaotic, d2_covered, lambda_covered (coverage at the automatic choices),
-    wall_seconds, rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
+    wall_seconds (this run's), resumed (cases read from the checkpoint), rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
     theiler_factor, d2 / rosenstein / kantz / local_maps as value, interval, status, verdict and dimension
     (the m the estimate used where it is not the row's: the pipeline's local maps at m + 1), note,
     seconds, error), markdown (the report ``chaos zoo`` writes).
@@ -603,7 +606,7 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, progress=None):
     bar = _progress_bar(progress, "zoo")
     try:
         return _make(_core.zoo(dict(only=None if only is None else list(only), fast=fast, grid=grid,
-                                    threads=threads), bar))
+                                    threads=threads, checkpoint=None if checkpoint is None else os.fspath(checkpoint)), bar))
     finally:
         if bar is not None and not callable(progress):
             sys.stderr.write("\n")
