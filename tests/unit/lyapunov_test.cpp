@@ -118,7 +118,8 @@ void expect_matches_definition(const std::vector<double>& x, const LyapunovOptio
   for (std::size_t k = 0; k <= o.steps; ++k) {
     EXPECT_EQ(got.step[k], k);
     ASSERT_EQ(got.divergence[k].has_value(), want.y[k].has_value()) << label << " k=" << k;
-    // Sums in blocks versus one running sum, and ln(d 2^-e) + e ln 2 versus ln d: rounding only.
+    // Sums in blocks versus one running sum, and the ln of products of 64 mantissas plus the
+    // summed exponents times ln 2 versus the sum of ln d: rounding only.
     if (want.y[k]) {
       EXPECT_NEAR(*got.divergence[k], *want.y[k], 1e-12 * (1.0 + std::abs(*want.y[k]))) << label << " k=" << k;
     }
