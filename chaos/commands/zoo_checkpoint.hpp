@@ -7,7 +7,9 @@
 // A checkpoint belongs to one build and one choice of --fast and --no-grid. Its first line records
 // them: the build as a hash of the executable or Python module that holds the suite, so that no
 // report mixes results of two versions of the code. A run that differs refuses the file instead of
-// discarding it or merging it.
+// discarding it or merging it. One run at a time per file: two processes appending to one file
+// could interleave their lines. Files of one build and options can be merged by appending one's
+// case lines (all but the first line) to the other.
 
 #include <cstdint>
 #include <fstream>
