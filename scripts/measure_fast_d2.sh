@@ -29,10 +29,10 @@ target=${TARGET:-0.02}
 zoo_choices | zoo_only > "$work/systems"
 [[ -s $work/systems ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md (or none ONLY selects)" >&2; exit 3; }
 
-timed() {  # out-json time-file args...: chaos d2 with its wall time
+timed() {  # out-json time-file args...: chaos d2 with its wall time (the estimator alone: --no-halves)
   local json=$1 tfile=$2
   shift 2
-  /usr/bin/time -f '%e' -o "$tfile" "$chaos" d2 "$@" --json -q > "$json"
+  /usr/bin/time -f '%e' -o "$tfile" "$chaos" d2 "$@" --no-halves --json -q > "$json"
 }
 
 case_rows() {  # name tau m w -> $work/rows.name

@@ -159,8 +159,9 @@ void register_d2(CLI::App& app) {
   command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
                       "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
   add_quiet_option(*command, args->quiet);
-  command->add_flag("--halves", args->params.halves,
-                    "a saturated D2 must be reproduced by the first and the second half of the record (as in chaos analyze)");
+  command->add_flag("--halves,!--no-halves", args->params.halves,
+                    "a saturated D2 must be reproduced by the first and the second half of the record, else it is "
+                    "'not_reproduced' (on by default, as in chaos analyze; --no-halves gives the plain estimate)");
   command->add_flag("--delay-check", args->params.delay_check,
                     "a saturated D2 must be reproduced at twice the delay, within --delay-tolerance (as in chaos analyze)");
   command->add_option("--delay-tolerance", args->params.dimension.delay_tolerance,

@@ -166,9 +166,10 @@ void register_lyapunov(CLI::App& app) {
   command->add_flag("!--no-cross-check", args->params.cross_check,
                    "skip the other method's check: the status is then this estimator's alone (by default a linear "
                    "region the other method does not confirm within the tolerance is 'unconfirmed')");
-  command->add_flag("--halves", args->params.halves,
-                    "also run the estimator over each half of the record: a linear region that neither half shows, or "
-                    "that a half puts more than the tolerance away, is 'not_reproduced' (as chaos analyze does)");
+  command->add_flag("--halves,!--no-halves", args->params.halves,
+                    "run the estimator over each half of the record too: a linear region that neither half shows, or "
+                    "that a half puts more than the tolerance away, is 'not_reproduced' (on by default, as in chaos "
+                    "analyze; --no-halves gives the plain estimate)");
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

@@ -95,7 +95,9 @@ struct D2Params {
   std::vector<double> radius_list;
   std::string norm = "max";
   std::string search = "box";
-  bool halves = false;
+  // A saturated D2 must be reproduced by each half of the record (check_record_halves), as in
+  // chaos analyze: on by default since 2026-12-02, `--no-halves` for the plain estimate.
+  bool halves = true;
   bool delay_check = false;  // --delay-check: a saturated D2 must be reproduced at twice the delay
   // --fast: the reference subset grows until two disjoint subsets agree (adaptive_d2.hpp).
   bool fast = false;
@@ -124,7 +126,8 @@ struct LyapunovParams {
   std::function<void(double)> check_progress;
   // Run the same estimator over each half of the record: a linear region that neither half shows,
   // or that a half contradicts, is not_reproduced (check_record_halves), before the cross-check.
-  bool halves = false;
+  // On by default since 2026-12-02, as in chaos analyze; `--no-halves` for the plain estimate.
+  bool halves = true;
 };
 struct LyapunovRun {
   LyapunovResult result;

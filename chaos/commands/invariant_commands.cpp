@@ -60,12 +60,13 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   }
   CorrelationSumResult sums = fast ? std::move(fast->sums) : correlation_sum(x, params.sums);
   CorrelationDimensionResult d2 = fast ? std::move(fast->d2) : correlation_dimension(sums, params.dimension);
-  if (params.halves) {
-    // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
-    CorrelationSumOptions halves = params.sums;
-    halves.progress = nullptr;  // the progress shown is the full record's sums
-    check_record_halves(d2, x, halves, params.dimension);
-  }
+  // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
+  CorrelationSumOptions halves = params.sums;
+  halves.progress = nullptr;  // the progress shown is the full record's sums
+  // After --fast, each half gets the budget the fast run settled on (exact if it fell back), so
+  // the check costs about what the final D2 did, not half an exact job.
+  if (fast && !fast->exact) halves.reference_points = fast->reference_points;
+  if (params.halves) check_record_halves(d2, x, halves, params.dimension);
   // The same sums at twice the delay (same radii): D2 must not depend on the embedding.
   if (params.delay_check) check_delay_variant(d2, x, params.sums, params.dimension);
 
@@ -84,7 +85,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
       .parameter("projection_tolerance", params.dimension.projection_tolerance)
       .parameter("noise_fill_fraction", params.dimension.noise_fill_fraction)
-      .parameter("halves", params.halves).parameter("delay_check", params.delay_check)
+      .parameter("halves", params.halves).parameter("halves_reference_points", halves.reference_points)
+      .parameter("delay_check", params.delay_check)
       .parameter("delay_tolerance", params.dimension.delay_tolerance)
       .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)

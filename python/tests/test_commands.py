@@ -45,6 +45,7 @@ def test_d2_the_issue_bar(lorenz_file):
     (["-d", 8, "-M", 4, "--reference-points", 500, "--seed", 3, "-r", 0.5, "-R", 10],
      dict(delay=8, max_dimension=4, reference_points=500, seed=3, min_radius=0.5, max_radius=10)),
     (["-d", 8, "-M", 3, "--inclusive"], dict(delay=8, max_dimension=3, inclusive=True)),
+    (["-d", 8, "-M", 5, "--no-halves"], dict(delay=8, max_dimension=5, halves=False)),
     (["-d", 8, "-M", 5, "--delay-check", "--delay-tolerance", 0.08],
      dict(delay=8, max_dimension=5, delay_check=True, delay_tolerance=0.08)),
     (["-d", 8, "-M", 4, "--fast", "--fast-start", 100, "--fast-target", 0.05],
@@ -109,6 +110,10 @@ def test_lyapunov_henon(data_dir):
     assert single["cross_check"] is None and single["parameters"]["cross_check"] is False
     halves = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--halves"], halves=True)
     assert halves["parameters"]["halves"] is True
+    # The halves check is the default (as in analyze); halves=False is the command's --no-halves.
+    assert r["parameters"]["halves"] is True and r.to_dict() == halves.to_dict()
+    plain = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-halves"], halves=False)
+    assert plain["parameters"]["halves"] is False
 
 
 @pytest.mark.parametrize("cli_args, kwargs", [

@@ -83,19 +83,26 @@ l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.3
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
 r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
 [[ $r == "[0.01,0.02,0.05,0.1]" ]] && pass || fail "--radius-list gave radius $r"
-# --halves: both halves are reported, and the verdict follows from them (saturated only when both
-# halves saturate within the allowance of each other; otherwise not_reproduced and no D2).
-h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c '
+# The halves check, on by default (--halves says so explicitly): both halves are reported, and the
+# verdict follows from them (saturated only when both halves saturate within the allowance of each
+# other; otherwise not_reproduced and no D2).
+h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --json | jq -c '
   (.first_half.d2 // null) as $a | (.second_half.d2 // null) as $b |
-  [(.plateaus | length > 0),
+  [(.plateaus | length > 0), .parameters.halves,
    (if .status == "saturated" then ($a != null and $b != null and (($a - $b) | fabs) <= 0.05 * ($a + $b))
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("halves")))
     else false end)]')
-[[ $h == '[true,true]' ]] && pass || fail "d2 --halves on Hénon gave $h"
+[[ $h == '[true,true,true]' ]] && pass || fail "d2 (halves by default) on Hénon gave $h"
+[[ $("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --halves --json | jq -c 'del(.parameters)') == \
+   "$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --json | jq -c 'del(.parameters)')" ]] && pass || fail "d2 --halves differs from the default"
+# --no-halves: the plain estimate, no halves in the result.
+h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --no-halves --json | jq -c '[.parameters.halves, has("first_half"), .status]')
+[[ $h == '[false,false,"saturated"]' ]] && pass || fail "d2 --no-halves on Hénon gave $h"
 # Measurement noise (1% of the standard deviation) hides Hénon's small scales: below the plateau
 # every dimension fills its space, so the status is noise_limited with the noise floor below the
 # plateau and no D2; --noise-fill-fraction inf turns the check off (and inf is accepted, as for
-# --projection-tolerance), which leaves the plateau as the saturated D2.
+# --projection-tolerance), which leaves the plateau as the saturated D2 (with --no-halves: the
+# halves of the noisy record do not reproduce that large-scale plateau).
 "$CHAOS" generate henon -l 20000 --components x | grep -v '^#' > "$work/henon20k.dat" || fail "generate henon 20000"
 "$CHAOS" generate white_noise -l 20000 --seed 1 | grep -v '^#' > "$work/gauss20k.dat" || fail "generate white_noise"
 awk 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
@@ -104,7 +111,7 @@ awk 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
 h=$("$CHAOS" d2 "$work/henon_noisy.dat" -d 1 -t 1 -M 5 --json | jq -c '
   [.status, .d2, (.noise_floor.radius < .plateaus[0].radii[0]), (.explanation | test("noise"))]')
 [[ $h == '["noise_limited",null,true,true]' ]] && pass || fail "d2 on Hénon with 1% noise gave $h"
-h=$("$CHAOS" d2 "$work/henon_noisy.dat" -d 1 -t 1 -M 5 --noise-fill-fraction inf --projection-tolerance inf --json |
+h=$("$CHAOS" d2 "$work/henon_noisy.dat" -d 1 -t 1 -M 5 --noise-fill-fraction inf --projection-tolerance inf --no-halves --json |
   jq -c '[.status, .noise_floor, (.d2 > 1.1 and .d2 < 1.3)]')
 [[ $h == '["saturated",null,true]' ]] && pass || fail "d2 --noise-fill-fraction inf on noisy Hénon gave $h"
 # --delay-check: the D2 at twice the delay is reported, and the verdict follows from it (saturated
@@ -126,12 +133,13 @@ got="$("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --json | jq -c '
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
 # --fast (adaptive_d2.hpp): on 3000 points the first round would count more than an eighth of
 # them, so the exact counts are used and said so; with a small first round the rounds are reported.
-f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --fast --json | jq -c '[.fast.exact, .fast.reference_points, (.fast.explanation | test("exact counts")), .parameters.fast]')
-[[ $f == '[true,"exact",true,true]' ]] && pass || fail "d2 --fast on 3000 Hénon points gave $f"
+f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --fast --json | jq -c '[.fast.exact, .fast.reference_points, (.fast.explanation | test("exact counts")), .parameters.fast, .parameters.halves_reference_points]')
+[[ $f == '[true,"exact",true,true,0]' ]] && pass || fail "d2 --fast on 3000 Hénon points gave $f"
 f=$("$CHAOS" d2 "$work/lorenz.dat" -d 17 -t 100 -M 5 --fast --fast-start 50 --json | jq -c '
   [(.fast.rounds | length > 0), (.fast.exact or (.fast.reference_points == 2 * .fast.rounds[-1].reference_points)),
-   (.fast.exact or .fast.rounds[-1].stable), (.fast.exact or (.d2_standard_error != null) or (.status != "saturated"))]')
-[[ $f == '[true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f"
+   (.fast.exact or .fast.rounds[-1].stable), (.fast.exact or (.d2_standard_error != null) or (.status != "saturated")),
+   (.parameters.halves_reference_points == (if .fast.exact then 0 else .fast.reference_points end))]')
+[[ $f == '[true,true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f (the halves get the fast budget)"
 expect_error 3 "cannot be combined with --reference-points or -N \\(got --reference-points 100, -N 0\\)" -- d2 --fast --reference-points 100 "$work/henon.dat"
 expect_error 3 "target agreement must be positive" -- d2 --fast --fast-target 0 "$work/lorenz.dat"
 f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --fast --fast-start 4611686018427387904 --json | jq -c '[.fast.exact, (.fast.rounds | length)]')
@@ -170,12 +178,13 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --halves --json | jq -c '[.status, .cros
 [[ $l == '["linear_region","linear_region",true]' ]] && pass || fail "lyapunov --halves on henon gave $l"
 # The zoo's Genesio-Tesi x, its first 10^4 samples, at m = 6, tau = 31, w = 63: a confident-wrong grid row of
 # docs/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
-# from the equations). Neither half of 5000 samples has a linear region, so with --halves both are not_reproduced.
+# from the equations). Neither half of 5000 samples has a linear region, so with the halves check (the default
+# since 2026-12-02; --no-halves before it) both are not_reproduced.
 "$CHAOS" zoo --series genesio_tesi -o "$work/genesio_tesi.dat" || fail "zoo --series genesio_tesi"
-l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 -q --json | jq -c '[.status, .cross_check.status]')
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --no-halves -q --json | jq -c '[.status, .cross_check.status]')
 [[ $l == '["linear_region","linear_region"]' ]] && pass || fail "lyapunov on the short Genesio-Tesi record gave $l"
-l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --halves -q --json | jq -c '[.status, .cross_check.status, .lambda]')
-[[ $l == '["not_reproduced","not_reproduced",null]' ]] && pass || fail "lyapunov --halves on the short Genesio-Tesi record gave $l"
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 -q --json | jq -c '[.status, .cross_check.status, .lambda, .parameters.halves]')
+[[ $l == '["not_reproduced","not_reproduced",null,true]' ]] && pass || fail "lyapunov (halves by default) on the short Genesio-Tesi record gave $l"
 expect_error 3 "method must be rosenstein or kantz" -- lyapunov --method wolf "$work/henon.dat"
 expect_error 3 "too short.*N = 5.*steps = 20" -- lyapunov "$work/five.dat"
 expect_error 3 "eps must be positive.*-1" -- lyapunov --method kantz -r -1 "$work/henon.dat"
@@ -480,7 +489,7 @@ invariants() {
     "$CHAOS" lyapunov "$1" --json | jq -c '[.status, .lambda, .points, .mean_neighbours, .parameters.theiler]'
   } 2>&1
 }
-d2_of() { "$CHAOS" d2 "$1" --json | jq -r '"\(.d2) \(.takens_theiler)"'; }
+d2_of() { "$CHAOS" d2 "$1" --no-halves --json | jq -r '"\(.d2) \(.takens_theiler)"'; }  # 5000 samples: the halves do not reproduce D2
 close() { awk -v a="$1" -v b="$2" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !((x[1] - y[1]) ^ 2 < 1e-18 && (x[2] - y[2]) ^ 2 < 1e-18) }'; }
 reference=$(invariants "$work/lorenz.dat")
 ref_d2=$(d2_of "$work/lorenz.dat")

@@ -189,7 +189,7 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
 def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=False, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
+       projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=True, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
        skip=0, length=None):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
@@ -228,6 +228,11 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``; delay_variant with
     ``delay_check=True``, which requires a saturated D2 to be reproduced at twice the delay within
     ``delay_tolerance``, as ``chaos analyze`` does).
+
+    ``halves=True`` (the default, as in ``chaos analyze``) counts the same sums over each half of the
+    record: a saturated D2 that both halves do not reproduce gets status ``not_reproduced`` and no
+    value (after ``fast=True`` each half gets the budget the fast run chose). ``halves=False`` gives the
+    plain estimate.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
     params = dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
@@ -252,7 +257,7 @@ correlation_sum = d2  # the correlation sums are part of d2's result (correlatio
 
 def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
              radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, cross_check=True, halves=False, progress=None, dt=None, column=1, skip=0,
+             min_steps=0, min_rise=2.0, cross_check=True, halves=True, progress=None, dt=None, column=1, skip=0,
              length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
@@ -265,9 +270,10 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
 
     ``cross_check`` (default) also runs the other method with the same settings: a linear region it
     does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
-    method's verdict is under ``cross_check``). ``halves=True`` runs the estimator over each half of
-    the record as well: a linear region that neither half shows, or that a half puts more than
-    ``tolerance`` away, gives status ``not_reproduced`` (as ``analyze`` does).
+    method's verdict is under ``cross_check``). ``halves`` (default, as in ``analyze``) runs the
+    estimator over each half of the record as well: a linear region that neither half shows, or that a
+    half puts more than ``tolerance`` away, gives status ``not_reproduced``; ``halves=False`` gives the
+    plain estimate.
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
 
