@@ -86,7 +86,8 @@ void run(LyapunovArgs& args) {
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   args.params.check_progress =
       progress.callback(std::string("cross-check (") + (args.params.method == "kantz" ? "rosenstein" : "kantz") + ")");
-  auto [r, check, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
+  args.params.maps_progress = progress.callback("cross-check (local maps)");
+  auto [r, check, maps, maps_refusal, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
   report.open(args.output);
   const bool per_time = r.dt.has_value();
@@ -108,6 +109,13 @@ void run(LyapunovArgs& args) {
     const std::optional<double> other = per_time ? check->lambda_per_time : check->fit.lambda;
     out << "# cross_check = " << to_string(check->options.method) << ": " << to_string(check->fit.status)
         << ", lambda = " << (other ? number(*other) : "none") << "\n";
+  }
+  if (maps) {
+    const std::optional<double> value = maps->dt ? maps->lambda_per_time : maps->lambda;
+    out << "# local_maps = " << to_string(maps->status) << " at m = " << maps->variants.front().dimension
+        << ", lambda = " << (value ? number(*value) : "none") << "\n";
+  } else if (args.params.cross_check) {
+    out << "# local_maps = not_run: " << maps_refusal << "\n";
   }
   if (r.fit_range_time)
     out << "# fitted over t = " << number(r.fit_range_time->low) << " .. " << number(r.fit_range_time->high)
@@ -164,8 +172,9 @@ void register_lyapunov(CLI::App& app) {
   command->add_option("--min-rise", args->params.fit.min_rise, "e-folds the curve must rise across the linear region")
       ->capture_default_str();
   command->add_flag("!--no-cross-check", args->params.cross_check,
-                   "skip the other method's check: the status is then this estimator's alone (by default a linear "
-                   "region the other method does not confirm within the tolerance is 'unconfirmed')");
+                   "skip the other estimators' checks: the status is then this estimator's alone (by default a linear "
+                   "region the other method does not confirm within the tolerance, or that lambda_1 from local maps "
+                   "contradicts or finds noisy, as in chaos analyze, is 'unconfirmed')");
   command->add_flag("--halves,!--no-halves", args->params.halves,
                     "run the estimator over each half of the record too: a linear region that neither half shows, or "
                     "that a half puts more than the tolerance away, is 'not_reproduced' (on by default, as in chaos "

@@ -121,9 +121,13 @@ struct LyapunovParams {
   std::string method = "rosenstein";
   std::string norm = "max";
   // Run the other method too, with the same settings, and check the two against each other
-  // (lyapunov.hpp, cross_check); its progress goes to check_progress.
+  // (lyapunov.hpp, cross_check); its progress goes to check_progress. Since 2026-12-02 also, as the
+  // pipeline does (automatic_analysis.hpp, step 6), lambda_1 from local maps at m (and m + 1 where m
+  // is inconsistent): a slope a consistent local-map exponent contradicts, or one beside
+  // not_deterministic maps (noise at the neighbours' scale), is unconfirmed.
   bool cross_check = true;
   std::function<void(double)> check_progress;
+  std::function<void(double)> maps_progress;  // the local-map check: 0 before, 0.5 before m + 1, 1 after
   // Run the same estimator over each half of the record: a linear region that neither half shows,
   // or that a half contradicts, is not_reproduced (check_record_halves), before the cross-check.
   // On by default since 2026-12-02, as in chaos analyze; `--no-halves` for the plain estimate.
@@ -132,6 +136,8 @@ struct LyapunovParams {
 struct LyapunovRun {
   LyapunovResult result;
   std::optional<LyapunovResult> check;  // the other method's result, when cross-checked
+  std::optional<LocalMapResult> local_maps;  // the local-map check, when cross-checked and it could run
+  std::string local_maps_refusal;            // why it could not run (series too short), else empty
   Report report;
 };
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});

@@ -231,6 +231,30 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     else
       cross_check(*check, r, params.fit.tolerance);
   }
+  // The pipeline's third estimator, at the same m, delay, window and norm (and at m + 1 where m is
+  // inconsistent): noise at the neighbours' scale biases both curves low alike, which their mutual
+  // check cannot see (docs/zoo-noise.md).
+  std::optional<LocalMapResult> maps;
+  std::string maps_refusal;
+  if (params.cross_check) {
+    LocalMapOptions l = automatic_local_map_options(params.options.dimension, params.options.delay, params.options.theiler);
+    l.norm = params.options.norm;
+    l.threads = params.options.threads;
+    const auto& report_progress = params.maps_progress;
+    if (report_progress) report_progress(0.0);
+    try {
+      maps = local_maps_with_next_dimension(x, l, in.dt, true, [&] {
+               if (report_progress) report_progress(0.5);
+             }).result;
+    } catch (const InvalidInput& e) {
+      maps_refusal = e.what();
+    }
+    if (report_progress) report_progress(1.0);
+    if (maps) {
+      cross_check(r, *maps, params.fit.tolerance);
+      if (check) cross_check(*check, *maps, params.fit.tolerance);
+    }
+  }
 
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
@@ -295,7 +319,19 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   } else {
     j["cross_check"] = nullptr;
   }
-  return {std::move(r), std::move(check), std::move(report)};
+  if (maps) {
+    const bool maps_per_time = maps->dt.has_value();
+    j["local_maps"] = {{"status", to_string(maps->status)},
+                       {"lambda", optional_json(maps_per_time ? maps->lambda_per_time : maps->lambda)},
+                       {"lambda_interval", interval_json(maps_per_time ? maps->lambda_per_time_interval : maps->lambda_interval)},
+                       {"dimension", maps->variants.front().dimension},
+                       {"explanation", maps->explanation}};
+  } else if (params.cross_check) {
+    j["local_maps"] = {{"status", "not_run"}, {"explanation", maps_refusal}};
+  } else {
+    j["local_maps"] = nullptr;
+  }
+  return {std::move(r), std::move(check), std::move(maps), std::move(maps_refusal), std::move(report)};
 }
 
 LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams params, const OutputOptions& output) {

@@ -116,6 +116,32 @@ LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t d
   return options;
 }
 
+LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const LocalMapOptions& options,
+                                             std::optional<double> dt, bool next_dimension,
+                                             const std::function<void()>& retrying) {
+  LocalMapsRuns runs{largest_lyapunov_local_maps(x, options, dt), std::nullopt};
+  // Only an inconsistent run is tried again: noise (not_deterministic) and a series without
+  // exponential divergence (not_positive) are what the data are, not an effect of m.
+  if (!next_dimension || runs.result.status != LocalMapStatus::inconsistent) return runs;
+  LocalMapOptions next_options = options;
+  const std::size_t m = ++next_options.dimension;
+  if (retrying) retrying();
+  try {
+    LocalMapResult next = largest_lyapunov_local_maps(x, next_options, dt);
+    if (next.status == LocalMapStatus::consistent) {
+      next.explanation = "at m = " + std::to_string(m) + ": " + next.explanation + "; at m = " +
+                         std::to_string(options.dimension) + ", inconsistent: " + runs.result.explanation;
+      runs.at_m = std::move(runs.result);
+      runs.result = std::move(next);
+    } else {
+      runs.result.explanation += "; at m = " + std::to_string(m) + ", " + to_string(next.status) + ": " + next.explanation;
+    }
+  } catch (const InvalidInput& e) {
+    runs.result.explanation += "; at m = " + std::to_string(m) + " not run: " + e.what();
+  }
+  return runs;
+}
+
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
                                  const AutomaticAnalysisOptions& options) {
   require_finite(x, "automatic analysis");
@@ -199,36 +225,17 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
   }
   if (options.local_maps) {
-    const auto local_maps_at = [&](std::size_t m) {
-      LocalMapOptions l = automatic_local_map_options(m, *a.delay, a.theiler);
-      l.threads = options.threads;
-      return largest_lyapunov_local_maps(x, l, dt);
-    };
+    LocalMapOptions l = automatic_local_map_options(*a.dimension, *a.delay, a.theiler);
+    l.threads = options.threads;
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.0);
     try {
-      a.local_maps = local_maps_at(*a.dimension);
+      LocalMapsRuns runs = local_maps_with_next_dimension(x, l, dt, options.local_maps_next_dimension, [&] {
+        if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.5);
+      });
+      a.local_maps = std::move(runs.result);
+      a.local_maps_at_m = std::move(runs.at_m);
     } catch (const InvalidInput& e) {
       a.local_maps_refusal = e.what();
-    }
-    // Only an inconsistent run is tried again: noise (not_deterministic) and a series without
-    // exponential divergence (not_positive) are what the data are, not an effect of m.
-    if (options.local_maps_next_dimension && a.local_maps && a.local_maps->status == LocalMapStatus::inconsistent) {
-      const std::size_t m = *a.dimension + 1;
-      if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.5);
-      try {
-        LocalMapResult next = local_maps_at(m);
-        if (next.status == LocalMapStatus::consistent) {
-          next.explanation = "at m = " + std::to_string(m) + ": " + next.explanation + "; at m = " +
-                             std::to_string(*a.dimension) + ", inconsistent: " + a.local_maps->explanation;
-          a.local_maps_at_m = std::move(a.local_maps);
-          a.local_maps = std::move(next);
-        } else {
-          a.local_maps->explanation += "; at m = " + std::to_string(m) + ", " + to_string(next.status) + ": " +
-                                       next.explanation;
-        }
-      } catch (const InvalidInput& e) {
-        a.local_maps->explanation += "; at m = " + std::to_string(m) + " not run: " + e.what();
-      }
     }
     // A divergence slope that the consistent local-map exponent contradicts is withdrawn too.
     if (options.cross_check && a.local_maps) {

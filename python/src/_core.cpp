@@ -300,6 +300,9 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   if (hook && params.cross_check) {
     params.options.progress = [hook](double f) { hook(0.5 * f); };
     params.check_progress = [hook](double f) { hook(0.5 + 0.5 * f); };
+    // The local maps report no fraction of their own: the hook only sees that the work goes on
+    // (and Ctrl-C is noticed) before them, before their run at m + 1 and after them.
+    params.maps_progress = [hook](double) { hook(1.0); };
   } else {
     params.options.progress = hook;
   }

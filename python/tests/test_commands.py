@@ -108,6 +108,8 @@ def test_lyapunov_henon(data_dir):
     single = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-cross-check"],
                    cross_check=False)
     assert single["cross_check"] is None and single["parameters"]["cross_check"] is False
+    # The local-map check runs with the cross-check, as in analyze (clean Henon: consistent).
+    assert r["local_maps"]["status"] == "consistent" and single["local_maps"] is None
     halves = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--halves"], halves=True)
     assert halves["parameters"]["halves"] is True
     # The halves check is the default (as in analyze); halves=False is the command's --no-halves.

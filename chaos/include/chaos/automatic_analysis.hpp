@@ -126,6 +126,19 @@ LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales);
 // The local-maps settings the pipeline uses at (m, tau, w): the estimator's own defaults otherwise.
 LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t delay, std::size_t theiler);
 
+// Step 6 on its own: lambda_1 from local maps with `options` (its dimension m), and, where that run is
+// inconsistent and `next_dimension` holds, once more at m + 1 (progress through `retrying`, when set,
+// before it). `result` is the run at m + 1 when that one is consistent (its explanation then names
+// both runs, and `at_m` keeps the first), else the run at m with the retry's verdict appended. Throws
+// InvalidInput when the run at m cannot be made; a retry that cannot be made is named in the result.
+struct LocalMapsRuns {
+  LocalMapResult result;
+  std::optional<LocalMapResult> at_m;
+};
+LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const LocalMapOptions& options,
+                                             std::optional<double> dt, bool next_dimension = true,
+                                             const std::function<void()>& retrying = {});
+
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt = std::nullopt,
                                  const AutomaticAnalysisOptions& options = {});
 

@@ -270,7 +270,11 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
 
     ``cross_check`` (default) also runs the other method with the same settings: a linear region it
     does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
-    method's verdict is under ``cross_check``). ``halves`` (default, as in ``analyze``) runs the
+    method's verdict is under ``cross_check``). It also runs ``lyapunov_maps`` at the same m, delay,
+    window and norm (at m + 1 where m is inconsistent, as ``analyze`` does; its verdict is under
+    ``local_maps``): a slope more than ``tolerance`` from a consistent local-map exponent, or beside
+    ``not_deterministic`` maps (noise at the neighbours' scale, which biases both curves low alike),
+    is ``unconfirmed`` too. ``halves`` (default, as in ``analyze``) runs the
     estimator over each half of the record as well: a linear region that neither half shows, or that a
     half puts more than ``tolerance`` away, gives status ``not_reproduced``; ``halves=False`` gives the
     plain estimate.
