@@ -64,6 +64,7 @@ void run(D2Args& args) {
                       "reference points in a fraction of the time");
   D2Params params = args.params;
   params.sums.progress = progress.callback("correlation sums");
+  params.halves_progress = progress.callback("correlation sums of the record's halves");
   auto [sums, d2, report, run_fast] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
   report.open(args.output);

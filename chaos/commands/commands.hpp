@@ -88,6 +88,7 @@ FnnRun run_fnn(const SeriesInput& in, FnnParams params, const OutputOptions& out
 struct D2Params {
   D2Params() { sums.max_dimension = 10; }
   CorrelationSumOptions sums;  // sums.progress: called with the fraction done (may throw to stop)
+  std::function<void(double)> halves_progress;  // the same for each half's sums in the halves check
   CorrelationDimensionOptions dimension;
   std::optional<std::size_t> theiler;
   std::optional<double> r_min, r_max;

@@ -62,7 +62,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   CorrelationDimensionResult d2 = fast ? std::move(fast->d2) : correlation_dimension(sums, params.dimension);
   // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
   CorrelationSumOptions halves = params.sums;
-  halves.progress = nullptr;  // the progress shown is the full record's sums
+  halves.progress = params.halves_progress;  // each half from 0 to 1 (and where a caller may stop them)
   // After --fast, each half gets the budget the fast run settled on (exact if it fell back), so
   // the check costs about what the final D2 did, not half an exact job.
   if (fast && !fast->exact) halves.reference_points = fast->reference_points;

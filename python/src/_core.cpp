@@ -270,6 +270,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
   get(p, "fast_target", params.adaptive.target);
   get(p, "fast_start", params.adaptive.initial_reference_points);
   params.sums.progress = progress_hook(std::move(progress));
+  params.halves_progress = params.sums.progress;  // again from 0 for each half (Ctrl-C is noticed there too)
   return call([&] { return run_d2(in, params).report.json(); });
 }
 

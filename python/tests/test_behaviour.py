@@ -184,8 +184,32 @@ def test_ctrl_c_interrupts_d2_within_a_second(lorenz):
 def test_progress_callable(lorenz):
     seen = []
     r = chaos.d2(np.tile(lorenz, 2), delay=10, max_dimension=5, progress=seen.append)
-    assert seen and all(0 < a < b < 1 for a, b in zip(seen, seen[1:]))
+    # The full record's sums, then (the halves check, when D2 saturates) each half's from 0 again.
+    runs, run = [], []
+    for f in seen:
+        if run and f <= run[-1]:
+            runs.append(run)
+            run = []
+        run.append(f)
+    runs.append(run)
+    assert seen and all(0 < a < b < 1 for run in runs for a, b in zip(run, run[1:]))
+    assert len(runs) == (3 if "first_half" in r.to_dict() else 1)
     assert r.to_dict() == chaos.d2(np.tile(lorenz, 2), delay=10, max_dimension=5).to_dict()
+
+
+def test_the_halves_check_can_be_interrupted(data_dir):
+    """The halves' sums report progress too, so a callable (and Ctrl-C) can stop them."""
+    x = chaos.read(data_dir / "henon.txt")[0]
+    seen = []
+
+    def stop_in_a_half(f):
+        if seen and f <= seen[-1]:
+            raise KeyboardInterrupt
+        seen.append(f)
+
+    assert chaos.d2(x, delay=1, max_dimension=4).status == "saturated"
+    with pytest.raises(KeyboardInterrupt):
+        chaos.d2(x, delay=1, max_dimension=4, progress=stop_in_a_half)
 
 
 def test_numpy_integers_are_integers(lorenz):

@@ -219,7 +219,8 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     reference points).
 
     ``threads`` gives identical results for any number. ``progress=True`` draws a bar on stderr (or
-    pass a callable taking the fraction done); Ctrl-C stops the sums within a thousandth of the work.
+    pass a callable taking the fraction done; with ``halves`` it starts again from 0 for each half of
+    the record); Ctrl-C stops the sums within a thousandth of the work.
 
     Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
     d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
