@@ -47,9 +47,7 @@ case_rows() {  # name tau m0 w -> $work/rows.name
     file="$work/$name.dat"
     if [[ $snr != clean ]]; then
       file="$work/$name.$snr.dat"
-      awk -v snr="$snr" 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
-        FNR == 1 { mean = s / n; for (i = 1; i <= n; ++i) q += (x[i] - mean)^2; sigma = sqrt(q / n) / 10^(snr / 20) }
-        FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$work/$name.dat" "$work/noise" > "$file"
+      add_noise "$snr" "$work/$name.dat" "$work/noise" "$file"
     fi
     for ((m = m0; m <= m0 + m_extra; ++m)); do
       args=(lyapunov "$file" ${dt:+--dt "$dt"} -m "$m" -d "$tau" -t "$w" --json -q)

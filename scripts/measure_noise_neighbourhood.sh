@@ -36,10 +36,7 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
   dt=$(zoo_series "$name")
   : > "$out"
   for snr in $levels; do
-    # sigma from the population standard deviation of x; one noise value per sample, in order
-    awk -v snr="$snr" 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
-      FNR == 1 { mean = s / n; for (i = 1; i <= n; ++i) q += (x[i] - mean)^2; sigma = sqrt(q / n) / 10^(snr / 20) }
-      FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$work/$name.dat" "$work/noise" > "$work/$name.$snr.dat"
+    add_noise "$snr" "$work/$name.dat" "$work/noise" "$work/$name.$snr.dat"
     json=$("$chaos" analyze "$work/$name.$snr.dat" ${dt:+--dt $dt} --json -q 2> /dev/null) || json='{}'
     jq -r --arg name "$name" --arg snr "$snr" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
       [$name, $snr, automatic_columns, lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"

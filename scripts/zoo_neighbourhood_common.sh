@@ -21,6 +21,9 @@
 #   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
 #                   selects
 #   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
+#   add_noise SNR IN NOISE OUT
+#                   OUT = IN + sigma * NOISE sample by sample, sigma = std(IN) / 10^(SNR / 20)
+#                   (population std, as chaos::add_noise; NOISE holds unit-variance values)
 
 zoo_build=${1:-build}
 chaos="$PWD/$zoo_build/chaos/chaos"
@@ -88,6 +91,12 @@ zoo_table_rows() {
   done < "$work/systems"
 }
 
-export -f zoo_series
+add_noise() {
+  awk -v snr="$1" 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
+    FNR == 1 { mean = s / n; for (i = 1; i <= n; ++i) q += (x[i] - mean)^2; sigma = sqrt(q / n) / 10^(snr / 20) }
+    FNR <= n { printf "%.17g\n", x[FNR] + sigma * $1 }' "$2" "$3" > "$4"
+}
+
+export -f zoo_series add_noise
 # shellcheck disable=SC2090
 export chaos work zoo_verdicts
