@@ -46,9 +46,7 @@ export -f case_rows
 export check_flag
 
 start=$(date +%s)
-while read -r name tau w lo hi lam; do
-  if [[ -z ${ONLY:-} || ,$ONLY, == *,$name,* ]]; then echo "$name $tau $w $lo $hi $lam"; fi
-done < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+zoo_only < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
 elapsed=$(($(date +%s) - start))
 
 echo "# The automatic pipeline at other delays (written by scripts/measure_delay_neighbourhood.sh)"
