@@ -174,7 +174,8 @@ void register_lyapunov(CLI::App& app) {
   command->add_flag("!--no-cross-check", args->params.cross_check,
                    "skip the other estimators' checks: the status is then this estimator's alone (by default a linear "
                    "region the other method does not confirm within the tolerance, or that lambda_1 from local maps "
-                   "contradicts or finds noisy, as in chaos analyze, is 'unconfirmed')");
+                   "does not confirm (maps not consistent, or more than the tolerance away), as in chaos analyze, is "
+                   "'unconfirmed')");
   command->add_flag("--halves,!--no-halves", args->params.halves,
                     "run the estimator over each half of the record too: a linear region that neither half shows, or "
                     "that a half puts more than the tolerance away, is 'not_reproduced' (on by default, as in chaos "

@@ -124,8 +124,8 @@ struct LyapunovParams {
   // Run the other method too, with the same settings, and check the two against each other
   // (lyapunov.hpp, cross_check); its progress goes to check_progress. Since 2026-12-02 also, as the
   // pipeline does (automatic_analysis.hpp, step 6), lambda_1 from local maps at m (and m + 1 where m
-  // is inconsistent): a slope a consistent local-map exponent contradicts, or one beside
-  // not_deterministic maps (noise at the neighbours' scale), is unconfirmed.
+  // is inconsistent): a slope stands only where the local-map exponent is consistent and within the
+  // tolerance of it (lyapunov_local_maps.hpp, cross_check); otherwise it is unconfirmed.
   bool cross_check = true;
   std::function<void(double)> check_progress;
   std::function<void(double)> maps_progress;  // the local-map check: 0 before, 0.5 before m + 1, 1 after

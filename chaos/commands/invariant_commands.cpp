@@ -253,6 +253,9 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     if (maps) {
       cross_check(r, *maps, params.fit.tolerance);
       if (check) cross_check(*check, *maps, params.fit.tolerance);
+    } else {
+      cross_check_without_local_maps(r, maps_refusal);
+      if (check) cross_check_without_local_maps(*check, maps_refusal);
     }
   }
 

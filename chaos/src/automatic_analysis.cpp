@@ -237,11 +237,14 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     } catch (const InvalidInput& e) {
       a.local_maps_refusal = e.what();
     }
-    // A divergence slope that the consistent local-map exponent contradicts is withdrawn too.
+    // A divergence slope stands only where the consistent local-map exponent confirms it.
     if (options.cross_check && a.local_maps) {
       const double tolerance = automatic_lyapunov_fit(a.scales).tolerance;
       if (a.rosenstein) cross_check(*a.rosenstein, *a.local_maps, tolerance);
       if (a.kantz) cross_check(*a.kantz, *a.local_maps, tolerance);
+    } else if (options.cross_check) {
+      if (a.rosenstein) cross_check_without_local_maps(*a.rosenstein, a.local_maps_refusal);
+      if (a.kantz) cross_check_without_local_maps(*a.kantz, a.local_maps_refusal);
     }
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 1.0);
   }

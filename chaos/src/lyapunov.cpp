@@ -648,7 +648,19 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
     withdraw(fit, why.str());
     return;
   }
-  if (local_maps.status != LocalMapStatus::consistent || !local_maps.lambda) return;
+  if (local_maps.status != LocalMapStatus::consistent || !local_maps.lambda) {
+    // Rosenstein and Kantz can agree with each other and both be wrong (both start from the same
+    // nearest neighbours): Sprott F x with 1% noise, m = 6, reads 15% low by both, halves agreeing,
+    // beside maps whose variants disagree (docs/zoo-notes.md, section 4). So a slope needs the
+    // independent estimate's positive confirmation, not only the absence of a contradiction.
+    why << "the local linear maps do not confirm this slope: they are " << to_string(local_maps.status)
+        << (local_maps.status == LocalMapStatus::not_positive ? " (no exponential divergence at the neighbourhoods' scale)"
+                                                              : " (their variants disagree, so they give no value)")
+        << "; a divergence-curve slope is trusted only where the local-map exponent, consistent over its variants, "
+        << "agrees with it (" << verdict(name.c_str(), fit) << ")";
+    withdraw(fit, why.str());
+    return;
+  }
   if (agree(*fit.lambda, *local_maps.lambda, tolerance)) return;
   why << "the local-map exponent contradicts this slope: " << verdict(name.c_str(), fit) << ", local maps give "
       << std::setprecision(4) << *local_maps.lambda << " per sample (consistent over their variants), more than " << tolerance * 100
@@ -658,6 +670,19 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
 
 void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance) {
   cross_check(result.fit, result.options.method, local_maps, tolerance);
+  withdraw_per_time(result);
+}
+
+void cross_check_without_local_maps(LyapunovFit& fit, LyapunovMethod method, const std::string& refusal) {
+  if (fit.status != LyapunovStatus::linear_region) return;
+  withdraw(fit, std::string("no local-map exponent to confirm this slope (") +
+                    (method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz") +
+                    "): the local linear maps were not run: " + refusal +
+                    "; a divergence-curve slope is trusted only where the local maps confirm it");
+}
+
+void cross_check_without_local_maps(LyapunovResult& result, const std::string& refusal) {
+  cross_check_without_local_maps(result.fit, result.options.method, refusal);
   withdraw_per_time(result);
 }
 

@@ -298,7 +298,8 @@ ZooEstimate local_maps_estimate(const LocalMapResult& r, const ZooBand& band) {
 }
 
 // lambda_1 from local linear maps at (m, tau, w) with the pipeline's settings, or the refusal (a
-// series too short for the embedding), which the row reports as not_run.
+// series too short for the embedding), which the row reports as not_run. The grid runs m only (the
+// pipeline retries m + 1 where m is inconsistent), so a grid row's slopes need a confirmation at m.
 struct LocalMaps {
   std::optional<LocalMapResult> result;
   std::string refusal;
@@ -310,7 +311,7 @@ LocalMaps local_maps_at(std::span<const double> x, std::size_t m, std::size_t ta
   try {
     out.result = largest_lyapunov_local_maps(x, automatic_local_map_options(m, tau, w), dt);
   } catch (const InvalidInput& error) {
-    out.refusal = std::string("not_run: ") + error.what();
+    out.refusal = error.what();
   }
   return out;
 }
@@ -483,10 +484,13 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           if (maps.result) {
             if (r) cross_check(*r, LyapunovMethod::rosenstein, *maps.result, fit.tolerance);
             if (q) cross_check(*q, LyapunovMethod::kantz, *maps.result, fit.tolerance);
+          } else {
+            if (r) cross_check_without_local_maps(*r, LyapunovMethod::rosenstein, maps.refusal);
+            if (q) cross_check_without_local_maps(*q, LyapunovMethod::kantz, maps.refusal);
           }
           row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
-          row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run(maps.refusal);
+          row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run("not_run: " + maps.refusal);
           result.rows.push_back(row);
         }
       }

@@ -193,10 +193,14 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --halves --json | jq -c '[.status, .cros
 # The zoo's Genesio-Tesi x, its first 10^4 samples, at m = 6, tau = 31, w = 63: a confident-wrong grid row of
 # docs/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
 # from the equations). Neither half of 5000 samples has a linear region, so with the halves check (the default
-# since 2026-12-02; --no-halves before it) both are not_reproduced.
+# since 2026-12-02; --no-halves before it) both are not_reproduced. Without the halves, the local maps at m = 6 and
+# 7 are inconsistent, so they confirm neither slope (the rule since 2026-12-02, third session), and only
+# --no-cross-check gives the plain 0.0858.
 "$CHAOS" zoo --series genesio_tesi -o "$work/genesio_tesi.dat" || fail "zoo --series genesio_tesi"
-l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --no-halves -q --json | jq -c '[.status, .cross_check.status]')
-[[ $l == '["linear_region","linear_region"]' ]] && pass || fail "lyapunov on the short Genesio-Tesi record gave $l"
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --no-halves -q --json | jq -c '[.status, .cross_check.status, .local_maps.status, .lambda]')
+[[ $l == '["unconfirmed","unconfirmed","inconsistent",null]' ]] && pass || fail "lyapunov on the short Genesio-Tesi record gave $l"
+l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --no-halves --no-cross-check -q --json | jq -c '[.status, .lambda < 0.1019 * 0.9]')
+[[ $l == '["linear_region",true]' ]] && pass || fail "lyapunov --no-cross-check --no-halves on the short Genesio-Tesi record gave $l"
 l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 -q --json | jq -c '[.status, .cross_check.status, .lambda, .parameters.halves]')
 [[ $l == '["not_reproduced","not_reproduced",null,true]' ]] && pass || fail "lyapunov (halves by default) on the short Genesio-Tesi record gave $l"
 expect_error 3 "method must be rosenstein or kantz" -- lyapunov --method wolf "$work/henon.dat"

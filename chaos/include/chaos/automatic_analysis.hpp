@@ -24,8 +24,9 @@
 //      is the least dimension that unfolds the attractor at the chosen delay, so the variants that
 //      embed differently (above all the delay + tau/4 one) can fall short of it and disagree because
 //      of the embedding, not the exponent; m + 1 is the estimator's own `m + 1` variant, checked by
-//      ten variants of its own (docs/lyapunov-maps.md, "In the pipeline"). Where the reported value is
-//      consistent, a Rosenstein or Kantz slope more than 10% from it is unconfirmed as well.
+//      ten variants of its own (docs/lyapunov-maps.md, "In the pipeline"). A Rosenstein or Kantz
+//      slope stands only where the reported value is consistent and within 10% of it; beside maps
+//      that are not consistent, or that could not be run, it is unconfirmed as well.
 // `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
 
 #include <cstddef>
@@ -56,7 +57,7 @@ struct AutomaticAnalysisOptions {
   // ones (docs/zoo-notes.md, "The delay neighbourhood").
   bool check_delay = false;
   bool rosenstein = true, kantz = true;
-  bool cross_check = true;           // a lambda_1 the other estimators contradict or do not support is unconfirmed
+  bool cross_check = true;           // a lambda_1 the other estimators do not confirm is unconfirmed
   bool local_maps = true;            // lambda_1 from local linear maps too (lyapunov_local_maps.hpp)
   bool local_maps_next_dimension = true;  // ... and at m + 1 where the run at m is inconsistent
   std::size_t threads = 1;           // results identical for any number

@@ -125,10 +125,13 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
                                            std::optional<double> dt = std::nullopt, double tolerance = 0.05);
 
 // A divergence-curve slope (Rosenstein's or Kantz's, lyapunov.hpp) checked against the local-map
-// exponent of the same series and sampling (docs/lyapunov.md, "Two estimators must agree"). Where
-// the local-map result is `consistent` and the fit has a linear region whose slope differs from it by
-// more than `tolerance` times their mean, the fit becomes `unconfirmed`: its value and region are
-// withdrawn, and its explanation gives both values. Otherwise nothing changes. The local-map value
+// exponent of the same series and sampling (docs/lyapunov.md, "Two estimators must agree"). A linear
+// region stands only where the local-map result is `consistent` and its value differs from the slope
+// by at most `tolerance` times their mean; otherwise the fit becomes `unconfirmed`: its value and
+// region are withdrawn, and its explanation says why (both values where both exist). Where the maps
+// are `inconsistent` or `not_positive` they confirm nothing (since 2026-12-02: before, only a
+// contradiction withdrew a slope, and Sprott F x with 1% noise kept a slope 15% low that Rosenstein
+// and Kantz agreed on, beside inconsistent maps; docs/zoo-notes.md, section 4). The local-map value
 // keeps its status: it has passed its own ten variants, and the disagreements found so far were the
 // divergence curves' known low bias on flows (Genesio-Tesi: Rosenstein 10% low, inside a straight
 // stretch that Kantz confirmed; docs/zoo-notes.md, section 3). Where the local-map result is
@@ -140,5 +143,9 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
 void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance = 0.1);
 // The same on a full result (its method from result.options), with the per-time values withdrawn too.
 void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance = 0.1);
+// Where the local maps could not be run (`refusal` says why, e.g. a series too short for them), a
+// linear region has nothing to confirm it and becomes `unconfirmed` as well.
+void cross_check_without_local_maps(LyapunovFit& fit, LyapunovMethod method, const std::string& refusal);
+void cross_check_without_local_maps(LyapunovResult& result, const std::string& refusal);
 
 }  // namespace chaos
