@@ -85,7 +85,9 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
       .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
       .parameter("projection_tolerance", params.dimension.projection_tolerance)
       .parameter("noise_fill_fraction", params.dimension.noise_fill_fraction)
-      .parameter("halves", params.halves).parameter("halves_reference_points", halves.reference_points)
+      .parameter("halves", params.halves)
+      .parameter("halves_reference_points",  // null with --no-halves: no half was counted
+                 params.halves ? std::optional<std::size_t>(halves.reference_points) : std::nullopt)
       .parameter("delay_check", params.delay_check)
       .parameter("delay_tolerance", params.dimension.delay_tolerance)
       .parameter("min_pairs", params.dimension.min_pairs)

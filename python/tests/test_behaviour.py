@@ -172,11 +172,14 @@ def test_ctrl_c_interrupts_d2_within_a_second(lorenz):
     import _thread
     x = np.tile(lorenz, 10)  # 40 000 samples by brute force: tens of seconds
     timer = threading.Timer(0.5, _thread.interrupt_main)
-    started = time.perf_counter()
+    # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
+    # machine shared with other jobs the same work takes longer by the clock (the d2 test of
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
         chaos.d2(x, delay=10, max_dimension=10, theiler=20, search="brute")
-    elapsed = time.perf_counter() - started
+    elapsed = time.process_time() - started
     timer.join()
     assert elapsed < 0.5 + 1.0
 

@@ -107,9 +107,12 @@ def test_ctrl_c_interrupts_a_run():
     import _thread
     scene = scene_with({"run.duration": 5.0, "run.output_interval": 0.0})  # 1% = 0.05 s simulated
     timer = threading.Timer(0.5, _thread.interrupt_main)
-    started = time.perf_counter()
+    # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
+    # machine shared with other jobs the same work takes longer by the clock (the d2 test of
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
         mechanism.simulate(scene)
     timer.join()
-    assert time.perf_counter() - started < 0.5 + 1.0
+    assert time.process_time() - started < 0.5 + 1.0

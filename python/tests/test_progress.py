@@ -86,11 +86,14 @@ LONG = {
 @pytest.mark.parametrize("name", LONG)
 def test_ctrl_c_interrupts_within_a_second(noise, name):
     timer = threading.Timer(0.5, _thread.interrupt_main)
-    started = time.perf_counter()
+    # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
+    # machine shared with other jobs the same work takes longer by the clock (the d2 test of
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
         LONG[name](noise)
-    elapsed = time.perf_counter() - started
+    elapsed = time.process_time() - started
     timer.join()
     assert elapsed < 0.5 + 1.0
     # The extension is usable afterwards.
@@ -102,10 +105,13 @@ def test_ctrl_c_interrupts_validate_between_cases():
     (Rossler) 1.1 s (measured with `chaos validate --filter spectrum`)."""
     done = []
     timer = threading.Timer(0.2, _thread.interrupt_main)
-    started = time.perf_counter()
+    # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
+    # machine shared with other jobs the same work takes longer by the clock (the d2 test of
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
         chaos.validate("spectrum", progress=done.append)
-    elapsed = time.perf_counter() - started
+    elapsed = time.process_time() - started
     timer.join()
     assert len(done) < 12 and elapsed < 0.2 + 1.5

@@ -121,12 +121,15 @@ def test_ctrl_c_stops_a_sweep_after_the_point_being_computed(tmp_path):
     # 40 points of 20 revolutions: several seconds uninterrupted (the test sweep of 3 points of 6
     # revolutions above takes about 0.15 s).
     timer = threading.Timer(0.3, _thread.interrupt_main)
-    started = time.perf_counter()
+    # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
+    # machine shared with other jobs the same work takes longer by the clock (the d2 test of
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):
         study.sweep(set=FAST, axis="joint.slider.clearance=1e-4:4e-4:40", periods=20, keep=1, threads=1,
                     output=tmp_path / "k")
-    elapsed = time.perf_counter() - started
+    elapsed = time.process_time() - started
     timer.join()
     assert elapsed < 0.3 + 1.0
     finished = len(list((tmp_path / "k" / "points").glob("*.tsv")))
