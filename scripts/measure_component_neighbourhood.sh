@@ -55,13 +55,11 @@ case_rows() {  # name d2_low d2_high lambda_1 -> $work/rows.name
 }
 export -f case_rows
 
-start=$(date +%s)
-zoo_band_cases | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
-elapsed=$(($(date +%s) - start))
+zoo_run_cases < <(zoo_band_cases)
 
 echo "# The automatic pipeline on each system's other observables (written by scripts/measure_component_neighbourhood.sh)"
 echo
-echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown); $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown); $(zoo_machine); $elapsed s."
 echo
 echo "| system | observable | tau | m (Cao) | w | D2 | D2 band | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"

@@ -45,13 +45,11 @@ case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
 export -f case_rows
 export check_flag
 
-start=$(date +%s)
-zoo_only < "$work/systems" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
-elapsed=$(($(date +%s) - start))
+zoo_run_cases < <(zoo_only < "$work/systems")
 
 echo "# The automatic pipeline at other delays (written by scripts/measure_delay_neighbourhood.sh)"
 echo
-echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), delay check ${check_flag:-off}; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown), delay check ${check_flag:-off}; $(zoo_machine); $elapsed s."
 echo
 echo "| system | tau (automatic) | tau | m (Cao) | w | D2 | delay check: D2 at 2 tau | D2 band | D2 verdict | lambda Rosenstein | verdict | lambda Kantz | verdict | lambda local maps | verdict | lambda_1 (equations) |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"

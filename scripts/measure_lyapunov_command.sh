@@ -66,13 +66,11 @@ case_rows() {  # name tau m0 w -> $work/rows.name
 export -f case_rows verdict zoo_series
 export levels baseline chaos work m_extra
 
-start=$(date +%s)
-zoo_only < "$work/choices" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
-elapsed=$(($(date +%s) - start))
+zoo_run_cases < <(zoo_only < "$work/choices")
 
 echo "# \`chaos lyapunov\` on its own at the zoo's choices (written by scripts/measure_lyapunov_command.sh)"
 echo
-echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown)${baseline:+, baseline $baseline}; noise ${levels:-none} dB, seed $seed; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown)${baseline:+, baseline $baseline}; noise ${levels:-none} dB, seed $seed; $(zoo_machine); $elapsed s."
 echo
 if [[ -n $baseline ]]; then
   echo "| system | SNR dB | tau | m | w | baseline lambda | verdict | this build lambda | verdict | local maps | lambda_1 (equations) |"

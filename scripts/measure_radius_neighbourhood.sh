@@ -25,7 +25,7 @@ zoo_choices > "$work/choices"
 [[ -s $work/choices ]] || { echo "no automatic-choice rows at N = 10^5 found in docs/zoo.md" >&2; exit 3; }
 
 case_rows() {  # name tau m w -> $work/rows.name
-  local name=$1 tau=$2 m=$3 w=$4 lo hi range out="$work/rows.$1" grid json
+  local name=$1 tau=$2 m=$3 w=$4 lo hi range out="$work/rows.$1" json
   read -r lo hi < <(awk -v n="$name" '$1 == n { print $4, $5 }' "$work/systems")
   zoo_series "$name" > /dev/null
   range=$(awk 'NR == 1 { a = b = $1 } { if ($1 < a) a = $1; if ($1 > b) b = $1 } END { printf "%.17g", b - a }' "$work/$name.dat")
@@ -55,19 +55,15 @@ case_rows() {  # name tau m w -> $work/rows.name
 }
 export -f case_rows
 
-start=$(date +%s)
-zoo_only < "$work/choices" | xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
-elapsed=$(($(date +%s) - start))
+zoo_run_cases < <(zoo_only < "$work/choices")
 
 echo "# \`chaos d2\` over other radius grids (written by scripts/measure_radius_neighbourhood.sh)"
 echo
-echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown); $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs; $elapsed s."
+echo "Commit $(git rev-parse --short HEAD 2> /dev/null || echo unknown); $(zoo_machine); $elapsed s."
 echo
 echo "| system | tau | M | w | radii | D2 | scaling region (eps) | D2 band | verdict |"
 echo "|---|---|---|---|---|---|---|---|---|"
-while read -r name _; do
-  if [[ -f $work/rows.$name ]]; then sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"; fi
-done < "$work/choices"
+zoo_table_rows
 echo
 cat "$work"/rows.* | awk -F'\t' '{ n[$5]++; v[$5 "\t" $9]++; labels[$5] = 1 }
   END {

@@ -21,6 +21,9 @@
 #   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
 #                   selects
 #   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
+#   zoo_run_cases   runs case_rows (defined by the script) on each line of standard input, JOBS at
+#                   a time, and sets elapsed to the seconds it took
+#   zoo_machine     "CPU model, N cores, J jobs", for the report's header
 #   add_noise SNR IN NOISE OUT
 #                   OUT = IN + sigma * NOISE sample by sample, sigma = std(IN) / 10^(SNR / 20)
 #                   (population std, as chaos::add_noise; NOISE holds unit-variance values)
@@ -89,6 +92,18 @@ zoo_table_rows() {
   while read -r name _; do
     if [[ -f $work/rows.$name ]]; then sed 's/\t/ | /g; s/^/| /; s/$/ |/' "$work/rows.$name"; fi
   done < "$work/systems"
+}
+
+zoo_run_cases() {
+  local start
+  start=$(date +%s)
+  xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+  # shellcheck disable=SC2034  # read by the scripts that source this file
+  elapsed=$(($(date +%s) - start))
+}
+
+zoo_machine() {
+  echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs"
 }
 
 add_noise() {
