@@ -24,6 +24,10 @@
 #   zoo_run_cases   runs case_rows (defined by the script) on each line of standard input, JOBS at
 #                   a time, and sets elapsed to the seconds it took
 #   zoo_machine     "CPU model, N cores, J jobs", for the report's header
+#   (stopped by Ctrl-C, i.e. SIGINT to the process group, which ends the running cases too, a
+#   script prints the rows of the cases begun so far before its scratch directory goes, so that a
+#   long measurement stopped for lack of time keeps what it measured; a signal to the script's own
+#   process alone waits, as bash does, for the running cases to end first)
 #   add_noise SNR IN NOISE OUT
 #                   OUT = IN + sigma * NOISE sample by sample, sigma = std(IN) / 10^(SNR / 20)
 #                   (population std, as chaos::add_noise; NOISE holds unit-variance values)
@@ -97,7 +101,8 @@ zoo_table_rows() {
 zoo_run_cases() {
   local start
   start=$(date +%s)
-  xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _
+  # The trap ends a case on Ctrl-C even where its loop would go on after a command that died of it.
+  xargs -P "$jobs" -L 1 bash -c 'trap "exit 130" INT TERM; case_rows "$@"' _
   # shellcheck disable=SC2034  # read by the scripts that source this file
   elapsed=$(($(date +%s) - start))
 }
@@ -105,6 +110,18 @@ zoo_run_cases() {
 zoo_machine() {
   echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores, $jobs jobs"
 }
+
+zoo_interrupted() {
+  trap - INT TERM
+  if [[ -s $work/systems ]]; then
+    echo
+    echo "Stopped before the end: the rows of the cases begun so far (a case that was running has only the rows it finished)."
+    echo
+    zoo_table_rows
+  fi
+  exit 130
+}
+trap zoo_interrupted INT TERM
 
 add_noise() {
   awk -v snr="$1" 'NR == FNR { x[NR] = $1; s += $1; n = NR; next }
