@@ -22,12 +22,14 @@
 #                   selects
 #   zoo_table_rows  the Markdown rows of $work/rows.NAME (tab-separated), systems in zoo order
 #   zoo_run_cases   runs case_rows (defined by the script) on each line of standard input, JOBS at
-#                   a time, and sets elapsed to the seconds it took
+#                   a time, and sets elapsed to the seconds it took; with RESUME_FROM=DIR, the
+#                   cases whose rows file DIR/rows.NAME exists are taken from DIR instead of run
 #   zoo_machine     "CPU model, N cores, J jobs", for the report's header
 #   (stopped by Ctrl-C, i.e. SIGINT to the process group, which ends the running cases too, a
-#   script prints the rows of the cases begun so far before its scratch directory goes, so that a
-#   long measurement stopped for lack of time keeps what it measured; a signal to the script's own
-#   process alone waits, as bash does, for the running cases to end first)
+#   script prints the rows of the cases begun so far and keeps the rows of the cases it finished in
+#   a directory it names, for RESUME_FROM, so that a long measurement stopped for lack of time keeps
+#   what it measured; a signal to the script's own process alone waits, as bash does, for the
+#   running cases to end first)
 #   add_noise SNR IN NOISE OUT
 #                   OUT = IN + sigma * NOISE sample by sample, sigma = std(IN) / 10^(SNR / 20)
 #                   (population std, as chaos::add_noise; NOISE holds unit-variance values)
@@ -99,10 +101,21 @@ zoo_table_rows() {
 }
 
 zoo_run_cases() {
-  local start
+  local start name rest
   start=$(date +%s)
+  if [[ -n ${RESUME_FROM:-} && ! -d $RESUME_FROM ]]; then
+    echo "RESUME_FROM=$RESUME_FROM is not a directory" >&2
+    exit 2
+  fi
   # The trap ends a case on Ctrl-C even where its loop would go on after a command that died of it.
-  xargs -P "$jobs" -L 1 bash -c 'trap "exit 130" INT TERM; case_rows "$@"' _
+  # shellcheck disable=SC2016  # expanded by the inner bash
+  while read -r name rest; do
+    if [[ -n ${RESUME_FROM:-} && -f $RESUME_FROM/rows.$name ]]; then
+      cp "$RESUME_FROM/rows.$name" "$work/" && echo "$name" >> "$work/finished"
+    else
+      echo "$name $rest"
+    fi
+  done | xargs -r -P "$jobs" -L 1 bash -c 'trap "exit 130" INT TERM; case_rows "$@" && echo "$1" >> "$work/finished"' _
   # shellcheck disable=SC2034  # read by the scripts that source this file
   elapsed=$(($(date +%s) - start))
 }
@@ -118,6 +131,14 @@ zoo_interrupted() {
     echo "Stopped before the end: the rows of the cases begun so far (a case that was running has only the rows it finished)."
     echo
     zoo_table_rows
+    # The cases that finished (listed in $work/finished) are worth keeping; a running case's
+    # partial rows file is left out, so that a resumed run measures it again.
+    local kept name
+    kept=$(mktemp -d)
+    if [[ -f $work/finished ]]; then
+      while read -r name; do cp "$work/rows.$name" "$kept"/; done < "$work/finished"
+    fi
+    echo "rows of the finished cases kept in $kept (RESUME_FROM=$kept goes on from there)" >&2
   fi
   exit 130
 }
