@@ -433,9 +433,10 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     run.nonlinear = std::move(test.result);
   }
   if (params.mutual_curve && scales.stationary) {
-    // The information curve the delay was read from (the pipeline keeps only its minimum).
+    // The information curve the delay was read from (the pipeline keeps only its minimum), as far
+    // as the search went (further than max_delay where the first search found nothing).
     MutualInformationOptions mi_options;
-    mi_options.max_delay = std::max<std::size_t>(1, std::min(params.max_delay, x.size() / 10));
+    mi_options.max_delay = std::max<std::size_t>(1, std::min(std::max(params.max_delay, a.delay_searched), x.size() / 10));
     mi_options.boxes = params.boxes;
     run.mutual = mutual_information(x, mi_options);
   }
@@ -460,6 +461,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   j["delay"] = optional_json(a.delay);
   j["delay_time"] = a.delay ? time(*a.delay) : nullptr;
   j["delay_source"] = a.delay_source;
+  j["delay_searched"] = a.delay_searched;
   j["theiler"] = a.theiler;
   j["theiler_source"] = run.theiler_source;
   j["embedding_dimension"] = optional_json(a.dimension);

@@ -142,6 +142,48 @@ LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const Lo
   return runs;
 }
 
+DelayChoice automatic_delay(std::span<const double> x, const TimeScales& scales, const AutomaticAnalysisOptions& options) {
+  DelayChoice out;
+  if (scales.decorrelation_time && *scales.decorrelation_time <= 1.0) {
+    // Decorrelated within one sample (maps, coarsely sampled flows): successive samples are already
+    // as independent as the dynamics allows, and later "minima" of the information are its noise.
+    out.delay = 1;
+    out.source = "autocorrelation below 1/e at lag 1: delay 1";
+    return out;
+  }
+  // The first search as TISEAN's users know it (a fixed number of samples), then, where it finds
+  // nothing, a search scaled by the record's own correlation time: the delay in samples grows with
+  // the sampling rate, a fixed cap does not. The second search repeats the first one's delays, so the
+  // first minimum it finds is the one a single long search would find.
+  const std::size_t cap = std::max<std::size_t>(1, x.size() / 10);
+  const std::size_t first = std::max<std::size_t>(1, std::min(options.max_delay, cap));
+  const std::size_t second = std::min(cap, options.delay_search_windows * scales.theiler);
+  for (const std::size_t limit : {first, second}) {
+    if (limit <= out.searched) continue;  // no wider than the search already made
+    out.searched = limit;
+    MutualInformationOptions mi;
+    mi.max_delay = limit;
+    mi.boxes = options.boxes;
+    const std::string scope = limit == first ? "" : " (nothing up to " + std::to_string(first) + "; searched on to " +
+                                                        std::to_string(options.delay_search_windows) +
+                                                        " Theiler windows, " + std::to_string(limit) + ")";
+    if (const auto minimum = first_minimum(mutual_information(x, mi))) {
+      out.delay = minimum;
+      out.source = "first mutual-information minimum" + scope;
+      return out;
+    }
+    if (scales.first_zero_crossing && *scales.first_zero_crossing <= limit) {
+      out.delay = scales.first_zero_crossing;
+      out.source = "no mutual-information minimum up to " + std::to_string(limit) +
+                   "; autocorrelation first zero crossing" + scope;
+      return out;
+    }
+  }
+  out.stopped = "no mutual-information minimum and no autocorrelation zero crossing up to delay " +
+                std::to_string(out.searched) + ": no delay can be chosen";
+  return out;
+}
+
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
                                  const AutomaticAnalysisOptions& options) {
   require_finite(x, "automatic analysis");
@@ -157,26 +199,13 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   if (options.delay) {
     a.delay = options.delay;
     a.delay_source = "given";
-  } else if (a.scales.decorrelation_time && *a.scales.decorrelation_time <= 1.0) {
-    // Decorrelated within one sample (maps, coarsely sampled flows): successive samples are already
-    // as independent as the dynamics allows, and later "minima" of the information are its noise.
-    a.delay = 1;
-    a.delay_source = "autocorrelation below 1/e at lag 1: delay 1";
   } else {
-    MutualInformationOptions mi;
-    mi.max_delay = std::max<std::size_t>(1, std::min(options.max_delay, x.size() / 10));
-    mi.boxes = options.boxes;
-    const auto minimum = first_minimum(mutual_information(x, mi));
-    if (minimum) {
-      a.delay = minimum;
-      a.delay_source = "first mutual-information minimum";
-    } else if (a.scales.first_zero_crossing && *a.scales.first_zero_crossing <= mi.max_delay) {
-      a.delay = a.scales.first_zero_crossing;
-      a.delay_source = "no mutual-information minimum up to " + std::to_string(mi.max_delay) +
-                       "; autocorrelation first zero crossing";
-    } else {
-      a.stopped = "no mutual-information minimum and no autocorrelation zero crossing up to delay " +
-                  std::to_string(mi.max_delay) + ": no delay can be chosen";
+    DelayChoice choice = automatic_delay(x, a.scales, options);
+    a.delay = choice.delay;
+    a.delay_source = std::move(choice.source);
+    a.delay_searched = choice.searched;
+    if (!a.delay) {
+      a.stopped = std::move(choice.stopped);
       return a;
     }
   }

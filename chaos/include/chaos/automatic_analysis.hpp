@@ -7,7 +7,12 @@
 //      falls at once and its later wiggles are noise); else the first mutual-information minimum
 //      (Fraser & Swinney 1986); where the
 //      information falls without a minimum, the autocorrelation's first zero crossing (a standard
-//      alternative, named as the source); if neither exists within max_delay, nothing further runs;
+//      alternative, named as the source); where neither exists within max_delay samples, the same
+//      two rules once more up to delay_search_windows Theiler windows of the record (its own
+//      correlation time, time_scales.hpp), so that a finely sampled flow, whose delay in samples
+//      grows with the sampling rate, still gets one (Sprott's jerk flow sampled at dt = 0.025: its
+//      first minimum lies at 112 samples, docs/zoo-sampling.md); if neither exists then, nothing
+//      further runs;
 //   3. embedding dimension m: Cao's E1 saturation (Cao 1997); none, nothing further runs;
 //   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp); a
 //      saturated D2 must be reproduced by the two halves of the record (require_reproduced_by_halves),
@@ -47,7 +52,9 @@ namespace chaos {
 
 struct AutomaticAnalysisOptions {
   std::optional<std::size_t> delay, theiler, dimension;  // given values replace the automatic choices
-  std::size_t max_delay = 100;       // largest delay searched, samples (capped at N/10)
+  std::size_t max_delay = 100;       // largest delay searched first, samples (capped at N/10)
+  std::size_t delay_search_windows = 2;  // nothing within max_delay: search on to this many Theiler
+                                         // windows (capped at N/10); 0: stop at max_delay
   std::size_t boxes = 16;            // of the mutual information
   std::size_t max_dimension = 10;    // of Cao's method
   std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
@@ -70,6 +77,7 @@ struct AutomaticAnalysis {
   TimeScales scales;
   std::optional<std::size_t> delay;
   std::string delay_source;
+  std::size_t delay_searched = 0;  // the largest delay the search examined (0: the delay was given or 1)
   std::size_t theiler = 0;
   std::optional<std::size_t> dimension;  // Cao's, or the given one
   std::optional<CaoResult> cao;
@@ -85,6 +93,17 @@ struct AutomaticAnalysis {
   std::string local_maps_refusal;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };
+
+// Step 2 on its own: the delay of x by the rules above, from its time scales (scales =
+// time_scales(x)); none, with the reason in `stopped`, where no rule gives one. options.delay is
+// not read here.
+struct DelayChoice {
+  std::optional<std::size_t> delay;
+  std::string source;        // the rule that gave it
+  std::size_t searched = 0;  // the largest delay examined (0: the autocorrelation rule gave 1)
+  std::string stopped;       // why none was chosen
+};
+DelayChoice automatic_delay(std::span<const double> x, const TimeScales& scales, const AutomaticAnalysisOptions& options);
 
 // The steps a divergence curve is followed: 20 of the longer of the correlation time and the
 // oscillation period (samples), at least 20, at most N / 10.

@@ -332,7 +332,9 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
 
     The library's automatic pipeline (chaos/automatic_analysis.hpp, the one ``chaos zoo`` validates):
     Theiler window = max(autocorrelation 1/e time, half the dominant period); delay 1 for a series
-    decorrelated within a sample, else the first minimum of the mutual information; embedding
+    decorrelated within a sample, else the first minimum of the mutual information up to ``max_delay``
+    (else the autocorrelation's first zero crossing; where neither lies within ``max_delay``, both
+    rules once more up to twice the Theiler window, so a finely sampled flow still gets one); embedding
     dimension where Cao's E1 saturates (unless E2 says stochastic), corroborated by false nearest
     neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2; a
     one-sided rank-order test against IAAFT surrogates (prediction error). ``delay_check=True``
