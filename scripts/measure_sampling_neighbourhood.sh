@@ -44,12 +44,15 @@ case_rows() {  # name tau w d2_low d2_high lambda_1 -> $work/rows.name
       half) step=$(awk -v d="$dt" 'BEGIN { printf "%.15g", d / 2 }') ;;
       double) step=$(awk -v d="$dt" 'BEGIN { printf "%.15g", d * 2 }') ;;
     esac
-    file="$work/$name.$label.dat"
-    if [[ $label == zoo ]]; then cp "$work/$name.dat" "$file"; else sampled "$name" "$step" > "$file"; fi
+    file="$work/$name.dat"  # the zoo's own series, already checked above
+    if [[ $label != zoo ]]; then
+      file="$work/$name.$label.dat"
+      sampled "$name" "$step" > "$file"
+    fi
     json=$("$chaos" analyze "$file" --dt "$step" --json -q 2> /dev/null) || json='{}'
     jq -r --arg name "$name" --arg step "$step" --arg lo "$lo" --arg hi "$hi" --arg lam "$lam" "$zoo_verdicts"'
       [$name, $step, automatic_columns, lambda_columns, $lam] | join("\t")' <<< "$json" >> "$out"
-    rm -f "$file"
+    [[ $label == zoo ]] || rm -f "$file"
   done
   echo "done $name" >&2
 }
@@ -66,7 +69,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 zoo_table_rows
 echo
 cat "$work"/rows.* | awk -F'\t' '
-  { key = $1 SUBSEP $2; rows++; n[$1]++
+  { rows++; n[$1]++
     d[$8]++; r[$10]++; k[$12]++; l[$14]++
     lam = ($10 == "in_band" || $12 == "in_band" || $14 == "in_band")
     if (n[$1] == 1) { zd[$1] = $8; zl[$1] = lam } else { if ($8 == "in_band") od[$1]++; if (lam) ol[$1]++ } }
