@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--analysis-interval", spec.analysis.interval, "s between samples of the analysed series");
   sweep->add_option("--analysis-samples-per-period", spec.analysis.samples_per_period,
                     "sample the analysed series this many times per crank revolution instead of every --analysis-interval");
-  sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay searched, samples");
+  sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay of the first search, samples (with no minimum there, the search goes on to two Theiler windows)");
   sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
   sweep->add_option("--surrogates", spec.analysis.surrogates,
                     "with --analysis: the IAAFT surrogate test for nonlinearity with this many surrogates (19: one-sided 5%; 0: none)");

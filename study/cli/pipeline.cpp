@@ -25,7 +25,7 @@ void add_pipeline_options(CLI::App& cmd, PipelineRequest& r) {
   cmd.add_option("--analysis-interval", r.analysis.interval, "s between samples of the analysed series");
   cmd.add_option("--analysis-samples-per-period", r.analysis.samples_per_period,
                  "sample this many times per crank revolution instead of every --analysis-interval");
-  cmd.add_option("--max-delay", r.analysis.max_delay, "largest mutual-information delay searched, samples");
+  cmd.add_option("--max-delay", r.analysis.max_delay, "largest mutual-information delay of the first search, samples (with no minimum there, the search goes on to two Theiler windows)");
   cmd.add_option("--max-dimension", r.analysis.max_dimension, "Cao and D2 up to this embedding dimension (the seed: 12)");
   cmd.add_option("--delay", r.analysis.given_delay, "use this delay (samples) instead of the mutual-information minimum");
   // Both refused before the run when they cannot be written (issue 16), as study plot's -o.
@@ -92,7 +92,8 @@ bool run_pipeline(const PipelineRequest& r) {
                      {"interval_seconds", a.interval},
                      {"delay_samples", opt(a.delay)},
                      {"delay_seconds", a.delay ? nlohmann::json(static_cast<double>(*a.delay) * a.interval) : nlohmann::json(nullptr)},
-                     {"delay_source", r.analysis.given_delay ? "given (--delay)" : "first mutual-information minimum"},
+                     {"delay_source", r.analysis.given_delay ? "given (--delay)" : a.delay_source},
+                     {"delay_searched", a.delay_searched},
                      {"theiler_samples", a.theiler},
                      {"theiler_source", a.theiler_source},
                      {"cao_dimension", opt(a.embedding_dimension)},

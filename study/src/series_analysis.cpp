@@ -30,22 +30,44 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
     r.status = "constant series: no delay, embedding or dimension";
     return r;
   }
-  std::string stage = "mutual information";
+  std::string stage = "autocorrelation";
   try {
+    // The library's time scales (time_scales.hpp), as chaos analyze and the zoo use them: they set
+    // the Theiler window below and how far the delay search goes on.
+    const chaos::TimeScales scales = chaos::time_scales(x);
+    stage = "mutual information";
     chaos::MutualInformationOptions mi;
-    mi.max_delay = std::min(options.max_delay, x.size() / 2);
     mi.boxes = options.boxes;
-    const chaos::MutualInformationResult information = chaos::mutual_information(x, mi);
-    r.mutual_information = information.information;
-    r.delay = options.given_delay ? std::optional<std::size_t>(options.given_delay) : chaos::first_minimum(information);
+    const std::size_t first = std::min(options.max_delay, x.size() / 2);
+    // Where the first search finds no minimum, the same search once more up to two Theiler windows
+    // (at most N / 10), as chaos::automatic_delay does it: a fixed number of samples is no time
+    // scale of the record (at the seed's sampling Fig. 12's minima lie at 12-104 samples,
+    // docs/reproduction.md). Only the information decides, as in the seed.
+    const std::size_t second = std::min(x.size() / 10, 2 * scales.theiler);
+    const auto search = [&](std::size_t limit) {
+      mi.max_delay = limit;
+      r.delay_searched = limit;
+      const chaos::MutualInformationResult information = chaos::mutual_information(x, mi);
+      r.mutual_information = information.information;
+      return chaos::first_minimum(information);
+    };
+    if (options.given_delay) {
+      search(first);  // the curve, for the plots
+      r.delay_searched = 0;
+      r.delay = options.given_delay;
+      r.delay_source = "given";
+    } else if ((r.delay = search(first))) {
+      r.delay_source = "first mutual-information minimum";
+    } else if (second > first && (r.delay = search(second))) {
+      r.delay_source = "first mutual-information minimum (none up to " + std::to_string(first) +
+                       "; searched on to two Theiler windows, " + std::to_string(second) + ")";
+    }
     if (!r.delay) {
-      r.status = "no mutual-information minimum for delays 1.." + std::to_string(mi.max_delay);
+      r.status = "no mutual-information minimum for delays 1.." + std::to_string(r.delay_searched);
       return r;
     }
-    stage = "autocorrelation";
-    // The library's window (time_scales.hpp), as chaos analyze and the zoo use it: the 1/e time or
-    // half the dominant oscillation period, the longer; here at least the delay too.
-    const chaos::TimeScales scales = chaos::time_scales(x);
+    // The library's window: the 1/e time or half the dominant oscillation period, the longer; here
+    // at least the delay too.
     r.theiler = std::max(*r.delay, scales.theiler);
     r.theiler_source = *r.delay > scales.theiler ? "the delay, longer than " + scales.theiler_source : scales.theiler_source;
 

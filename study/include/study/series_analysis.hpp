@@ -1,8 +1,10 @@
 #pragma once
 // The seed's correlation-dimension pipeline (its Section 7, Fig. 7) on one scalar series, with the
 // chaos library's estimators and their honest "no answer" results:
-//   delay      the first minimum of the mutual information (Fraser & Swinney 1986), none if it
-//              has no minimum up to max_delay (then nothing below is computed);
+//   delay      the first minimum of the mutual information (Fraser & Swinney 1986) up to
+//              max_delay; where there is none, searched on up to two Theiler windows (at most
+//              N / 10), as chaos::automatic_delay; none if neither search finds a minimum (then
+//              nothing below is computed);
 //   theiler    the longer of the autocorrelation's 1/e time and half the dominant oscillation
 //              period (chaos/time_scales.hpp), at least the delay, as `chaos analyze`;
 //   Cao        E1(m), E2(m) for m = 1..max_dimension (Cao 1997) and E1's saturation dimension;
@@ -47,6 +49,8 @@ struct SeriesAnalysis {
   std::size_t samples = 0;
   double interval = 0.0;
   std::optional<std::size_t> delay;   // samples
+  std::string delay_source;           // "given", or which search found the minimum
+  std::size_t delay_searched = 0;     // the largest delay the search examined (0: given)
   std::size_t theiler = 0;            // samples
   std::string theiler_source;         // which time scale set it, in words
   std::vector<std::size_t> dimension; // Cao's m
@@ -60,7 +64,8 @@ struct SeriesAnalysis {
   std::string nonlinearity = "not asked";
   std::optional<std::size_t> nonlinearity_rank;  // 1: the data's prediction error is below every surrogate's
   std::size_t surrogates = 0;                    // K used
-  // The curves behind the numbers (seed Fig. 7 b, d, e): I(delay) for delay 0..max_delay in nats,
+  // The curves behind the numbers (seed Fig. 7 b, d, e): I(delay) for delay 0..delay_searched
+  // (0..max_delay for a given delay) in nats,
   // and C(eps, m) on the radii for m = 1..max_dimension.
   std::vector<double> mutual_information;
   std::vector<double> radius;

@@ -40,6 +40,37 @@ TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   ASSERT_TRUE(a.d2.has_value()) << a.d2_status;
   EXPECT_NEAR(*a.d2, 2.05, 0.15);
   EXPECT_GT(a.e2_deviation, 0.1);  // deterministic: E2 departs from 1
+  EXPECT_EQ(a.delay_source, "first mutual-information minimum");
+  EXPECT_EQ(a.delay_searched, options.max_delay);  // found by the first search: it went no further
+}
+
+TEST(SeriesAnalysis, TheDelaySearchGoesOnWhereTheFirstFindsNoMinimum) {
+  // The same Lorenz x sampled ten times finer (dt = 0.001, 4*10^4 samples): its first information
+  // minimum lies near 0.16 time units, about 160 samples, beyond the first search's 100. The search
+  // goes on to two Theiler windows (the library's rule, tests/unit/automatic_delay_test.cpp), and
+  // the delay it finds is the coarse series' in time, within 15% (the grid of 16 boxes moves the
+  // minimum by a few samples). Before, the point stopped at "no mutual-information minimum".
+  chaos::GenerateRequest request;
+  request.system = chaos::SystemKind::lorenz;
+  request.length = 20000;
+  const chaos::Trajectory coarse = chaos::generate(request);
+  request.length = 40000;
+  request.parameters = {{"dt", 0.001}};
+  const chaos::Trajectory fine = chaos::generate(request);
+  ASSERT_DOUBLE_EQ(fine.dt, 0.001);
+  study::AnalysisOptions options;
+  options.max_dimension = 3;  // the delay is what is tested; a small m keeps the rest short
+  const study::SeriesAnalysis c = study::analyse_series(coarse.components[0], coarse.dt, options);
+  const study::SeriesAnalysis f = study::analyse_series(fine.components[0], fine.dt, options);
+  ASSERT_TRUE(c.delay.has_value()) << c.status;
+  ASSERT_TRUE(f.delay.has_value()) << f.status;
+  EXPECT_GT(*f.delay, options.max_delay);
+  EXPECT_GT(f.delay_searched, options.max_delay);
+  EXPECT_LE(f.delay_searched, fine.components[0].size() / 10);
+  EXPECT_NE(f.delay_source.find("searched on"), std::string::npos) << f.delay_source;
+  EXPECT_EQ(f.mutual_information.size(), f.delay_searched + 1);  // the curve reaches as far as the search
+  EXPECT_NEAR(static_cast<double>(*f.delay) * fine.dt, static_cast<double>(*c.delay) * coarse.dt,
+              0.15 * static_cast<double>(*c.delay) * coarse.dt);
 }
 
 TEST(SeriesAnalysis, TheSurrogateTestRunsWhenAskedInCaosEmbedding) {
