@@ -119,7 +119,8 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     the last ``analysis_periods`` revolutions (mutual-information delay, Fraser and Swinney 1986;
     Cao's E1/E2, Cao 1997; D2 from the correlation sums C(eps, m), Grassberger and Procaccia 1983),
     sampled every ``analysis_interval`` s or ``analysis_samples_per_period`` times a revolution,
-    up to ``max_dimension`` with delays up to ``max_delay``. ``surrogates=K`` (with ``analysis``) adds
+    up to ``max_dimension``, the delay searched up to ``max_delay`` and, where no minimum lies there,
+    on to two Theiler windows (``--max-delay``). ``surrogates=K`` (with ``analysis``) adds
     the IAAFT surrogate test for nonlinearity on the first ``test_length`` samples, surrogates drawn
     from ``seed`` (``--surrogates``, ``--test-length``, ``--seed``; Theiler et al. 1992, Schreiber and
     Schmitz 2000). ``None`` keeps the command's default.
