@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "study/error.hpp"
+#include "study/series_analysis.hpp"
 
 namespace study {
 
@@ -67,6 +68,25 @@ std::string commented(const std::string& text) {
   std::string out;
   for (std::string line; std::getline(in, line);) out += "# " + line + "\n";
   return out;
+}
+
+// A spec's text without its "analysis.rules = N" line, and the revision that line names: a resume
+// whose spec differs only there is refused with its own reason (series_analysis.hpp).
+constexpr const char* rules_key = "analysis.rules = ";
+
+std::string without_rules_line(const std::string& text) {
+  std::istringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(rules_key, 0) != 0) out += line + "\n";
+  return out;
+}
+
+std::string rules_revision(const std::string& text) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(rules_key, 0) == 0) return "revision " + line.substr(std::strlen(rules_key));
+  return "revision 1 (a spec without an analysis.rules line, written before 2026-12-03)";
 }
 
 // The first line where two texts differ, for the resume refusal.
@@ -153,6 +173,13 @@ ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume, bool 
         throw StudyError("-o", dir_.string(),
                          "already holds a sweep; add --resume to continue it, or choose a new directory");
       const std::string old = read_file(spec_file);
+      if (old != header_ && without_rules_line(old) == without_rules_line(header_))
+        throw StudyError("--resume", dir_.string(),
+                         "its points were analysed under " + rules_revision(old) +
+                             " of the series-analysis rules and this build uses revision " +
+                             std::to_string(analysis_rules_revision) +
+                             " (study/series_analysis.hpp lists the changes); they would not compare with new "
+                             "points: run the sweep into a new directory");
       if (old != header_)
         throw StudyError("--resume", dir_.string(),
                          "the directory holds another sweep; first difference: " + first_difference(header_, old));

@@ -121,7 +121,8 @@ std::string SweepSpec::describe() const {
   for (const std::string& s : signals) d << " " << s;
   d << "\n";
   if (analyse) {
-    d << "analysis.periods = " << analysis.periods << "\n"
+    d << "analysis.rules = " << analysis_rules_revision << "\n"
+      << "analysis.periods = " << analysis.periods << "\n"
       << "analysis.interval = " << (analysis.samples_per_period ? std::string("period / ") + std::to_string(analysis.samples_per_period) : exact(analysis.interval)) << "\n"
       << "analysis.max_delay = " << analysis.max_delay << "\n"
       << "analysis.boxes = " << analysis.boxes << "\n"

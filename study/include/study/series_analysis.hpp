@@ -26,6 +26,14 @@
 
 namespace study {
 
+// The revision of the rules above. A sweep writes it into its spec (sweep.hpp), so `study sweep
+// --resume` refuses a directory whose finished points were analysed under other rules: their
+// numbers would not be comparable with the new points'. Raise it with every change here that can
+// change a point's result.
+//   1  (not written in the spec) up to 2026-12-02
+//   2  2026-12-03: the delay search goes on to two Theiler windows where max_delay finds no minimum
+inline constexpr int analysis_rules_revision = 2;
+
 struct AnalysisOptions {
   std::size_t periods = 5;        // crank revolutions analysed, at the end of the run (the seed: 5)
   double interval = 1e-5;         // s between samples of the analysed series

@@ -197,6 +197,47 @@ TEST(Sweep, ResumeRecomputesOnlyMissingPoints) {
   fs::remove_all(dir);
 }
 
+// A directory whose points were analysed under older series-analysis rules (the delay search
+// changed on 2026-12-03) was resumed silently: old and new points mixed two rules. The spec records
+// the rules' revision; a resume that differs only there is refused with that reason, and a spec
+// from before the revision was recorded reads as revision 1. No point is computed: the spec alone
+// decides.
+TEST(Sweep, ResumeRefusesPointsAnalysedUnderOtherRules) {
+  study::SweepSpec spec = short_spec();
+  spec.analyse = true;
+  const std::string rules = "analysis.rules = " + std::to_string(study::analysis_rules_revision) + "\n";
+  ASSERT_NE(spec.describe().find("\n" + rules), std::string::npos);
+  const fs::path dir = scratch("rules");
+  { study::ResultStore store(dir, spec, false); }
+  const auto resume_error = [&](const std::string& rules_line) {
+    std::string text = spec.describe();
+    text.replace(text.find(rules), rules.size(), rules_line);
+    std::ofstream(dir / "spec.txt") << text;
+    try {
+      study::ResultStore store(dir, spec, true);
+    } catch (const study::StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string old = resume_error("");
+  EXPECT_NE(old.find("revision 1 (a spec without an analysis.rules line"), std::string::npos) << old;
+  EXPECT_NE(old.find("this build uses revision " + std::to_string(study::analysis_rules_revision)), std::string::npos) << old;
+  const std::string other = resume_error("analysis.rules = 1\n");
+  EXPECT_NE(other.find("analysed under revision 1 of the series-analysis rules"), std::string::npos) << other;
+  // The same rules resume; another difference is still reported as another sweep.
+  EXPECT_EQ(resume_error(rules), "no error");
+  study::SweepSpec more = spec;
+  more.keep = 2;
+  try {
+    study::ResultStore store(dir, more, true);
+    ADD_FAILURE() << "a different sweep resumed the directory";
+  } catch (const study::StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds another sweep"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 // Issue 16, item 1: two sweeps writing one directory at once mixed their points. The directory's
 // lock refuses the second, naming the holder's process; it is free again once the first closes.
 TEST(Sweep, ASecondSweepIntoAHeldDirectoryIsRefused) {
