@@ -56,13 +56,4 @@ echo "| system | SNR dB | tau | m (Cao) | w | D2 | D2 band (clean) | D2 verdict 
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 zoo_table_rows
 echo
-cat "$work"/rows.* | awk -F'\t' '{
-    key = $2; rows[key]++; d[key, $8]++; r[key, $10]++; k[key, $12]++; l[key, $14]++
-    if ($8 == "WRONG" || $10 == "WRONG" || $12 == "WRONG" || $14 == "WRONG") wrong[key] = wrong[key] " " $1
-  } END {
-    for (key in rows)
-      printf "SNR %s dB: %d rows. D2: %d in band, %d unsure, %d wrong. lambda_1 by Rosenstein: %d / %d / %d; Kantz: %d / %d / %d; local maps: %d / %d / %d (in band / unsure / wrong). Systems with a wrong row:%s.\n",
-        key, rows[key], d[key, "in_band"], d[key, "unsure"], d[key, "WRONG"], r[key, "in_band"], r[key, "unsure"], r[key, "WRONG"],
-        k[key, "in_band"], k[key, "unsure"], k[key, "WRONG"], l[key, "in_band"], l[key, "unsure"], l[key, "WRONG"],
-        (key in wrong ? wrong[key] : " none")
-  }'
+zoo_keyed_summary "SNR %s dB"

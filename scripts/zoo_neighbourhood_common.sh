@@ -25,6 +25,9 @@
 #                   a time, and sets elapsed to the seconds it took; with RESUME_FROM=DIR, the
 #                   cases whose rows file DIR/rows.NAME exists are taken from DIR instead of run
 #   zoo_machine     "CPU model, N cores, J jobs", for the report's header
+#   zoo_keyed_summary FORMAT
+#                   the verdict counts per value of the rows' second column (noise level, sensor
+#                   response), each line headed by FORMAT with that value
 #   (stopped by Ctrl-C, i.e. SIGINT to the process group, which ends the running cases too, a
 #   script prints the rows of the cases begun so far and keeps the rows of the cases it finished in
 #   a directory it names, for RESUME_FROM, so that a long measurement stopped for lack of time keeps
@@ -118,6 +121,22 @@ zoo_run_cases() {
   done | xargs -r -P "$jobs" -L 1 bash -c 'trap "exit 130" INT TERM; case_rows "$@" && echo "$1" >> "$work/finished"' _
   # shellcheck disable=SC2034  # read by the scripts that source this file
   elapsed=$(($(date +%s) - start))
+}
+
+# zoo_keyed_summary FORMAT: one line per value of the rows' second column (a noise level, a sensor
+# response), FORMAT (a printf format with one %s for that value) then the verdict counts of D2 and
+# of the three lambda_1 estimators, and the systems with a wrong row.
+zoo_keyed_summary() {
+  cat "$work"/rows.* | awk -F'\t' -v format="$1" '{
+      key = $2; rows[key]++; d[key, $8]++; r[key, $10]++; k[key, $12]++; l[key, $14]++
+      if ($8 == "WRONG" || $10 == "WRONG" || $12 == "WRONG" || $14 == "WRONG") wrong[key] = wrong[key] " " $1
+    } END {
+      for (key in rows)
+        printf format ": %d rows. D2: %d in band, %d unsure, %d wrong. lambda_1 by Rosenstein: %d / %d / %d; Kantz: %d / %d / %d; local maps: %d / %d / %d (in band / unsure / wrong). Systems with a wrong row:%s.\n",
+          key, rows[key], d[key, "in_band"], d[key, "unsure"], d[key, "WRONG"], r[key, "in_band"], r[key, "unsure"], r[key, "WRONG"],
+          k[key, "in_band"], k[key, "unsure"], k[key, "WRONG"], l[key, "in_band"], l[key, "unsure"], l[key, "WRONG"],
+          (key in wrong ? wrong[key] : " none")
+    }'
 }
 
 zoo_machine() {
