@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The automatic pipeline at record lengths between the zoo's two: for every chaotic system of
 # docs/zoo.md that the pipeline analyses, the first N samples of the zoo's series (as the zoo's
-# N = 10^4 rows take the first 10^4) for each N of LENGTHS (default 2*10^4 and 5*10^4), then
+# N = 10^4 rows take the first 10^4) for each N of LENGTHS (default 2, 3, 5 and 7 * 10^4), then
 # `chaos analyze` with every choice automatic. The issue asks for N from 10^4 to 10^5; the zoo's
 # grid measures only the two ends.
 #
@@ -13,11 +13,11 @@
 #
 # Usage: scripts/measure_length_neighbourhood.sh [build-dir] > table.md
 # Environment: JOBS (2) parallel cases; ONLY=name,name to restrict the systems; LENGTHS
-# ("20000 50000"); RESUME_FROM=DIR (zoo_neighbourhood_common.sh).
+# ("20000 30000 50000 70000", the lengths of docs/zoo-length.md); RESUME_FROM=DIR (zoo_neighbourhood_common.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/zoo_neighbourhood_common.sh "$@"
-lengths=${LENGTHS:-20000 50000}
+lengths=${LENGTHS:-20000 30000 50000 70000}
 for n in $lengths; do
   if ! [[ $n =~ ^[0-9]+$ ]] || ((n < 1000 || n > 100000)); then
     echo "LENGTHS: each length must be a whole number from 1000 to 100000 (the zoo's series), got '$n'" >&2
