@@ -7,31 +7,25 @@
 # that record. Each row: the base over lambda_1 from the equations, each half's base over the full
 # record's, and the larger deviation. (The estimator's own "halves" variant splits the chain, not the
 # record: both halves keep the whole record's neighbours.)
-#   scripts/measure_local_map_record_halves.sh [CHAOS] > table.md
-# JOBS (default 2) runs cases in parallel.
+#   scripts/measure_local_map_record_halves.sh [build-dir] > table.md
+# JOBS (default 2) runs cases in parallel; each system's series is generated once, before them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export CHAOS=${1:-build/chaos/chaos}
-[[ -x $CHAOS ]] || { echo "build the chaos command first: cmake --build build --target chaos_cli" >&2; exit 2; }
 [[ -f docs/zoo-length.md ]] || { echo "docs/zoo-length.md is missing (scripts/measure_length_neighbourhood.sh writes it)" >&2; exit 2; }
-JOBS=${JOBS:-2}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export work
+source scripts/zoo_neighbourhood_common.sh "$@"
 
 case_row() {  # name N tau m w lambda_1: one Markdown row
   local name=$1 n=$2 tau=$3 m=$4 w=$5 lam=$6 dt dim status base first second
   local dir="$work/$name.$n"
   mkdir -p "$dir"
-  "$CHAOS" zoo --series "$name" --json > "$dir/series.json"
-  dt=$(jq -r '.parameters.dt // empty' "$dir/series.json")
-  jq -r '.x[]' "$dir/series.json" | head -n "$n" > "$dir/all.dat"
+  dt=$(cat "$work/$name.dt")
+  head -n "$n" "$work/$name.dat" > "$dir/all.dat"
   head -n $((n / 2)) "$dir/all.dat" > "$dir/first.dat"
   tail -n $((n / 2)) "$dir/all.dat" > "$dir/second.dat"
   local per_time=()
   [[ -n $dt ]] && per_time=(--dt "$dt")
   maps() {  # file m -> "status base"
-    "$CHAOS" lyapunov-maps "$1" -d "$tau" -m "$2" -t "$w" "${per_time[@]}" --json |
+    "$chaos" lyapunov-maps "$1" -d "$tau" -m "$2" -t "$w" "${per_time[@]}" --json |
       jq -r '"\(.status) \(.variants[0].lambda)"'
   }
   dim=$m
@@ -57,8 +51,11 @@ export -f case_row
     on && $3 + 0 == 100000 && $11 ~ / consistent/ && $4 + 0 > 1 { gsub(/ /, "", $2); print $2, 100000, $4 + 0, $5 + 0, $6 + 0, $12 + 0 }' docs/zoo.md
 } > "$work/cases"
 start=$(date +%s)
-xargs -P "$JOBS" -L 1 bash -c 'case_row "$@"' _ < "$work/cases"
-echo "Made by \`scripts/measure_local_map_record_halves.sh\` (commit $(git rev-parse --short HEAD), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $JOBS jobs, $(( $(date +%s) - start )) s)."
+# One series per system (zoo_series writes $work/NAME.dat and prints the sampling step), made here
+# because a system's cases at several N run in parallel and would otherwise write the same files.
+while read -r name; do zoo_series "$name" > "$work/$name.dt"; done < <(cut -d' ' -f1 "$work/cases" | sort -u)
+xargs -P "$jobs" -L 1 bash -c 'case_row "$@"' _ < "$work/cases"
+echo "Made by \`scripts/measure_local_map_record_halves.sh\` (commit $(git rev-parse --short HEAD), $(zoo_machine), $(( $(date +%s) - start )) s)."
 echo
 echo "| system | N | m | status (whole record) | base / lambda_1 | first half / base | second half / base | larger deviation |"
 echo "|---|---|---|---|---|---|---|---|"
