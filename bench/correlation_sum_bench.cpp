@@ -19,10 +19,14 @@
 // each with 1 and 2 threads (real time is reported, as the threads share the work).
 // BM_TheilerWindowsLorenz: the Lorenz job at three Theiler windows, one call each against one call
 // for all three.
+// BM_Floor*: what two parts of a target job cost at the least, for judging how far the exact
+// one-thread times can fall (docs/correlation_sum.md, "How far the one-thread time can fall").
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
+#include <random>
 #include <vector>
 
 #include "chaos/correlation_sum.hpp"
@@ -84,14 +88,29 @@ BENCHMARK(BM_BruteForce)->Apply([](auto* b) { sizes(b, 100'000); })->Iterations(
 BENCHMARK(BM_KdTree)->Apply([](auto* b) { sizes(b, 100'000); })->Iterations(1);
 BENCHMARK(BM_BoxAssisted)->Apply([](auto* b) { sizes(b, 1'000'000); })->Iterations(1);
 
-void BM_TargetHenon(benchmark::State& state) {
-  const std::vector<double>& x = henon_x(100'000);
+chaos::CorrelationSumOptions henon_target() {
   chaos::CorrelationSumOptions o;
   o.delay = 1;
   o.min_dimension = 1;
   o.max_dimension = 4;
   o.theiler = 10;
   o.radii = chaos::log_radii(0.005, 0.4, 40);
+  return o;
+}
+
+chaos::CorrelationSumOptions lorenz_target() {
+  chaos::CorrelationSumOptions o;
+  o.delay = 17;
+  o.min_dimension = 1;
+  o.max_dimension = 6;
+  o.theiler = 200;
+  o.radii = chaos::log_radii(0.25, 5.0, 40);
+  return o;
+}
+
+void BM_TargetHenon(benchmark::State& state) {
+  const std::vector<double>& x = henon_x(100'000);
+  chaos::CorrelationSumOptions o = henon_target();
   o.threads = static_cast<std::size_t>(state.range(0));
   chaos::CorrelationSumResult r;
   for (auto _ : state) {
@@ -103,12 +122,7 @@ void BM_TargetHenon(benchmark::State& state) {
 
 void BM_TargetLorenz(benchmark::State& state) {
   const std::vector<double>& x = lorenz_x(100'000);
-  chaos::CorrelationSumOptions o;
-  o.delay = 17;
-  o.min_dimension = 1;
-  o.max_dimension = 6;
-  o.theiler = 200;
-  o.radii = chaos::log_radii(0.25, 5.0, 40);
+  chaos::CorrelationSumOptions o = lorenz_target();
   o.threads = static_cast<std::size_t>(state.range(0));
   chaos::CorrelationSumResult r;
   for (auto _ : state) {
@@ -152,3 +166,96 @@ void BM_TheilerWindowsLorenz(benchmark::State& state) {
 BENCHMARK(BM_TheilerWindowsLorenz)->Arg(0)->Arg(1)->ArgName("together")->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
+
+// Floors of the exact target jobs (range(0): 0 Henon, 1 Lorenz; one thread).
+//
+// BM_FloorIncrements: the histogram increments alone. The box-assisted walk bins every pair closer
+// than r_max once in each m >= 3 (m = 2 is counted by the plane sweeps, m = 1 by sorting). This
+// makes exactly that many increments, of counters laid out as the walk's (4 interleaved copies of
+// a [m][bin] histogram of 64-bit counts), at (m, bin) drawn from the job's own pair counts in a
+// seeded random order, replayed from a table of 4096 that stays in the L1 cache. Nothing else: no
+// distance, no filter, no bin lookup, and fewer runs of one bin in a row than a trajectory gives
+// (a run makes each increment wait for the previous one). So it is a lower bound on the binning
+// of any method that bins each close pair once per m.
+//
+// BM_FloorPlane: the job restricted to m = 2 (min = max = 2), which the library counts with the
+// plane sweeps of docs/correlation_sum.md (step 4) and the window subtraction, without the grid.
+//
+// The job itself (BM_TargetHenon, BM_TargetLorenz) also filters the candidates of the grid; the two
+// floors together leave what that filter may cost within a target time.
+chaos::CorrelationSumResult floor_job(bool lorenz) {
+  static std::map<bool, chaos::CorrelationSumResult> cache;
+  auto it = cache.find(lorenz);
+  if (it == cache.end())
+    it = cache.emplace(lorenz, chaos::correlation_sum(lorenz ? lorenz_x(100'000) : henon_x(100'000),
+                                                      lorenz ? lorenz_target() : henon_target()))
+             .first;
+  return it->second;
+}
+
+void BM_FloorIncrements(benchmark::State& state) {
+  const chaos::CorrelationSumResult exact = floor_job(state.range(0) == 1);
+  const std::size_t nr = exact.radius.size();
+  // Weights of (m >= 3, bin): the pairs whose distance lies in [r_{k-1}, r_k).
+  std::vector<std::size_t> cell;
+  std::vector<double> weight;
+  std::uint64_t increments = 0;
+  for (std::size_t mi = 0; mi < exact.dimension.size(); ++mi) {
+    if (exact.dimension[mi] < 3) continue;
+    for (std::size_t k = 0; k < nr; ++k) {
+      const std::uint64_t in_bin = exact.pairs[mi][k] - (k > 0 ? exact.pairs[mi][k - 1] : 0);
+      cell.push_back(mi * nr + k);
+      weight.push_back(static_cast<double>(in_bin));
+      increments += in_bin;
+    }
+  }
+  std::mt19937_64 rng(1);
+  std::discrete_distribution<std::size_t> draw(weight.begin(), weight.end());
+  constexpr std::size_t table = 4096, copies = 4;
+  std::vector<std::uint32_t> slot(table);
+  for (std::uint32_t& s : slot) s = static_cast<std::uint32_t>(cell[draw(rng)] * copies);
+  std::vector<std::uint64_t> h(exact.dimension.size() * nr * copies);
+  for (auto _ : state) {
+    std::fill(h.begin(), h.end(), 0);
+    std::uint64_t done = 0;
+    while (done < increments) {
+      const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(table, increments - done)) / copies * copies;
+      if (n == 0) {
+        ++h[slot[0]];
+        ++done;
+        continue;
+      }
+      for (std::size_t u = 0; u < n; u += copies) {
+        ++h[slot[u]];
+        ++h[slot[u + 1] + 1];
+        ++h[slot[u + 2] + 2];
+        ++h[slot[u + 3] + 3];
+      }
+      done += n;
+    }
+    benchmark::DoNotOptimize(h.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["increments"] = static_cast<double>(increments);
+  state.counters["ns_per_increment"] = benchmark::Counter(
+      static_cast<double>(increments), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_FloorPlane(benchmark::State& state) {
+  const bool lorenz = state.range(0) == 1;
+  chaos::CorrelationSumOptions o = lorenz ? lorenz_target() : henon_target();
+  o.min_dimension = 2;
+  o.max_dimension = 2;
+  chaos::CorrelationSumResult r;
+  for (auto _ : state) {
+    r = chaos::correlation_sum(lorenz ? lorenz_x(100'000) : henon_x(100'000), o);
+    benchmark::DoNotOptimize(r.pairs.data());
+  }
+  report(state, r);
+}
+
+void floors(benchmark::internal::Benchmark* b) {
+  b->Arg(0)->Arg(1)->ArgName("lorenz")->Unit(benchmark::kMillisecond)->Iterations(3);
+}
+BENCHMARK(BM_FloorIncrements)->Apply(floors);
+BENCHMARK(BM_FloorPlane)->Apply(floors);
