@@ -2,7 +2,7 @@
 # How far each saturated automatic D2 of the zoo lies outside the range of its own halves' D2
 # (docs/zoo-notes.md, section 13: a rule "the full record's D2 must lie within its halves' range"
 # was measured and not adopted).
-#   scripts/measure_halves_range.sh [CHAOS] > table.md
+#   scripts/measure_halves_range.sh [build-dir] > table.md
 # For every system whose automatic D2 at N = 10^5 is saturated in docs/zoo.md: `chaos d2` on the
 # zoo's series at the zoo's choices (tau, w, m up to Cao's + 3, the embedding range `chaos analyze`
 # gives D2), the halves counted (the default), and the distance of the full record's D2 outside
@@ -10,17 +10,12 @@
 # systems in parallel. ONLY=name,name measures those systems alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export CHAOS=${1:-build/chaos/chaos}
-[[ -x $CHAOS ]] || { echo "build the chaos command first: cmake --build build --target chaos_cli" >&2; exit 2; }
-JOBS=${JOBS:-2}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export work
+source scripts/zoo_neighbourhood_common.sh "$@"
 
-row() {  # name tau m w band: one Markdown row
+case_row() {  # name tau m w band: one Markdown row
   local name=$1 tau=$2 m=$3 w=$4 band=$5
-  "$CHAOS" zoo --series "$name" > "$work/$name.dat"
-  "$CHAOS" d2 "$work/$name.dat" -d "$tau" -t "$w" -M $((m + 3)) --json |
+  zoo_series "$name" > /dev/null
+  "$chaos" d2 "$work/$name.dat" -d "$tau" -t "$w" -M $((m + 3)) --json |
     /usr/bin/python3 -c '
 import json, sys
 name, band = sys.argv[1], sys.argv[2]
@@ -40,16 +35,12 @@ print("| %s | %s | %s %s | %s | %s (%s) | %s (%s) | %s |" % (name, band, num(ful
       num(halves[0]), status[0], num(halves[1]), status[1], outside))
 ' "$name" "$band" > "$work/$name.row"
 }
-export -f row
+export -f case_row
 
-# Rows of zoo.md at N = 10^5 with a saturated D2: system | N | tau | m | w | D2 | band | ...
-awk -F'|' -v only="${ONLY:-}" 'BEGIN { n = split(only, o, ","); for (i = 1; i <= n; ++i) keep[o[i]] = 1 }
-  $3 == " 100000 " && $7 ~ / saturated/ {
-  for (i = 2; i <= 8; ++i) gsub(/^ +| +$/, "", $i); gsub(/ /, "", $8)
-  if (only == "" || ($2 in keep)) print $2, $4, $5, $6, $8 }' docs/zoo.md > "$work/cases"
+zoo_saturated_cases > "$work/cases"
 start=$(date +%s)
-xargs -P "$JOBS" -L 1 bash -c 'row "$@"' _ < "$work/cases"
-echo "Made by \`scripts/measure_halves_range.sh\` (commit $(git rev-parse --short HEAD), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $JOBS jobs, $(( $(date +%s) - start )) s)."
+xargs -P "$jobs" -L 1 bash -c 'case_row "$@"' _ < "$work/cases"
+echo "Made by \`scripts/measure_halves_range.sh\` (commit $(git rev-parse --short HEAD), $(zoo_machine), $(( $(date +%s) - start )) s)."
 echo
 echo "| system | band | D2 (full record) | verdict | first half | second half | outside the halves' range by |"
 echo "|---|---|---|---|---|---|---|"

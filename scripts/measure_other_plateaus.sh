@@ -1,22 +1,19 @@
 #!/usr/bin/env bash
 # The other plateaus beside each saturated automatic D2 of the zoo (docs/zoo-notes.md, section 6).
-#   scripts/measure_other_plateaus.sh [CHAOS] > table.md
+#   scripts/measure_other_plateaus.sh [build-dir] > table.md
 # For every system whose automatic D2 at N = 10^5 is saturated in docs/zoo.md: `chaos d2` on the
 # zoo's series at the zoo's choices (tau, w, m up to Cao's + 3), the record's halves left out (they
 # do not change which plateau is chosen), and the plateaus the same rule admitted but did not choose
-# (`other_plateaus` in the JSON). JOBS (default 2) runs systems in parallel.
+# (`other_plateaus` in the JSON). JOBS (default 2) runs systems in parallel. ONLY=name,name
+# measures those systems alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export CHAOS=${1:-build/chaos/chaos}
-JOBS=${JOBS:-2}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export work
+source scripts/zoo_neighbourhood_common.sh "$@"
 
-row() {  # name tau m w band: one Markdown row
+case_row() {  # name tau m w band: one Markdown row
   local name=$1 tau=$2 m=$3 w=$4 band=$5
-  "$CHAOS" zoo --series "$name" > "$work/$name.dat"
-  "$CHAOS" d2 "$work/$name.dat" -d "$tau" -t "$w" -M $((m + 3)) --no-halves --json |
+  zoo_series "$name" > /dev/null
+  "$chaos" d2 "$work/$name.dat" -d "$tau" -t "$w" -M $((m + 3)) --no-halves --json |
     /usr/bin/python3 -c '
 import json, sys
 name, band = sys.argv[1], sys.argv[2]
@@ -31,14 +28,12 @@ print("| %s | %s | %s | %s | %.2f |" % (name, band, cell(d["d2"], d["scaling_reg
       "; ".join(cell(p["slope"], p["radii"]) for p in others) or "-", far))
 ' "$name" "$band" > "$work/$name.row"
 }
-export -f row
+export -f case_row
 
-# Rows of zoo.md at N = 10^5 with a saturated D2: system | N | tau | m | w | D2 | band | ...
-awk -F'|' '$3 == " 100000 " && $7 ~ / saturated/ {
-  for (i = 2; i <= 8; ++i) gsub(/^ +| +$/, "", $i); gsub(/ /, "", $8); print $2, $4, $5, $6, $8 }' docs/zoo.md > "$work/cases"
+zoo_saturated_cases > "$work/cases"
 start=$(date +%s)
-xargs -P "$JOBS" -L 1 bash -c 'row "$@"' _ < "$work/cases"
-echo "Made by \`scripts/measure_other_plateaus.sh\` (commit $(git rev-parse --short HEAD), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $JOBS jobs, $(( $(date +%s) - start )) s)."
+xargs -P "$jobs" -L 1 bash -c 'case_row "$@"' _ < "$work/cases"
+echo "Made by \`scripts/measure_other_plateaus.sh\` (commit $(git rev-parse --short HEAD), $(zoo_machine), $(( $(date +%s) - start )) s)."
 echo
 echo "| system | band | chosen D2 (region) | other plateaus | largest distance |"
 echo "|---|---|---|---|---|"

@@ -1,8 +1,8 @@
 # shellcheck shell=bash
-# Shared by scripts/measure_delay_neighbourhood.sh and scripts/measure_noise_neighbourhood.sh, which
-# run `chaos analyze` on the zoo's series away from the zoo's own choices and judge every confident
-# estimate against the bands of the same system's row in docs/zoo.md. Sourced from the repository
-# root with the build directory as $1 (default build).
+# Shared by the scripts/measure_*.sh that run the command on the zoo's series away from the zoo's own
+# choices (delay, noise, length, sensor, ...) and judge every confident estimate against the bands of
+# the same system's row in docs/zoo.md. Sourced from the repository root with the build directory as
+# $1 (default build).
 #
 # Sets chaos (the command), jobs (JOBS, default 2) and work (a scratch directory, removed on exit),
 # and defines:
@@ -17,6 +17,9 @@
 #                   band and the verdict) and lambda_columns (the six lambda_1 columns: value and status, verdict, for
 #                   Rosenstein, Kantz and local maps, from analyze's JSON)
 #   zoo_choices     one line "name tau m w" per such row (the zoo's delay, Cao's m and window)
+#   zoo_saturated_cases
+#                   one line "name tau m w band" per row of docs/zoo.md at N = 10^5 whose automatic D2
+#                   is saturated (band as "[low,high]"); ONLY (name,name; empty: all) selects
 #   zoo_only        the lines of standard input whose first word ONLY (name,name; empty: all) selects
 #   zoo_band_cases  one line "name d2_low d2_high lambda_1" per system of $work/systems that ONLY
 #                   selects
@@ -81,6 +84,12 @@ zoo_verdicts='
 zoo_choices() {
   awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
     on && $5 + 0 > 0 && $3 + 0 == 100000 { for (i = 2; i <= 6; ++i) gsub(/ /, "", $i); print $2, $4, $5, $6 }' docs/zoo.md
+}
+
+zoo_saturated_cases() {
+  # system | N | tau | m | w | D2 status | band | ...
+  awk -F'|' '$3 == " 100000 " && $7 ~ / saturated/ {
+    for (i = 2; i <= 8; ++i) gsub(/^ +| +$/, "", $i); gsub(/ /, "", $8); print $2, $4, $5, $6, $8 }' docs/zoo.md | zoo_only
 }
 
 # zoo_only: the lines of standard input whose first word is a system ONLY (name,name; empty: all) selects.
