@@ -165,8 +165,6 @@ void BM_TheilerWindowsLorenz(benchmark::State& state) {
 }
 BENCHMARK(BM_TheilerWindowsLorenz)->Arg(0)->Arg(1)->ArgName("together")->Unit(benchmark::kMillisecond)->Iterations(1);
 
-}  // namespace
-
 // Floors of the exact target jobs (range(0): 0 Henon, 1 Lorenz; one thread).
 //
 // BM_FloorIncrements: the histogram increments alone. The box-assisted walk bins every pair closer
@@ -183,7 +181,7 @@ BENCHMARK(BM_TheilerWindowsLorenz)->Arg(0)->Arg(1)->ArgName("together")->Unit(be
 //
 // The job itself (BM_TargetHenon, BM_TargetLorenz) also filters the candidates of the grid; the two
 // floors together leave what that filter may cost within a target time.
-chaos::CorrelationSumResult floor_job(bool lorenz) {
+const chaos::CorrelationSumResult& floor_job(bool lorenz) {
   static std::map<bool, chaos::CorrelationSumResult> cache;
   auto it = cache.find(lorenz);
   if (it == cache.end())
@@ -194,7 +192,7 @@ chaos::CorrelationSumResult floor_job(bool lorenz) {
 }
 
 void BM_FloorIncrements(benchmark::State& state) {
-  const chaos::CorrelationSumResult exact = floor_job(state.range(0) == 1);
+  const chaos::CorrelationSumResult& exact = floor_job(state.range(0) == 1);
   const std::size_t nr = exact.radius.size();
   // Weights of (m >= 3, bin): the pairs whose distance lies in [r_{k-1}, r_k).
   std::vector<std::size_t> cell;
@@ -259,3 +257,5 @@ void floors(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_FloorIncrements)->Apply(floors);
 BENCHMARK(BM_FloorPlane)->Apply(floors);
+
+}  // namespace
