@@ -47,6 +47,11 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   const double range = *hi - *lo;
   const double r_max = params.r_max.value_or(range / 4.0);
   const double r_min = params.r_min.value_or(range / 1000.0);
+  // Checked before the grid is made: with one radius log_radii would ask for r_min = r_max, naming
+  // radii the user may not have given, when the rule that fails is D2's (a slope needs two radii).
+  if (params.radius_list.empty() && params.radii < 2)
+    throw InvalidInput(ErrorCode::invalid_parameter, "the correlation dimension needs at least 2 radii for a slope (got -# " +
+                                                         std::to_string(params.radii) + ")");
   params.sums.radii = params.radius_list.empty() ? log_radii(r_min, r_max, params.radii) : params.radius_list;
 
   std::optional<AdaptiveD2Result> fast;

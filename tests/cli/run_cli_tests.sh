@@ -131,6 +131,9 @@ want=$(awk '{ x[NR] = $1 } END {
 got="$("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --json | jq -c '[.pairs, .parameters.inclusive]') $("$CHAOS" d2 "$work/ties.dat" -M 1 -t 0 --radius-list 1,2 --inclusive --json | jq -c '[.pairs, .parameters.inclusive]')"
 [[ $got == "$want" ]] && pass || fail "d2 pairs without and with --inclusive: $got, expected $want"
 expect_error 3 "increasing" -- d2 "$work/henon.dat" -M 2 --radius-list 0.1,0.05
+# One radius gives no slope: the rule named is D2's, not the radius grid's (whose r_min = r_max
+# condition would name the automatic radii the user did not give).
+expect_error 3 "at least 2 radii for a slope \\(got -# 1\\)" -- d2 "$work/henon.dat" -# 1
 # --fast (adaptive_d2.hpp): on 3000 points the first round would count more than an eighth of
 # them, so the exact counts are used and said so; with a small first round the rounds are reported.
 f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --fast --json | jq -c '[.fast.exact, .fast.reference_points, (.fast.explanation | test("exact counts")), .parameters.fast, .parameters.halves_reference_points]')
