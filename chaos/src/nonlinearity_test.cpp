@@ -176,6 +176,9 @@ void NonlinearityTestOptions::validate() const {
       alternative != Alternative::larger)
     refuse("nonlinearity test: unknown alternative " + std::to_string(static_cast<int>(alternative)));
   if (surrogates < 1) refuse("nonlinearity test: at least 1 surrogate is needed (got 0)");
+  if (alternative == Alternative::two_sided && surrogates < 2)
+    refuse("nonlinearity test: a two-sided test needs at least 2 surrogates (got 1): with one, the data's value lies "
+           "below or above it unless they tie, so every series would be rejected (size 2/(K+1) = 1)");
   if (surrogates > max_surrogates)
     refuse("nonlinearity test: at most " + std::to_string(max_surrogates) + " surrogates (got " +
            std::to_string(surrogates) + ")");
@@ -196,6 +199,11 @@ RankTest rank_test(double data_statistic, std::span<const double> surrogate_stat
     if (s > data_statistic) ++r.above;
   }
   const std::size_t k = surrogate_statistics.size();
+  // With one surrogate every untied rank is extreme on one side or the other: a two-sided test
+  // that rejects every series, whatever it is (size 2/(K+1) = 1).
+  if (alternative == Alternative::two_sided && k < 2)
+    refuse("rank test: a two-sided test needs at least 2 surrogate statistics (got 1): with one it rejects every "
+           "untied series (size 2/(K+1) = 1)");
   r.rank = r.below + 1;
   const double sides = alternative == Alternative::two_sided ? 2.0 : 1.0;
   r.significance = sides / static_cast<double>(k + 1);

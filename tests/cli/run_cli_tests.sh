@@ -329,6 +329,7 @@ l=$("$CHAOS" nonlinearity "$work/noise.dat" -l 1024 --statistic time_reversal_as
 expect_error 3 "statistic must be prediction_error or time_reversal_asymmetry" -- nonlinearity --statistic skew "$work/henon.dat"
 expect_error 3 "alternative must be" -- nonlinearity --alternative up "$work/henon.dat"
 expect_error 3 "at least 1 surrogate" -- nonlinearity -n 0 "$work/henon.dat"
+expect_error 3 "two-sided test needs at least 2 surrogates \\(got 1\\)" -- nonlinearity -n 1 "$work/henon.dat"
 expect_error 3 "too short" -- nonlinearity -m 10 -d 10 "$work/five.dat"
 
 # A null, not a guess, when there is no minimum: a monotone ramp has no MI minimum.

@@ -64,6 +64,24 @@ TEST(RankTest, TiesNeverReject) {
   EXPECT_DOUBLE_EQ(chaos::rank_test(0.0, all_equal, Alternative::smaller).significance, 0.05);
 }
 
+TEST(RankTest, TwoSidedNeedsTwoSurrogates) {
+  // With K = 1 the data's value is below or above the one surrogate's unless they tie, so a
+  // two-sided test would reject every untied series: its size 2/(K+1) is 1. Refused; one-sided
+  // tests keep K = 1 (size 1/2, reported).
+  const std::vector<double> one = {1.0};
+  EXPECT_THROW(chaos::rank_test(2.0, one, Alternative::two_sided), chaos::InvalidInput);
+  EXPECT_DOUBLE_EQ(chaos::rank_test(2.0, one, Alternative::larger).significance, 0.5);
+  EXPECT_TRUE(chaos::rank_test(2.0, one, Alternative::larger).rejected);
+  NonlinearityTestOptions o;
+  o.surrogates = 1;
+  EXPECT_THROW(o.validate(), chaos::InvalidInput);
+  o.alternative = Alternative::smaller;
+  EXPECT_NO_THROW(o.validate());
+  o.alternative = Alternative::two_sided;
+  o.surrogates = 2;
+  EXPECT_NO_THROW(o.validate());
+}
+
 TEST(TimeReversalAsymmetry, HandWorked) {
   // x = (0, 1, 3, 2), delay 1: increments (1, 2, -1); <d^3> = 8/3, <d^2> = 2, Q = (8/3) / 2^1.5.
   const std::vector<double> x = {0.0, 1.0, 3.0, 2.0};
