@@ -56,6 +56,16 @@ void report(benchmark::State& state, const chaos::CorrelationSumResult& r) {
   state.counters["admissible"] = static_cast<double>(r.examined.front().front());
 }
 
+// One correlation_sum(x, o) per iteration, then the counters of its result.
+void time_counts(benchmark::State& state, const std::vector<double>& x, const chaos::CorrelationSumOptions& o) {
+  chaos::CorrelationSumResult r;
+  for (auto _ : state) {
+    r = chaos::correlation_sum(x, o);
+    benchmark::DoNotOptimize(r.pairs.data());
+  }
+  report(state, r);
+}
+
 void search(benchmark::State& state, CorrelationSearch mode) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const std::vector<double>& x = lorenz_x(n);
@@ -66,12 +76,7 @@ void search(benchmark::State& state, CorrelationSearch mode) {
   o.theiler = 200;
   o.radii = chaos::log_radii(0.25, 5.0, 40);
   o.search = mode;
-  chaos::CorrelationSumResult r;
-  for (auto _ : state) {
-    r = chaos::correlation_sum(x, o);
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  report(state, r);
+  time_counts(state, x, o);
 }
 
 void BM_BruteForce(benchmark::State& state) { search(state, CorrelationSearch::brute_force); }
@@ -108,29 +113,18 @@ chaos::CorrelationSumOptions lorenz_target() {
   return o;
 }
 
-void BM_TargetHenon(benchmark::State& state) {
-  const std::vector<double>& x = henon_x(100'000);
-  chaos::CorrelationSumOptions o = henon_target();
+// The series and options of a target job: Lorenz (lorenz = true) or Henon, N = 10^5.
+const std::vector<double>& target_series(bool lorenz) { return lorenz ? lorenz_x(100'000) : henon_x(100'000); }
+chaos::CorrelationSumOptions target_options(bool lorenz) { return lorenz ? lorenz_target() : henon_target(); }
+
+void target(benchmark::State& state, bool lorenz) {
+  chaos::CorrelationSumOptions o = target_options(lorenz);
   o.threads = static_cast<std::size_t>(state.range(0));
-  chaos::CorrelationSumResult r;
-  for (auto _ : state) {
-    r = chaos::correlation_sum(x, o);
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  report(state, r);
+  time_counts(state, target_series(lorenz), o);
 }
 
-void BM_TargetLorenz(benchmark::State& state) {
-  const std::vector<double>& x = lorenz_x(100'000);
-  chaos::CorrelationSumOptions o = lorenz_target();
-  o.threads = static_cast<std::size_t>(state.range(0));
-  chaos::CorrelationSumResult r;
-  for (auto _ : state) {
-    r = chaos::correlation_sum(x, o);
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  report(state, r);
-}
+void BM_TargetHenon(benchmark::State& state) { target(state, false); }
+void BM_TargetLorenz(benchmark::State& state) { target(state, true); }
 
 void targets(benchmark::internal::Benchmark* b) {
   b->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
@@ -185,9 +179,7 @@ const chaos::CorrelationSumResult& floor_job(bool lorenz) {
   static std::map<bool, chaos::CorrelationSumResult> cache;
   auto it = cache.find(lorenz);
   if (it == cache.end())
-    it = cache.emplace(lorenz, chaos::correlation_sum(lorenz ? lorenz_x(100'000) : henon_x(100'000),
-                                                      lorenz ? lorenz_target() : henon_target()))
-             .first;
+    it = cache.emplace(lorenz, chaos::correlation_sum(target_series(lorenz), target_options(lorenz))).first;
   return it->second;
 }
 
@@ -241,15 +233,10 @@ void BM_FloorIncrements(benchmark::State& state) {
 
 void BM_FloorPlane(benchmark::State& state) {
   const bool lorenz = state.range(0) == 1;
-  chaos::CorrelationSumOptions o = lorenz ? lorenz_target() : henon_target();
+  chaos::CorrelationSumOptions o = target_options(lorenz);
   o.min_dimension = 2;
   o.max_dimension = 2;
-  chaos::CorrelationSumResult r;
-  for (auto _ : state) {
-    r = chaos::correlation_sum(lorenz ? lorenz_x(100'000) : henon_x(100'000), o);
-    benchmark::DoNotOptimize(r.pairs.data());
-  }
-  report(state, r);
+  time_counts(state, target_series(lorenz), o);
 }
 
 void floors(benchmark::internal::Benchmark* b) {
