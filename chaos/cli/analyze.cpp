@@ -238,7 +238,7 @@ void register_analyze(CLI::App& app) {
   command->add_option("-l,--length", args->input.length, "data rows to use");
   command->add_option("--dt", args->input.dt, "sampling interval");
   command->add_option("-d,--delay", args->params.delay, "use this delay instead of the mutual-information minimum");
-  command->add_option("-t,--theiler", args->params.theiler, "use this Theiler window instead of the 1/e time");
+  command->add_option("-t,--theiler", args->params.theiler, "use this Theiler window instead of the automatic one (the longer of the autocorrelation 1/e time and half the dominant period, at least the delay)");
   command->add_option("-D,--max-delay", args->params.max_delay, "largest delay searched first for the MI minimum; where nothing is found up to it, the search goes on to twice the record's Theiler window (at most N/10)")->capture_default_str();
   command->add_option("-b,--boxes", args->params.boxes, "boxes for mutual information")->capture_default_str();
   command->add_option("-M,--max-dimension", args->params.max_dimension, "largest embedding dimension")->capture_default_str();

@@ -61,10 +61,10 @@ void register_cao(CLI::App& app) {
   auto args = std::make_shared<CaoArgs>();
   CLI::App* command = app.add_subcommand("cao", "Cao's method: E1(m), E2(m) and the minimum embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
   command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
   command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.options.theiler, "Theiler window in samples (|i-j| <= t excluded)")->capture_default_str();
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
   command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
   command->add_option("--level", args->params.options.saturation_level, "E1 must reach this level to count as saturated")
       ->capture_default_str();

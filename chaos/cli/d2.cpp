@@ -107,10 +107,10 @@ void register_d2(CLI::App& app) {
   auto args = std::make_shared<D2Args>();
   CLI::App* command = app.add_subcommand("d2", "correlation sums and the correlation dimension D2 with its scaling region");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.sums.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
   command->add_option("-m,--min-dimension", args->params.sums.min_dimension, "smallest embedding dimension")->capture_default_str();
   command->add_option("-M,--max-dimension", args->params.sums.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: autocorrelation 1/e time)");
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
   command->add_option("-r,--min-radius", args->params.r_min, "smallest radius (default: data range / 1000)");
   command->add_option("-R,--max-radius", args->params.r_max, "largest radius (default: data range / 4)");
   command->add_option("-#,--radii", args->params.radii, "number of log-spaced radii")->capture_default_str();

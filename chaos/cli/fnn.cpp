@@ -61,10 +61,10 @@ void register_fnn(CLI::App& app) {
   auto args = std::make_shared<FnnArgs>();
   CLI::App* command = app.add_subcommand("fnn", "false nearest neighbours against the embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
+  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
   command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
   command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.options.theiler, "Theiler window in samples")->capture_default_str();
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
   command->add_option("--rtol", args->params.options.rtol, "distance-ratio threshold (criterion 1)")->capture_default_str();
   command->add_option("--atol", args->params.options.atol, "size threshold in units of the standard deviation (criterion 2)")
       ->capture_default_str();

@@ -141,10 +141,9 @@ void register_lyapunov(CLI::App& app) {
   command->add_option("--method", args->params.method, "rosenstein (mean log distance of nearest neighbours) or kantz "
                                                 "(log of the mean distance in an eps-neighbourhood)")
       ->capture_default_str();
-  command->add_option("-m,--dimension", args->params.options.dimension, "embedding dimension")->capture_default_str();
-  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: the autocorrelation 1/e "
-                                                     "time or half the dominant oscillation period, the longer)");
+  command->add_option("-m,--dimension", args->params.dimension, "embedding dimension (default: automatic, where Cao's E1 saturates)");
+  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
   command->add_option("-s,--steps", args->params.steps,
                       "steps the divergence is followed (default: 20 correlation times or periods, 20..N/10)");
   command->add_option("--period", args->params.period, "oscillation period in samples: local slopes span a whole period "

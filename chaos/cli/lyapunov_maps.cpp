@@ -50,10 +50,9 @@ void register_lyapunov_maps(CLI::App& app) {
       "lyapunov-maps", "largest Lyapunov exponent from local linear maps (Eckmann-Ruelle 1985, Sano-Sawada 1985), "
                        "reported only when it holds over the estimator's choices");
   add_input_options(*command, args->input);
-  command->add_option("-m,--dimension", args->params.options.dimension, "embedding dimension")->capture_default_str();
-  command->add_option("-d,--delay", args->params.options.delay, "delay tau in samples")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: the autocorrelation 1/e "
-                                                     "time or half the dominant oscillation period, the longer)");
+  command->add_option("-m,--dimension", args->params.dimension, "embedding dimension (default: automatic, where Cao's E1 saturates)");
+  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
+  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
   command->add_option("--step", args->params.options.step, "samples the local maps advance (0: max(1, round(tau/2)))")
       ->capture_default_str();
   command->add_option("-k,--neighbours", args->params.options.neighbours, "neighbours per local map (0: 5 m)")

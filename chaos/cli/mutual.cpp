@@ -37,7 +37,7 @@ std::string plot_script(const MutualInformationResult& result, const std::option
 
 void run(MutualArgs& args) {
   const Series series = load_series(args.input);
-  auto [result, minimum, report] =
+  auto [result, minimum, no_minimum, report] =
       run_mutual({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, minimum, series.dt), args.plot);
   report.open(args.output);
@@ -48,7 +48,7 @@ void run(MutualArgs& args) {
     return;
   }
   report.write_header(out);
-  out << "# first_minimum = " << (minimum ? std::to_string(*minimum) : "none within the range") << "\n";
+  out << "# first_minimum = " << (minimum ? std::to_string(*minimum) : "none: " + no_minimum) << "\n";
   if (minimum && series.dt) out << "# first_minimum_time = " << number(static_cast<double>(*minimum) * dt) << "\n";
   out << (series.dt ? "# delay\tdelay_time\tmutual_information\n" : "# delay\tmutual_information\n");
   for (std::size_t k = 0; k < result.delay.size(); ++k) {
@@ -64,7 +64,7 @@ void register_mutual(CLI::App& app) {
   auto args = std::make_shared<MutualArgs>();
   CLI::App* command = app.add_subcommand("mutual", "average mutual information I(tau) in nats and its first minimum");
   add_input_options(*command, args->input);
-  command->add_option("-D,--max-delay", args->params.options.max_delay, "largest delay")->capture_default_str();
+  command->add_option("-D,--max-delay", args->params.max_delay, "largest delay (default: automatic, 100 (at most N/10), and where the information has no minimum there, on to two Theiler windows, as chaos analyze searches)");
   command->add_option("-b,--boxes", args->params.options.boxes, "boxes per axis")->capture_default_str();
   command->add_option("--estimator", args->params.estimator, "equal_width (TISEAN) or equiprobable")->capture_default_str();
   add_plot_option(*command, args->plot, "draw I(tau) with the first minimum marked to FILE.png or FILE.svg");

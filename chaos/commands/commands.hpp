@@ -38,13 +38,17 @@
 namespace chaos::cli {
 
 // chaos mutual
+// Without max_delay, the delay search of choose_delay (100 samples, then on to two Theiler windows,
+// at most N / 10), so the minimum `chaos analyze` finds is the one reported here.
 struct MutualParams {
+  std::optional<std::size_t> max_delay;
   MutualInformationOptions options;
   std::string estimator = "equal_width";
 };
 struct MutualRun {
   MutualInformationResult result;
   std::optional<std::size_t> minimum;
+  std::string no_minimum;  // why there is no minimum, else empty
   Report report;
 };
 MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOptions& output = {});
@@ -63,7 +67,10 @@ AutocorrelationRun run_autocorrelation(const SeriesInput& in, const Autocorrelat
                                        const OutputOptions& output = {});
 
 // chaos cao
+// cao, fnn, d2, lyapunov, lyapunov-maps: a delay, Theiler window or dimension left out is chosen by
+// choose_embedding (chaos/choose.hpp), and the report names the rule ("delay_source", ...).
 struct CaoParams {
+  std::optional<std::size_t> delay, theiler;
   CaoOptions options;
   std::string norm = "max";
 };
@@ -75,6 +82,7 @@ CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& out
 
 // chaos fnn
 struct FnnParams {
+  std::optional<std::size_t> delay, theiler;
   FnnOptions options;
   std::string norm = "euclidean";
 };
@@ -90,7 +98,7 @@ struct D2Params {
   CorrelationSumOptions sums;  // sums.progress: called with the fraction done (may throw to stop)
   std::function<void(double)> halves_progress;  // the same for each half's sums in the halves check
   CorrelationDimensionOptions dimension;
-  std::optional<std::size_t> theiler;
+  std::optional<std::size_t> delay, theiler;
   std::optional<double> r_min, r_max;
   std::size_t radii = 40;
   std::vector<double> radius_list;
@@ -118,7 +126,7 @@ struct LyapunovParams {
   LyapunovParams() { fit.dimensions = 3; }  // m, m+1, m+2 must agree
   LyapunovOptions options;
   LyapunovFitOptions fit;
-  std::optional<std::size_t> theiler, steps, period;
+  std::optional<std::size_t> delay, dimension, theiler, steps, period;
   std::string method = "rosenstein";
   std::string norm = "max";
   // Run the other method too, with the same settings, and check the two against each other
@@ -147,7 +155,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
 // (lyapunov_local_maps.hpp). The Theiler window defaults to the data's correlation time, as in lyapunov.
 struct LyapunovMapsParams {
   LocalMapOptions options;
-  std::optional<std::size_t> theiler;
+  std::optional<std::size_t> delay, dimension, theiler;
   std::string norm = "max";
   double tolerance = 0.05;
 };

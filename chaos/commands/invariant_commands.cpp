@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "chaos/choose.hpp"
 #include "chaos/error.hpp"
 #include "chaos/generate.hpp"
 #include "chaos/time_scales.hpp"
@@ -17,32 +18,16 @@ CorrelationSearch parse_search(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "search must be box, kd or brute (got '" + name + "')");
 }
 
-namespace {
-
-// The Theiler window: the user's (-t), else the data's correlation time. Returns where it came from.
-std::string choose_theiler(const std::optional<std::size_t>& given, std::span<const double> x, std::size_t& window) {
-  if (given) {
-    window = *given;
-    return "given (-t)";
-  }
-  const CorrelationTime correlation = correlation_time(x);
-  window = correlation.samples;
-  return correlation.source;
-}
-
-}  // namespace
-
 D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output) {
   const std::span<const double> x = in.values;
   require_not_constant(x, in.file);
   params.sums.norm = parse_norm(params.norm);
   params.sums.search = parse_search(params.search);
 
-  // Theiler window: given, or the autocorrelation's 1/e time (pairs closer in time than the
-  // correlation time would otherwise pose as neighbours and bias D2 low).
-  const std::string theiler_source = choose_theiler(params.theiler, x, params.sums.theiler);
-  // Radii: given, or from the data's range (TISEAN's -r range/1000; -R a quarter of the range,
-  // beyond which C is near 1 and carries no scaling).
+  const EmbeddingChoice chosen = choose_delay_and_window(x, params.delay, params.theiler);
+  params.sums.delay = chosen.delay;
+  params.sums.theiler = chosen.theiler;
+  // Radii: given, or from the data's range as choose_radii sets them.
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   const double range = *hi - *lo;
   const double r_max = params.r_max.value_or(range / 4.0);
@@ -77,9 +62,10 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
 
   Report report("d2", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
-      .parameter("dt", in.dt).parameter("delay", params.sums.delay).parameter("min_dimension", params.sums.min_dimension)
+      .parameter("dt", in.dt).parameter("delay", params.sums.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("min_dimension", params.sums.min_dimension)
       .parameter("max_dimension", params.sums.max_dimension).parameter("theiler", params.sums.theiler)
-      .parameter("theiler_source", theiler_source).parameter("norm", params.norm).parameter("inclusive", params.sums.inclusive)
+      .parameter("theiler_source", chosen.theiler_source).parameter("norm", params.norm).parameter("inclusive", params.sums.inclusive)
       .parameter("search", params.search)
       .parameter("r_min", params.sums.radii.front()).parameter("r_max", params.sums.radii.back())
       .parameter("radii", params.sums.radii.size())
@@ -198,29 +184,24 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   params.options.method = parse_method(params.method);
   params.options.norm = parse_norm(params.norm);
 
-  // Defaults from the data's own time scales (time_scales.hpp): the Theiler window covers the
-  // autocorrelation time and half a period of a dominant oscillation (as in d2); the curve is
-  // followed for 20 of the longer of the two (at least 20 steps, at most N/10), long enough for a
-  // flow's separation to grow to the attractor's size; the local slopes span a whole period.
-  // (20 of them: the linear region must rise by LyapunovFitOptions::min_rise after the transient.)
-  const CorrelationTime correlation = correlation_time(x);
-  std::string theiler_source = "given (-t)", steps_source = "given (-s)", period_source = "given (--period)";
-  if (params.theiler) {
-    params.options.theiler = *params.theiler;
-  } else {
-    params.options.theiler = correlation.samples;
-    theiler_source = correlation.source;
-  }
+  // Left-out choices by the rules of choose.hpp, as in chaos analyze: delay, window and Cao's m, the
+  // steps (20 correlation times or periods) and the period of the local slopes.
+  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension);
+  params.options.delay = chosen.delay;
+  params.options.theiler = chosen.theiler;
+  params.options.dimension = *chosen.dimension;
+  const TimeScales& scales = chosen.scales;
+  std::string steps_source = "given (-s)", period_source = "given (--period)";
   if (!params.period) {
-    params.fit.period = correlation.period;
-    period_source = correlation.period ? "twice the first autocorrelation minimum" : "no dominant oscillation";
+    params.fit.period = scales.period();
+    period_source = scales.period() ? "twice the first autocorrelation minimum" : "no dominant oscillation";
   } else {
     params.fit.period = *params.period;
   }
   if (params.steps) {
     params.options.steps = *params.steps;
   } else {
-    params.options.steps = automatic_lyapunov_steps(correlation.samples, params.fit.period, x.size());
+    params.options.steps = choose_lyapunov_steps(scales.theiler, params.fit.period, x.size());
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
@@ -244,7 +225,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   std::optional<LocalMapResult> maps;
   std::string maps_refusal;
   if (params.cross_check) {
-    LocalMapOptions l = automatic_local_map_options(params.options.dimension, params.options.delay, params.options.theiler);
+    LocalMapOptions l = choose_local_map_options(params.options.dimension, params.options.delay, params.options.theiler);
     l.norm = params.options.norm;
     l.threads = params.options.threads;
     const auto& report_progress = params.maps_progress;
@@ -272,8 +253,10 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   Report report("lyapunov", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
       .parameter("dt", in.dt).parameter("method", params.method).parameter("dimension", params.options.dimension)
-      .parameter("delay", params.options.delay).parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", theiler_source).parameter("steps", params.options.steps)
+      .parameter("dimension_source", chosen.dimension_source)
+      .parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", chosen.theiler_source).parameter("steps", params.options.steps)
       .parameter("steps_source", steps_source).parameter("norm", params.norm);
   if (params.options.method == LyapunovMethod::kantz)
     report.parameter("radius", r.curve.radius)
@@ -348,14 +331,19 @@ LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams para
   const std::span<const double> x = in.values;
   require_not_constant(x, in.file);
   params.options.norm = parse_norm(params.norm);
-  const std::string theiler_source = choose_theiler(params.theiler, x, params.options.theiler);
+  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension);
+  params.options.delay = chosen.delay;
+  params.options.theiler = chosen.theiler;
+  params.options.dimension = *chosen.dimension;
   LocalMapResult r = largest_lyapunov_local_maps(x, params.options, in.dt, params.tolerance);
   const bool per_time = r.dt.has_value();
   Report report("lyapunov-maps", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
       .parameter("dt", in.dt).parameter("dimension", params.options.dimension)
-      .parameter("delay", params.options.delay).parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", theiler_source).parameter("step", r.base.step)
+      .parameter("dimension_source", chosen.dimension_source)
+      .parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", chosen.theiler_source).parameter("step", r.base.step)
       .parameter("neighbours", r.base.neighbours).parameter("cutoff", params.options.cutoff)
       .parameter("norm", params.norm).parameter("tolerance", r.tolerance)
       .parameter("max_residual", params.options.max_residual).parameter("threads", params.options.threads);
@@ -403,8 +391,8 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   AutomaticAnalysisOptions options;
   options.delay = params.delay;
   options.theiler = params.theiler;
-  options.max_delay = params.max_delay;
-  options.boxes = params.boxes;
+  options.delay_search.max_delay = params.max_delay;
+  options.delay_search.boxes = params.boxes;
   options.max_dimension = params.max_dimension;
   options.check_delay = params.delay_check;
   options.progress = params.progress;
@@ -418,7 +406,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
                  Report("analyze", output)};
   const AutomaticAnalysis& a = run.analysis;
   const TimeScales& scales = a.scales;
-  run.theiler_source = params.theiler ? "given (-t)" : scales.theiler_source;
+  run.theiler_source = params.theiler ? "given (-t)" : a.theiler_source;
 
   if (a.delay) {
     run.fnn_options.delay = *a.delay;

@@ -72,14 +72,4 @@ void check_series(std::span<const double> x, const std::string& what) {
   require_scale(x, what);
 }
 
-CorrelationTime correlation_time(std::span<const double> x) {
-  const TimeScales scales = time_scales(x);
-  CorrelationTime t;
-  t.decay = scales.decorrelation_time;
-  t.samples = scales.theiler;
-  t.source = scales.theiler_source;
-  t.period = scales.period();
-  return t;
-}
-
 }  // namespace chaos::cli

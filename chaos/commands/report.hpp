@@ -100,13 +100,4 @@ struct SeriesInput {
 // The checks every command applies to a series it reads (finite values, a usable scale).
 void check_series(std::span<const double> x, const std::string& what);
 
-// The Theiler window and the oscillation period of time_scales.hpp, for the commands' defaults.
-struct CorrelationTime {
-  std::size_t samples = 0;      // the Theiler window: max(1/e time, half the oscillation period)
-  std::optional<double> decay;  // the 1/e time itself, when there is one
-  std::string source;
-  std::size_t period = 0;       // of a dominant oscillation, samples; 0 when none
-};
-CorrelationTime correlation_time(std::span<const double> x);
-
 }  // namespace chaos::cli

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "chaos/choose.hpp"
 #include "chaos/error.hpp"
+#include "chaos/time_scales.hpp"
 #include "commands.hpp"
 
 namespace chaos::cli {
@@ -19,12 +21,44 @@ MutualInformationEstimator parse_estimator(const std::string& name) {
 
 MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOptions& output) {
   params.options.estimator = parse_estimator(params.estimator);
-  MutualInformationResult result = mutual_information(in.values, params.options);
-  const auto minimum = first_minimum(result);
+  MutualInformationResult result;
+  std::optional<std::size_t> minimum;
+  std::string searched = "given (-D)";
+  if (params.max_delay) {
+    params.options.max_delay = *params.max_delay;
+    result = mutual_information(in.values, params.options);
+    minimum = first_minimum(result);
+  } else {
+    // The search of choose_delay, with this command's estimator and boxes: the first minimum within
+    // 100 samples, else within two Theiler windows (at most N / 10).
+    require_finite(in.values, in.file);
+    require_not_constant(in.values, in.file);
+    const DelaySearchLimits limits = delay_search_limits(in.values.size(), time_scales(in.values), DelaySearch{});
+    params.options.max_delay = limits.first;
+    searched = "automatic: " + std::to_string(limits.first) + " delays (at most N/10)";
+    result = mutual_information(in.values, params.options);
+    minimum = first_minimum(result);
+    if (!minimum && limits.second > limits.first) {
+      params.options.max_delay = limits.second;
+      searched = "automatic: none within " + std::to_string(limits.first) +
+                 " delays, searched on to two Theiler windows (" + std::to_string(limits.second) + ", at most N/10)";
+      result = mutual_information(in.values, params.options);
+      minimum = first_minimum(result);
+    }
+  }
+  std::string no_minimum;
+  if (!minimum) {
+    const auto& I = result.information;
+    const bool falling = I.size() >= 2 && I.back() < I[I.size() - 2];
+    no_minimum = "no local minimum of the information for delays 1.." + std::to_string(params.options.max_delay) +
+                 (falling ? ": it is still falling at the last delay (a longer -D may find one)"
+                          : ": it falls without a minimum and then levels off or rises");
+  }
 
   Report report("mutual", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("max_delay", params.options.max_delay).parameter("boxes", params.options.boxes)
+      .parameter("dt", in.dt).parameter("max_delay", params.options.max_delay).parameter("max_delay_source", searched)
+      .parameter("boxes", params.options.boxes)
       .parameter("estimator", params.estimator).parameter("units", std::string("nats"));
   const double dt = in.dt.value_or(1.0);
   auto& j = report.json();
@@ -37,7 +71,8 @@ MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOpt
   j["mutual_information"] = result.information;
   j["first_minimum"] = optional_json(minimum);
   j["first_minimum_time"] = minimum && in.dt ? nlohmann::ordered_json(static_cast<double>(*minimum) * dt) : nullptr;
-  return {std::move(result), minimum, std::move(report)};
+  j["no_minimum"] = minimum ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(no_minimum);
+  return {std::move(result), minimum, std::move(no_minimum), std::move(report)};
 }
 
 AutocorrelationRun run_autocorrelation(const SeriesInput& in, const AutocorrelationParams& params,
@@ -66,12 +101,17 @@ AutocorrelationRun run_autocorrelation(const SeriesInput& in, const Autocorrelat
 
 CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& output) {
   params.options.norm = parse_norm(params.norm);
+  const EmbeddingChoice chosen = choose_delay_and_window(in.values, params.delay, params.theiler);
+  params.options.delay = chosen.delay;
+  params.options.theiler = chosen.theiler;
   CaoResult result = cao(in.values, params.options);
 
   Report report("cao", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("min_dimension", params.options.min_dimension)
+      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("min_dimension", params.options.min_dimension)
       .parameter("max_dimension", params.options.max_dimension).parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", chosen.theiler_source)
       .parameter("norm", params.norm).parameter("saturation_level", params.options.saturation_level)
       .parameter("saturation_change", params.options.saturation_change)
       .parameter("stochastic_sigmas", params.options.stochastic_sigmas);
@@ -94,12 +134,17 @@ CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& out
 
 FnnRun run_fnn(const SeriesInput& in, FnnParams params, const OutputOptions& output) {
   params.options.norm = parse_norm(params.norm);
+  const EmbeddingChoice chosen = choose_delay_and_window(in.values, params.delay, params.theiler);
+  params.options.delay = chosen.delay;
+  params.options.theiler = chosen.theiler;
   FnnResult result = false_nearest_neighbors(in.values, params.options);
 
   Report report("fnn", output);
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("min_dimension", params.options.min_dimension)
+      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("min_dimension", params.options.min_dimension)
       .parameter("max_dimension", params.options.max_dimension).parameter("theiler", params.options.theiler)
+      .parameter("theiler_source", chosen.theiler_source)
       .parameter("rtol", params.options.rtol).parameter("atol", params.options.atol).parameter("norm", params.norm)
       .parameter("threshold", params.options.threshold);
   auto& j = report.json();

@@ -11,22 +11,6 @@
 
 namespace chaos {
 
-std::size_t automatic_lyapunov_steps(std::size_t correlation_time, std::size_t period, std::size_t n) {
-  return std::max<std::size_t>(20, std::min(20 * std::max(correlation_time, period), n / 10));
-}
-
-CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> x, std::size_t delay,
-                                                        std::size_t theiler, std::size_t max_dimension,
-                                                        std::size_t radii) {
-  CorrelationSumOptions s;
-  s.delay = delay;
-  s.theiler = theiler;
-  s.max_dimension = max_dimension;
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  s.radii = log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, radii);
-  return s;
-}
-
 std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x) {
   const std::size_t half = x.size() / 2;
   return {x.first(half), x.subspan(half)};
@@ -86,36 +70,6 @@ void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double>
   }
 }
 
-LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
-                                           std::size_t delay, std::size_t theiler, LyapunovMethod method) {
-  LyapunovOptions l;
-  l.method = method;
-  l.dimension = dimension;
-  l.delay = delay;
-  l.theiler = theiler;
-  l.steps = automatic_lyapunov_steps(scales.theiler, scales.period(), n);
-  // At most 10^4 reference points, evenly spaced: the curve is a mean over them, whose sampling
-  // error at 10^4 is far below the 10% the fit tolerates, and the cost of a long curve (K steps per
-  // pair) stays linear in N / 10^4 instead of N.
-  l.reference_points = std::min<std::size_t>(n, 10000);
-  return l;
-}
-
-LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales) {
-  LyapunovFitOptions fit;
-  fit.period = scales.period();
-  fit.dimensions = 3;
-  return fit;
-}
-
-LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t delay, std::size_t theiler) {
-  LocalMapOptions options;
-  options.dimension = dimension;
-  options.delay = delay;
-  options.theiler = theiler;
-  return options;
-}
-
 LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const LocalMapOptions& options,
                                              std::optional<double> dt, bool next_dimension,
                                              const std::function<void()>& retrying) {
@@ -142,56 +96,15 @@ LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const Lo
   return runs;
 }
 
-DelayChoice automatic_delay(std::span<const double> x, const TimeScales& scales, const AutomaticAnalysisOptions& options) {
-  DelayChoice out;
-  if (scales.decorrelation_time && *scales.decorrelation_time <= 1.0) {
-    // Decorrelated within one sample (maps, coarsely sampled flows): successive samples are already
-    // as independent as the dynamics allows, and later "minima" of the information are its noise.
-    out.delay = 1;
-    out.source = "autocorrelation below 1/e at lag 1: delay 1";
-    return out;
-  }
-  // The first search as TISEAN's users know it (a fixed number of samples), then, where it finds
-  // nothing, a search scaled by the record's own correlation time: the delay in samples grows with
-  // the sampling rate, a fixed cap does not. The second search repeats the first one's delays, so the
-  // first minimum it finds is the one a single long search would find.
-  const std::size_t cap = std::max<std::size_t>(1, x.size() / 10);
-  const std::size_t first = std::max<std::size_t>(1, std::min(options.max_delay, cap));
-  const std::size_t second = std::min(cap, options.delay_search_windows * scales.theiler);
-  for (const std::size_t limit : {first, second}) {
-    if (limit <= out.searched) continue;  // no wider than the search already made
-    out.searched = limit;
-    MutualInformationOptions mi;
-    mi.max_delay = limit;
-    mi.boxes = options.boxes;
-    const std::string scope = limit == first ? "" : " (nothing up to " + std::to_string(first) + "; searched on to " +
-                                                        std::to_string(options.delay_search_windows) +
-                                                        " Theiler windows, " + std::to_string(limit) + ")";
-    if (const auto minimum = first_minimum(mutual_information(x, mi))) {
-      out.delay = minimum;
-      out.source = "first mutual-information minimum" + scope;
-      return out;
-    }
-    if (scales.first_zero_crossing && *scales.first_zero_crossing <= limit) {
-      out.delay = scales.first_zero_crossing;
-      out.source = "no mutual-information minimum up to " + std::to_string(limit) +
-                   "; autocorrelation first zero crossing" + scope;
-      return out;
-    }
-  }
-  out.stopped = "no mutual-information minimum and no autocorrelation zero crossing up to delay " +
-                std::to_string(out.searched) + ": no delay can be chosen";
-  return out;
-}
-
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
                                  const AutomaticAnalysisOptions& options) {
   require_finite(x, "automatic analysis");
   require_not_constant(x, "automatic analysis");
   AutomaticAnalysis a;
   a.scales = time_scales(x);
-  a.theiler = options.theiler.value_or(a.scales.theiler);
-  if (!a.scales.stationary) {
+  if (options.check_stationarity && !a.scales.stationary) {
+    a.theiler = options.theiler.value_or(a.scales.theiler);
+    a.theiler_source = options.theiler ? "given" : a.scales.theiler_source;
     a.stopped = a.scales.stationarity_explanation;
     return a;
   }
@@ -200,61 +113,68 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     a.delay = options.delay;
     a.delay_source = "given";
   } else {
-    DelayChoice choice = automatic_delay(x, a.scales, options);
+    DelayChoice choice = choose_delay(x, a.scales, options.delay_search);
     a.delay = choice.delay;
     a.delay_source = std::move(choice.source);
     a.delay_searched = choice.searched;
     if (!a.delay) {
+      a.theiler = options.theiler.value_or(a.scales.theiler);
+      a.theiler_source = options.theiler ? "given" : a.scales.theiler_source;
       a.stopped = std::move(choice.stopped);
       return a;
     }
+  }
+  if (options.theiler) {
+    a.theiler = *options.theiler;
+    a.theiler_source = "given";
+  } else {
+    TheilerChoice w = choose_theiler_window(a.scales, *a.delay);
+    a.theiler = w.window;
+    a.theiler_source = std::move(w.source);
   }
 
   if (options.dimension) {
     a.dimension = options.dimension;
   } else {
-    CaoOptions c;
-    c.delay = *a.delay;
-    c.theiler = a.theiler;
-    c.max_dimension = options.max_dimension;
-    if (options.progress) c.progress = [&](double f) { options.progress("Cao's method", f); };
-    a.cao = cao(x, c);
-    a.dimension = a.cao->embedding_dimension;
+    std::function<void(double)> progress;
+    if (options.progress) progress = [&](double f) { options.progress("Cao's method", f); };
+    DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress));
+    a.cao = std::move(m.cao);
+    a.dimension = m.dimension;
     if (!a.dimension) {
-      a.stopped = "Cao's E1 does not saturate up to m = " + std::to_string(options.max_dimension) +
-                  (a.cao->stochastic ? " and E2 stays at 1 (stochastic)" : "") + ": no embedding dimension";
+      a.stopped = std::move(m.stopped);
       return a;
     }
   }
 
   CorrelationSumOptions s =
-      automatic_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
+      choose_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
   if (options.progress) s.progress = [&](double f) { options.progress("correlation sums", f); };
   a.d2 = automatic_correlation_dimension(x, s, options.check_halves, options.check_delay);
 
   const auto lyapunov = [&](LyapunovMethod method) {
-    LyapunovOptions l = automatic_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);
+    LyapunovOptions l = choose_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);
     l.threads = options.threads;
     if (options.progress)
       l.progress = [&options, method](double f) {
         options.progress(std::string("Lyapunov exponent (") + to_string(method) + ")", f);
       };
-    LyapunovResult r = largest_lyapunov(x, l, automatic_lyapunov_fit(a.scales), dt);
-    if (options.check_halves) check_record_halves(r, x, l, automatic_lyapunov_fit(a.scales));
+    LyapunovResult r = largest_lyapunov(x, l, choose_lyapunov_fit(a.scales), dt);
+    if (options.check_halves) check_record_halves(r, x, l, choose_lyapunov_fit(a.scales));
     return r;
   };
   try {
     if (options.rosenstein) a.rosenstein = lyapunov(LyapunovMethod::rosenstein);
     if (options.kantz) a.kantz = lyapunov(LyapunovMethod::kantz);
     if (options.cross_check && a.rosenstein && a.kantz)
-      cross_check(*a.rosenstein, *a.kantz, automatic_lyapunov_fit(a.scales).tolerance);
+      cross_check(*a.rosenstein, *a.kantz, choose_lyapunov_fit(a.scales).tolerance);
   } catch (const InvalidInput& e) {
     // Too short for the curve's steps in m + 2 dimensions: the exponent is not estimated.
     a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
   }
   if (options.local_maps) {
-    LocalMapOptions l = automatic_local_map_options(*a.dimension, *a.delay, a.theiler);
+    LocalMapOptions l = choose_local_map_options(*a.dimension, *a.delay, a.theiler);
     l.threads = options.threads;
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 0.0);
     try {
@@ -268,7 +188,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     }
     // A divergence slope stands only where the consistent local-map exponent confirms it.
     if (options.cross_check && a.local_maps) {
-      const double tolerance = automatic_lyapunov_fit(a.scales).tolerance;
+      const double tolerance = choose_lyapunov_fit(a.scales).tolerance;
       if (a.rosenstein) cross_check(*a.rosenstein, *a.local_maps, tolerance);
       if (a.kantz) cross_check(*a.kantz, *a.local_maps, tolerance);
     } else if (options.cross_check) {

@@ -9,6 +9,7 @@
 #include "numeric.hpp"
 
 #include "chaos/cao.hpp"
+#include "chaos/choose.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
@@ -17,6 +18,7 @@
 #include "chaos/lyapunov.hpp"
 #include "chaos/lyapunov_spectrum.hpp"
 #include "chaos/mutual_information.hpp"
+#include "chaos/time_scales.hpp"
 
 namespace chaos {
 
@@ -116,16 +118,14 @@ std::vector<double> make_series(const Reference& ref, const Conditions& c) {
   throw InvalidInput(ErrorCode::parse, ref.id + ": system " + ref.system + " has no component '" + ref.component + "'");
 }
 
-// The delay: a number of samples, or "mi" for the first mutual-information minimum (16 boxes,
-// delays up to 100), the way a user without a hand-picked delay would choose it.
+// The delay: a number of samples, or "mi" for the automatic delay (choose_delay: the first
+// mutual-information minimum within 100 samples, or the rule that stands in for it), the way a user
+// without a hand-picked delay gets it.
 std::size_t delay_of(const Conditions& c, const std::vector<double>& x) {
   if (c.text("tau", "") != "mi") return c.count("tau", 1);
-  MutualInformationOptions options;
-  options.max_delay = 100;
-  const auto minimum = first_minimum(mutual_information(x, options));
-  if (!minimum)
-    throw InvalidInput(ErrorCode::invalid_parameter, c.ref.id + ": no mutual-information minimum for delays 1..100");
-  return *minimum;
+  const DelayChoice choice = choose_delay(x, time_scales(x));
+  if (!choice.delay) throw InvalidInput(ErrorCode::invalid_parameter, c.ref.id + ": " + choice.stopped);
+  return *choice.delay;
 }
 
 std::string describe(const std::optional<std::size_t>& v, const char* none) {

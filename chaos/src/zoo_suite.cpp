@@ -309,7 +309,7 @@ LocalMaps local_maps_at(std::span<const double> x, std::size_t m, std::size_t ta
                         std::optional<double> dt) {
   LocalMaps out;
   try {
-    out.result = largest_lyapunov_local_maps(x, automatic_local_map_options(m, tau, w), dt);
+    out.result = largest_lyapunov_local_maps(x, choose_local_map_options(m, tau, w), dt);
   } catch (const InvalidInput& error) {
     out.refusal = error.what();
   }
@@ -399,7 +399,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
 
       const std::size_t m0 = *a.dimension;
       const std::vector<std::size_t> windows{a.theiler, 2 * a.theiler, 3 * a.theiler};
-      const CorrelationSumOptions sum_options = automatic_correlation_sum_options(x, *a.delay, a.theiler, m0 + 3);
+      const CorrelationSumOptions sum_options = choose_correlation_sum_options(x, *a.delay, a.theiler, m0 + 3);
       SumsOverWindows whole(x, sum_options, windows);
       const auto [first_half, second_half] = record_halves(x);
       SumsOverWindows first_sums(first_half, sum_options, windows), second_sums(second_half, sum_options, windows);
@@ -428,14 +428,14 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
         for (std::size_t k = 0; k < 6; ++k) {
           try {
             rosenstein[k] = divergence_curve(
-                x, automatic_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::rosenstein));
+                x, choose_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::rosenstein));
             kantz[k] = divergence_curve(
-                x, automatic_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::kantz));
+                x, choose_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::kantz));
           } catch (const InvalidInput& e) {
             curve_error = e.what();
           }
         }
-        const LyapunovFitOptions fit = automatic_lyapunov_fit(a.scales);
+        const LyapunovFitOptions fit = choose_lyapunov_fit(a.scales);
         // The halves check of a linear region, as in the pipeline (check_record_halves): the same
         // curves on each half of the record, computed the first time a fit needs them.
         using HalfCurves = std::pair<DivergenceCurve, DivergenceCurve>;
@@ -448,7 +448,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
             std::vector<DivergenceCurve> one, two;
             for (std::size_t j = k; j < k + 3; ++j) {
               if (!cache[j]) {
-                const LyapunovOptions o = automatic_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method);
+                const LyapunovOptions o = choose_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method);
                 cache[j].emplace(divergence_curve(first, o), divergence_curve(second, o));
               }
               one.push_back(cache[j]->first);

@@ -190,7 +190,7 @@ std::function<void(const std::string&, double)> step_progress_hook(py::object ca
 py::object mutual(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   MutualParams params;
-  get(p, "max_delay", params.options.max_delay);
+  get(p, "max_delay", params.max_delay);
   get(p, "boxes", params.options.boxes);
   get(p, "estimator", params.estimator);
   return call([&] { return run_mutual(in, params).report.json(); });
@@ -208,10 +208,10 @@ py::object cao(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   CaoParams params;
-  get(p, "delay", params.options.delay);
+  get(p, "delay", params.delay);
   get(p, "min_dimension", params.options.min_dimension);
   get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.options.theiler);
+  get(p, "theiler", params.theiler);
   get(p, "norm", params.norm);
   get(p, "level", params.options.saturation_level);
   get(p, "change", params.options.saturation_change);
@@ -224,10 +224,10 @@ py::object fnn(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   FnnParams params;
-  get(p, "delay", params.options.delay);
+  get(p, "delay", params.delay);
   get(p, "min_dimension", params.options.min_dimension);
   get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.options.theiler);
+  get(p, "theiler", params.theiler);
   get(p, "rtol", params.options.rtol);
   get(p, "atol", params.options.atol);
   get(p, "norm", params.norm);
@@ -240,7 +240,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
               py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   D2Params params;
-  get(p, "delay", params.sums.delay);
+  get(p, "delay", params.delay);
   get(p, "min_dimension", params.sums.min_dimension);
   get(p, "max_dimension", params.sums.max_dimension);
   get(p, "theiler", params.theiler);
@@ -279,8 +279,8 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   const SeriesInput in = series(x, file, column, dt);
   LyapunovParams params;
   get(p, "method", params.method);
-  get(p, "dimension", params.options.dimension);
-  get(p, "delay", params.options.delay);
+  get(p, "dimension", params.dimension);
+  get(p, "delay", params.delay);
   get(p, "theiler", params.theiler);
   get(p, "steps", params.steps);
   get(p, "period", params.period);
@@ -314,8 +314,8 @@ py::object lyapunov_maps(const Array& x, const std::string& file, std::size_t co
                          const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovMapsParams params;
-  get(p, "dimension", params.options.dimension);
-  get(p, "delay", params.options.delay);
+  get(p, "dimension", params.dimension);
+  get(p, "delay", params.delay);
   get(p, "theiler", params.theiler);
   get(p, "step", params.options.step);
   get(p, "neighbours", params.options.neighbours);
@@ -805,11 +805,11 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
     get(p, "max_lag", a.max_lag);
     work = [&] { (void)run_autocorrelation(in, a).report.json().size(); };
   } else if (command == "mutual") {
-    get(p, "max_delay", m.options.max_delay);
+    get(p, "max_delay", m.max_delay);
     get(p, "boxes", m.options.boxes);
     work = [&] { (void)run_mutual(in, m).report.json().size(); };
   } else if (command == "d2") {
-    get(p, "delay", d.sums.delay);
+    get(p, "delay", d.delay);
     get(p, "max_dimension", d.sums.max_dimension);
     get(p, "theiler", d.theiler);
     work = [&] { (void)run_d2(in, d).report.json().size(); };

@@ -80,10 +80,11 @@ bool run_pipeline(const PipelineRequest& r) {
   if (!r.series_output.empty()) {
     std::ofstream f(r.series_output);
     if (!f) throw StudyIoError("--series", r.series_output, "cannot be written");
-    f << "# t\tslider_y\tslider_vy\n" << std::setprecision(12);
+    // Every digit, so that another tool reads the series the pipeline analysed.
+    f << "# t\tslider_y\tslider_vy\n" << std::setprecision(17);
     for (std::size_t i = 0; i < t.size(); ++i) f << t[i] << '\t' << y[i] << '\t' << vy[i] << '\n';
   }
-  const SeriesAnalysis a = analyse_series(y, analysis.interval, analysis);
+  const SeriesAnalysis a = analyse_series_with_curves(y, analysis.interval, analysis);
   auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   nlohmann::json d2m = nlohmann::json::array();
   for (const auto& d : a.d2_by_dimension) d2m.push_back(opt(d));

@@ -49,7 +49,7 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
     r.summary.message = "started fresh: the previous point's state has another size";
   if (spec.analyse) {
     if (r.summary.status == mechanism::SimulationStatus::completed) {
-      r.analysis = analyse_series(series, scene.run.output_interval, spec.analysis);
+      r.analysis = analyse_series_with_curves(series, scene.run.output_interval, spec.analysis);
     } else {
       SeriesAnalysis a;
       a.status = std::string("not analysed: the simulation ended with ") + mechanism::to_string(r.summary.status);

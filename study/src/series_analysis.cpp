@@ -6,15 +6,15 @@
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/cao.hpp"
+#include "chaos/choose.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"
-#include "chaos/time_scales.hpp"
 
 namespace study {
 
-SeriesAnalysis analyse_series(std::span<const double> x, double interval, const AnalysisOptions& options) {
+SeriesAnalysis analyse_series_with_curves(std::span<const double> x, double interval, const AnalysisOptions& options) {
   SeriesAnalysis r;
   r.samples = x.size();
   r.interval = interval;
@@ -30,89 +30,72 @@ SeriesAnalysis analyse_series(std::span<const double> x, double interval, const 
     r.status = "constant series: no delay, embedding or dimension";
     return r;
   }
-  std::string stage = "autocorrelation";
+  std::string stage = "the automatic analysis";
   try {
-    // The library's time scales (time_scales.hpp), as chaos analyze and the zoo use them: they set
-    // the Theiler window below and how far the delay search goes on.
-    const chaos::TimeScales scales = chaos::time_scales(x);
+    // chaos analyze's pipeline with the study's switches: no Lyapunov exponents (the study takes
+    // them from the equations), Cao up to the study's largest dimension, and no stationarity rule:
+    // the record is a whole number of periods of a driven mechanism after its transient, which
+    // the rule (a correlation time under 1/50 of the record) would reject for a regular motion.
+    chaos::AutomaticAnalysisOptions o;
+    if (options.given_delay) o.delay = options.given_delay;
+    o.delay_search.max_delay = options.max_delay;
+    o.delay_search.boxes = options.boxes;
+    o.max_dimension = options.max_dimension;
+    o.radii = options.radii;
+    o.check_stationarity = false;
+    o.rosenstein = o.kantz = o.local_maps = false;
+    const chaos::AutomaticAnalysis a = chaos::analyse_series(x, std::nullopt, o);
+    r.delay = a.delay;
+    r.delay_source = a.delay_source;
+    r.delay_searched = a.delay_searched;
+    r.theiler = a.theiler;
+    r.theiler_source = a.theiler_source;
+    if (a.cao) {
+      r.dimension = a.cao->dimension;
+      r.E1 = a.cao->E1;
+      r.E2 = a.cao->E2;
+      r.embedding_dimension = a.cao->embedding_dimension;
+      r.e2_deviation = a.cao->max_E2_deviation;
+    }
+    if (a.d2) {
+      r.d2_status = chaos::to_string(a.d2->status);
+      r.d2 = a.d2->d2;
+      if (a.d2->d2_interval) {
+        r.d2_low = a.d2->d2_interval->low;
+        r.d2_high = a.d2->d2_interval->high;
+      }
+    }
+
+    // The seed's figure curves (Fig. 7 b, d, e): the information up to where the search went, and
+    // C(eps, m) with D2 per m for m = 1..max_dimension on the pipeline's radii. These are for the
+    // figures only: the D2 above is the pipeline's, read from m = 1..Cao's m + 3.
     stage = "mutual information";
     chaos::MutualInformationOptions mi;
     mi.boxes = options.boxes;
-    const std::size_t first = std::min(options.max_delay, x.size() / 2);
-    // Where the first search finds no minimum, the same search once more up to two Theiler windows
-    // (at most N / 10), as chaos::automatic_delay does it: a fixed number of samples is no time
-    // scale of the record (at the seed's sampling Fig. 12's minima lie at 12-104 samples,
-    // docs/reproduction.md). Only the information decides, as in the seed.
-    const std::size_t second = std::min(x.size() / 10, 2 * scales.theiler);
-    const auto search = [&](std::size_t limit) {
-      mi.max_delay = limit;
-      r.delay_searched = limit;
-      const chaos::MutualInformationResult information = chaos::mutual_information(x, mi);
-      r.mutual_information = information.information;
-      return chaos::first_minimum(information);
-    };
-    if (options.given_delay) {
-      search(first);  // the curve, for the plots
-      r.delay_searched = 0;
-      r.delay = options.given_delay;
-      r.delay_source = "given";
-    } else if ((r.delay = search(first))) {
-      r.delay_source = "first mutual-information minimum";
-    } else if (second > first && (r.delay = search(second))) {
-      r.delay_source = "first mutual-information minimum (none up to " + std::to_string(first) +
-                       "; searched on to two Theiler windows, " + std::to_string(second) + ")";
-    }
+    mi.max_delay = std::max<std::size_t>(
+        1, a.delay_searched ? a.delay_searched : std::min(options.max_delay, x.size() / 10));
+    r.mutual_information = chaos::mutual_information(x, mi).information;
     if (!r.delay) {
-      r.status = "no mutual-information minimum for delays 1.." + std::to_string(r.delay_searched);
+      r.status = a.stopped;
       return r;
     }
-    // The library's window: the 1/e time or half the dominant oscillation period, the longer; here
-    // at least the delay too.
-    r.theiler = std::max(*r.delay, scales.theiler);
-    r.theiler_source = *r.delay > scales.theiler ? "the delay, longer than " + scales.theiler_source : scales.theiler_source;
-
-    stage = "Cao's method";
-    chaos::CaoOptions cao;
-    cao.delay = *r.delay;
-    cao.theiler = r.theiler;
-    cao.max_dimension = options.max_dimension;
-    const chaos::CaoResult c = chaos::cao(x, cao);
-    r.dimension = c.dimension;
-    r.E1 = c.E1;
-    r.E2 = c.E2;
-    r.embedding_dimension = c.embedding_dimension;
-    r.e2_deviation = c.max_E2_deviation;
-
     stage = "correlation sums";
-    chaos::CorrelationSumOptions cs;
-    cs.delay = *r.delay;
-    cs.theiler = r.theiler;
-    cs.max_dimension = options.max_dimension;
-    cs.radii = chaos::log_radii(range / 1000.0, range / 4.0, options.radii);
-    const chaos::CorrelationSumResult sums = chaos::correlation_sum(x, cs);
+    const chaos::CorrelationSumResult sums = chaos::correlation_sum(
+        x, chaos::choose_correlation_sum_options(x, *r.delay, r.theiler, options.max_dimension, options.radii));
     r.radius = sums.radius;
     r.correlation_sum = sums.correlation_sum;
-    chaos::CorrelationDimensionResult d = chaos::correlation_dimension(sums);
-    stage = "the halves check";
-    chaos::check_record_halves(d, x, cs);  // a saturated D2 must be reproduced by both halves
-    r.d2_status = chaos::to_string(d.status);
-    r.d2 = d.d2;
-    if (d.d2_interval) {
-      r.d2_low = d.d2_interval->low;
-      r.d2_high = d.d2_interval->high;
+    r.d2_by_dimension = chaos::correlation_dimension(sums).d2_by_dimension;
+    if (!a.stopped.empty()) {
+      r.status = a.stopped;
+      return r;
     }
-    r.d2_by_dimension = d.d2_by_dimension;
     if (options.surrogates > 0) {
       stage = "the surrogate test";
-      if (r.embedding_dimension) {
-        const chaos::EmbeddedNonlinearityTest t = chaos::embedded_nonlinearity_test(
-            x, options.test_length, *r.embedding_dimension, *r.delay, r.theiler, options.surrogates, options.seed);
-        r.nonlinearity = t.result.test.rejected ? "rejected" : "not rejected";
-        r.nonlinearity_rank = t.result.test.rank;
-        r.surrogates = options.surrogates;
-      } else {
-        r.nonlinearity = "not run: no Cao dimension to embed in";
-      }
+      const chaos::EmbeddedNonlinearityTest t = chaos::embedded_nonlinearity_test(
+          x, options.test_length, *r.embedding_dimension, *r.delay, r.theiler, options.surrogates, options.seed);
+      r.nonlinearity = t.result.test.rejected ? "rejected" : "not rejected";
+      r.nonlinearity_rank = t.result.test.rank;
+      r.surrogates = options.surrogates;
     }
     r.status = "ok";
   } catch (const std::invalid_argument& e) {

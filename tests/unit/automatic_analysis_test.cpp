@@ -46,7 +46,7 @@ AutomaticAnalysis analyse(std::span<const double> x, std::size_t delay, std::siz
 }
 
 LocalMapResult direct(std::span<const double> x, std::size_t delay, std::size_t theiler, std::size_t m) {
-  return chaos::largest_lyapunov_local_maps(x, chaos::automatic_local_map_options(m, delay, theiler));
+  return chaos::largest_lyapunov_local_maps(x, chaos::choose_local_map_options(m, delay, theiler));
 }
 
 TEST(AutomaticAnalysis, InconsistentLocalMapsAtMAreRunAgainAtMPlusOne) {

@@ -736,8 +736,8 @@ TEST(LyapunovHalves, HenonIsReproducedAndAShortRotatingFlowIsNot) {
   ASSERT_NE(e, nullptr);
   const auto x = chaos::zoo_trajectory(*e, 10000).components[e->component];
   const chaos::TimeScales scales = chaos::time_scales(x);
-  const LyapunovOptions g = chaos::automatic_lyapunov_options(scales, x.size(), 6, 31, 63, LyapunovMethod::rosenstein);
-  const chaos::LyapunovFitOptions gfit = chaos::automatic_lyapunov_fit(scales);
+  const LyapunovOptions g = chaos::choose_lyapunov_options(scales, x.size(), 6, 31, 63, LyapunovMethod::rosenstein);
+  const chaos::LyapunovFitOptions gfit = chaos::choose_lyapunov_fit(scales);
   auto gt = chaos::largest_lyapunov(x, g, gfit, e->dt);
   ASSERT_EQ(gt.fit.status, LyapunovStatus::linear_region) << gt.fit.explanation;
   EXPECT_NEAR(*gt.lambda_per_time, 0.0858, 0.0005);

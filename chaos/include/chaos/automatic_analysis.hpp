@@ -1,38 +1,26 @@
 #pragma once
-// The automatic pipeline from a scalar series to its invariants, every choice made by a stated rule
-// and every estimate with a status (confident or unsure), so a caller never has to hand-pick:
-//   1. time scales (time_scales.hpp): stationarity, the Theiler window w, a dominant period;
-//      a non-stationary series stops here, saying so;
-//   2. delay tau: 1 when the autocorrelation is below 1/e at lag 1 (maps: the information then
-//      falls at once and its later wiggles are noise); else the first mutual-information minimum
-//      (Fraser & Swinney 1986); where the
-//      information falls without a minimum, the autocorrelation's first zero crossing (a standard
-//      alternative, named as the source); where neither exists within max_delay samples, the same
-//      two rules once more up to delay_search_windows Theiler windows of the record (its own
-//      correlation time, time_scales.hpp), so that a finely sampled flow, whose delay in samples
-//      grows with the sampling rate, still gets one (Sprott's jerk flow sampled at dt = 0.025: its
-//      first minimum lies at 112 samples, docs/zoo-sampling.md); if neither exists then, nothing
-//      further runs;
-//   3. embedding dimension m: Cao's E1 saturation (Cao 1997); none, nothing further runs;
-//   4. D2 from correlation sums for m = 1..m+extra_dimensions (correlation_dimension.hpp); a
+// The automatic pipeline from a scalar series to its invariants, every choice made by the rules of
+// choose.hpp and every estimate with a status, so a caller never has to hand-pick:
+//   1. time scales (time_scales.hpp): stationarity, the correlation time, a dominant period; a
+//      non-stationary series stops here, saying so;
+//   2. the delay (choose_delay); none, nothing further runs;
+//   3. the Theiler window (choose_theiler_window: the correlation time, at least the delay);
+//   4. the embedding dimension m (choose_embedding_dimension: Cao's E1); none, nothing further runs;
+//   5. D2 from correlation sums for m = 1..m + extra_dimensions (correlation_dimension.hpp); a
 //      saturated D2 must be reproduced by the two halves of the record (require_reproduced_by_halves),
 //      and, when asked (check_delay), at twice the delay (require_reproduced_at_delay);
-//   5. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp),
-//      followed for 20 correlation times or periods (at least 20 steps, at most N/10), local slopes
-//      over whole periods of a dominant oscillation, averaged over at most 10^4 evenly spaced
-//      reference points; a linear region must be reproduced by the record's two halves
-//      (require_reproduced_by_halves, as for D2); the two fits are then checked against each other
-//      (cross_check): a linear region that only one of them finds, or two slopes more than 10% apart,
-//      leaves both unconfirmed;
-//   6. lambda_1 from local linear maps (lyapunov_local_maps.hpp) at m; where its variants
-//      disagree (inconsistent), once more at m + 1, which is reported when it is consistent. Cao's m
-//      is the least dimension that unfolds the attractor at the chosen delay, so the variants that
-//      embed differently (above all the delay + tau/4 one) can fall short of it and disagree because
-//      of the embedding, not the exponent; m + 1 is the estimator's own `m + 1` variant, checked by
-//      ten variants of its own (docs/lyapunov-maps.md, "In the pipeline"). A Rosenstein or Kantz
-//      slope stands only where the reported value is consistent and within 10% of it; beside maps
-//      that are not consistent, or that could not be run, it is unconfirmed as well.
-// `chaos analyze` reports the same choices; `chaos zoo` runs this pipeline over the zoo.
+//   6. lambda_1 by Rosenstein and by Kantz, each fitted over m, m+1, m+2 at once (lyapunov.hpp,
+//      choose_lyapunov_options); a linear region must be reproduced by the record's two halves; the
+//      two fits are then checked against each other (cross_check): a linear region that only one of
+//      them finds, or two slopes more than 10% apart, leaves both unconfirmed;
+//   7. lambda_1 from local linear maps (lyapunov_local_maps.hpp) at m; where its variants disagree
+//      (inconsistent), once more at m + 1, which is reported when it is consistent. Cao's m is the
+//      least dimension that unfolds the attractor at the chosen delay, so the variants that embed
+//      differently (above all the delay + tau/4 one) can fall short of it and disagree because of
+//      the embedding, not the exponent. A Rosenstein or Kantz slope stands only where the reported
+//      value is consistent and within 10% of it; beside maps that are not consistent, or that could
+//      not be run, it is unconfirmed as well.
+// `chaos analyze`, `chaos zoo` and the study run this pipeline.
 
 #include <cstddef>
 #include <functional>
@@ -42,6 +30,7 @@
 #include <utility>
 
 #include "chaos/cao.hpp"
+#include "chaos/choose.hpp"
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
@@ -52,13 +41,14 @@ namespace chaos {
 
 struct AutomaticAnalysisOptions {
   std::optional<std::size_t> delay, theiler, dimension;  // given values replace the automatic choices
-  std::size_t max_delay = 100;       // largest delay searched first, samples (capped at N/10)
-  std::size_t delay_search_windows = 2;  // nothing within max_delay: search on to this many Theiler
-                                         // windows (capped at N/10); 0: stop at max_delay
-  std::size_t boxes = 16;            // of the mutual information
+  DelaySearch delay_search;
   std::size_t max_dimension = 10;    // of Cao's method
   std::size_t extra_dimensions = 3;  // D2 up to m + 3: saturation is judged above m
-  std::size_t radii = 40;            // log-spaced from range/1000 to range/4
+  std::size_t radii = 40;            // choose_radii
+  // Off only where stationarity is known from how the record was made (a driven mechanism sampled
+  // over whole periods of its drive): the rule of time_scales.hpp cannot tell a few periods of a
+  // regular oscillation from a drift.
+  bool check_stationarity = true;
   bool check_halves = true;          // a saturated D2 and a divergence slope must be reproduced by the record's two halves
   // ... and at twice the delay. Off by default: on the zoo it withdrew more right values than wrong
   // ones (docs/zoo-notes.md, "The delay neighbourhood").
@@ -79,6 +69,7 @@ struct AutomaticAnalysis {
   std::string delay_source;
   std::size_t delay_searched = 0;  // the largest delay the search examined (0: the delay was given or 1)
   std::size_t theiler = 0;
+  std::string theiler_source;
   std::optional<std::size_t> dimension;  // Cao's, or the given one
   std::optional<CaoResult> cao;
   std::optional<CorrelationDimensionResult> d2;
@@ -93,26 +84,6 @@ struct AutomaticAnalysis {
   std::string local_maps_refusal;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };
-
-// Step 2 on its own: the delay of x by the rules above, from its time scales (scales =
-// time_scales(x)); none, with the reason in `stopped`, where no rule gives one. options.delay is
-// not read here.
-struct DelayChoice {
-  std::optional<std::size_t> delay;
-  std::string source;        // the rule that gave it
-  std::size_t searched = 0;  // the largest delay examined (0: the autocorrelation rule gave 1)
-  std::string stopped;       // why none was chosen
-};
-DelayChoice automatic_delay(std::span<const double> x, const TimeScales& scales, const AutomaticAnalysisOptions& options);
-
-// The steps a divergence curve is followed: 20 of the longer of the correlation time and the
-// oscillation period (samples), at least 20, at most N / 10.
-std::size_t automatic_lyapunov_steps(std::size_t correlation_time, std::size_t period, std::size_t n);
-// The correlation sums the pipeline uses for D2: m = 1..max_dimension, 40 radii log-spaced from
-// range/1000 to range/4.
-CorrelationSumOptions automatic_correlation_sum_options(std::span<const double> x, std::size_t delay,
-                                                        std::size_t theiler, std::size_t max_dimension,
-                                                        std::size_t radii = 40);
 
 // D2 as the pipeline computes it: correlation sums of x with `sums`, and, when D2 saturates, the
 // halves check on the same radii (the first and the second half of x), then, when asked, the delay
@@ -138,15 +109,7 @@ void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double>
 // The two halves of a record, as the halves check splits it: [0, n/2) and [n/2, n).
 std::pair<std::span<const double>, std::span<const double>> record_halves(std::span<const double> x);
 
-// The Lyapunov settings the pipeline uses in embedding dimension m (w, tau, steps, period, three
-// dimensions), for callers that vary one of them around the automatic choice.
-LyapunovOptions automatic_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
-                                           std::size_t delay, std::size_t theiler, LyapunovMethod method);
-LyapunovFitOptions automatic_lyapunov_fit(const TimeScales& scales);
-// The local-maps settings the pipeline uses at (m, tau, w): the estimator's own defaults otherwise.
-LocalMapOptions automatic_local_map_options(std::size_t dimension, std::size_t delay, std::size_t theiler);
-
-// Step 6 on its own: lambda_1 from local maps with `options` (its dimension m), and, where that run is
+// Step 7 on its own: lambda_1 from local maps with `options` (its dimension m), and, where that run is
 // inconsistent and `next_dimension` holds, once more at m + 1 (progress through `retrying`, when set,
 // before it). `result` is the run at m + 1 when that one is consistent (its explanation then names
 // both runs, and `at_m` keeps the first), else the run at m with the retry's verdict appended. Throws

@@ -117,15 +117,17 @@ def _step_bar(progress):
     return bar
 
 
-def mutual(x, *, max_delay=20, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
+def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
     """Average mutual information I(tau) in nats and its first minimum (``chaos mutual``).
 
     I(tau) = sum_ij p_ij(tau) ln(p_ij(tau) / (p_i p_j)) over a partition of the range into ``boxes``
     bins per axis (``estimator="equal_width"``, TISEAN's mutual) or of equal occupation
     (``"equiprobable"``), for tau = 0..max_delay. The first minimum is Fraser and Swinney's delay
-    (Phys. Rev. A 33, 1134, 1986). docs/mutual_information.md.
+    (Phys. Rev. A 33, 1134, 1986). Without ``max_delay`` the search is the automatic one of
+    ``analyze``: 100 delays (at most N/10), and where the information has no minimum there, on to
+    two Theiler windows. Where there is no minimum, ``no_minimum`` says why. docs/mutual_information.md.
 
-    Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time.
+    Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time, no_minimum.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
     return _make(_core.mutual(values, file, column, dt,
@@ -145,9 +147,13 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
     return _make(_core.autocorrelation(values, file, column, dt, dict(max_lag=max_lag)))
 
 
-def cao(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, norm="max", level=0.8, change=0.1, sigmas=4.0,
+def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm="max", level=0.8, change=0.1, sigmas=4.0,
         progress=None, dt=None, column=1, skip=0, length=None):
     """Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates (``chaos cao``).
+
+    ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
+    mutual-information minimum; the longer of the 1/e time and half the dominant period, at least
+    the delay); ``parameters`` names each rule (``delay_source``, ``theiler_source``).
 
     E(m) = mean_i |y_i(m+1) - y_n(i,m)(m+1)| / |y_i(m) - y_n(i,m)(m)| with n(i, m) the nearest
     neighbour of point i in dimension m (|i - n| > theiler), E1(m) = E(m+1)/E(m); E*(m) = mean_i
@@ -167,9 +173,13 @@ def cao(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, norm="max",
                      norm=norm, level=level, change=change, sigmas=sigmas))
 
 
-def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, atol=2.0, norm="euclidean",
+def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=10.0, atol=2.0, norm="euclidean",
         threshold=0.01, progress=None, dt=None, column=1, skip=0, length=None):
     """The fraction of false nearest neighbours against m (``chaos fnn``).
+
+    ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
+    mutual-information minimum; the longer of the 1/e time and half the dominant period, at least
+    the delay); ``parameters`` names each rule (``delay_source``, ``theiler_source``).
 
     A neighbour is false when |x_{i+m tau} - x_{n+m tau}| / R_m(i) > rtol (criterion 1) or R_{m+1}(i) /
     sigma > atol (criterion 2); the dimension is the first m whose fraction is <= threshold.
@@ -186,7 +196,7 @@ def fnn(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=0, rtol=10.0, 
                      rtol=rtol, atol=atol, norm=norm, threshold=threshold))
 
 
-def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
+def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
        radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
        tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
        projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=True, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
@@ -207,8 +217,9 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
     which, over three consecutive radii, every saturating dimension m reads a local slope more than
     ``noise_fill_fraction`` of the way from the plateau's slope to m (and not above m) is bounded by
     noise: status ``noise_limited``, ``noise_floor`` gives that radius, no D2 (``float('inf')`` turns
-    the check off). Defaults: theiler the
-    autocorrelation's 1/e time (or half the dominant period), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
+    the check off). Defaults: delay and theiler as ``analyze`` chooses them (the first
+    mutual-information minimum; the longer of the 1/e time and half the dominant period, at least
+    the delay; ``parameters`` names each rule), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
 
     ``fast=True`` (``--fast``) chooses the reference subset from the data: it doubles from
@@ -256,11 +267,15 @@ def d2(x, *, delay=1, min_dimension=1, max_dimension=10, theiler=None, min_radiu
 correlation_sum = d2  # the correlation sums are part of d2's result (correlation_sum, pairs, radius)
 
 
-def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, steps=None, period=None, dimensions=3,
+def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None, steps=None, period=None, dimensions=3,
              radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
              min_steps=0, min_rise=2.0, cross_check=True, halves=True, progress=None, dt=None, column=1, skip=0,
              length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
+
+    ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
+    first mutual-information minimum; the longer of the 1/e time and half the dominant period, at
+    least the delay; Cao's E1); ``parameters`` names each rule (``delay_source``, ...).
 
     Rosenstein: S(k) = < ln d_i(k) >, d_i(k) the distance after k steps of point i and its nearest
     neighbour (|i - n| > theiler); Kantz: S(k) = < ln < |x_{i+k} - x_{j+k}| >_{U_eps(i)} >. lambda is
@@ -295,9 +310,13 @@ def lyapunov(x, *, method="rosenstein", dimension=2, delay=1, theiler=None, step
                      min_steps=min_steps, min_rise=min_rise, cross_check=cross_check, halves=halves))
 
 
-def lyapunov_maps(x, *, dimension=2, delay=1, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
+def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
                   max_residual=0.25, norm="max", threads=1, dt=None, column=1, skip=0, length=None):
     """The largest Lyapunov exponent from local linear maps (``chaos lyapunov-maps``).
+
+    ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
+    first mutual-information minimum; the longer of the 1/e time and half the dominant period, at
+    least the delay; Cao's E1); ``parameters`` names each rule (``delay_source``, ...).
 
     At points X_0, X_s, X_2s, ... of the delay embedding, an affine map from the ``neighbours``
     nearest neighbours (0: 5 m; outside the Theiler window) to their images ``step`` samples later

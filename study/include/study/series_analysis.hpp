@@ -1,21 +1,17 @@
 #pragma once
-// The seed's correlation-dimension pipeline (its Section 7, Fig. 7) on one scalar series, with the
-// chaos library's estimators and their honest "no answer" results:
-//   delay      the first minimum of the mutual information (Fraser & Swinney 1986) up to
-//              max_delay; where there is none, searched on up to two Theiler windows (at most
-//              N / 10), as chaos::automatic_delay; none if neither search finds a minimum (then
-//              nothing below is computed);
-//   theiler    the longer of the autocorrelation's 1/e time and half the dominant oscillation
-//              period (chaos/time_scales.hpp), at least the delay, as `chaos analyze`;
-//   Cao        E1(m), E2(m) for m = 1..max_dimension (Cao 1997) and E1's saturation dimension;
-//   D2         correlation sums for m = 1..max_dimension with the automatic scaling region
-//              (chaos/correlation_dimension.hpp): saturated with its interval, or the reason not;
-//              a saturated D2 must be reproduced by the record's two halves (check_record_halves),
-//              else its status is not_reproduced and no D2 is given;
-//   surrogates when asked (surrogates > 0), the rank-order test for nonlinearity against K IAAFT
-//              surrogates in Cao's embedding (chaos::embedded_nonlinearity_test, as `chaos analyze`):
-//              rejected means the series is more predictable than every linear stochastic imitation.
-// A constant series (a slider resting on the guide) is reported as such, with no estimates.
+// The seed's correlation-dimension analysis (its Section 7, Fig. 7) of one scalar series: chaos
+// analyze's pipeline (chaos/automatic_analysis.hpp), so a study point and `chaos analyze` on the
+// same series report the same delay, Theiler window, embedding dimension and D2, with the study's
+// switches:
+//   - no Lyapunov exponents from the series (the study takes them from the equations);
+//   - Cao's method up to max_dimension;
+//   - no stationarity rule: the record is whole periods of a driven mechanism after its transient;
+//   - when asked (surrogates > 0), the rank-order test for nonlinearity against K IAAFT surrogates
+//     in Cao's embedding (chaos::embedded_nonlinearity_test, as `chaos analyze`): rejected means the
+//     series is more predictable than every linear stochastic imitation;
+// plus the seed's figure curves: I(delay) as far as the delay search went, and C(eps, m) with the
+// plateau per m for m = 1..max_dimension. A constant series (a slider resting on the guide) is
+// reported as such, with no estimates.
 
 #include <cstddef>
 #include <cstdint>
@@ -30,9 +26,11 @@ namespace study {
 // --resume` refuses a directory whose finished points were analysed under other rules: their
 // numbers would not be comparable with the new points'. Raise it with every change here that can
 // change a point's result.
-//   1  (not written in the spec) up to 2026-12-02
-//   2  2026-12-03: the delay search goes on to two Theiler windows where max_delay finds no minimum
-inline constexpr int analysis_rules_revision = 2;
+//   1  (not written in the spec) the delay searched up to max_delay only
+//   2  the delay search goes on to two Theiler windows where max_delay finds no minimum
+//   3  chaos analyze's pipeline: its delay rules, D2 from m = 1..Cao's m + 3 (not max_dimension)
+//      and none where Cao's E1 does not saturate
+inline constexpr int analysis_rules_revision = 3;
 
 struct AnalysisOptions {
   std::size_t periods = 5;        // crank revolutions analysed, at the end of the run (the seed: 5)
@@ -40,9 +38,9 @@ struct AnalysisOptions {
   // > 0: sample the series this many times per crank revolution instead (a sweep over speed then
   // analyses every point at the same resolution of its period); `interval` is then ignored.
   std::size_t samples_per_period = 0;
-  std::size_t max_delay = 100;    // mutual-information delays searched, samples
+  std::size_t max_delay = 100;    // the delay's first search, samples (chaos::DelaySearch)
   std::size_t boxes = 16;         // mutual-information histogram bins per axis
-  std::size_t max_dimension = 12; // Cao and D2 up to this m (the seed's Fig. 7d: 1..12)
+  std::size_t max_dimension = 12; // Cao and the figure curves up to this m (the seed's Fig. 7d: 1..12)
   std::size_t radii = 40;         // D2 radii, log-spaced from range/1000 to range/4
   std::size_t given_delay = 0;    // > 0: use this delay instead of the MI minimum (the seed's 18)
   // > 0: the surrogate test for nonlinearity with this many IAAFT surrogates (one-sided, so 19 is a
@@ -57,10 +55,10 @@ struct SeriesAnalysis {
   std::size_t samples = 0;
   double interval = 0.0;
   std::optional<std::size_t> delay;   // samples
-  std::string delay_source;           // "given", or which search found the minimum
+  std::string delay_source;           // "given", or the rule that chose it
   std::size_t delay_searched = 0;     // the largest delay the search examined (0: given)
   std::size_t theiler = 0;            // samples
-  std::string theiler_source;         // which time scale set it, in words
+  std::string theiler_source;         // the rule that set it, in words
   std::vector<std::size_t> dimension; // Cao's m
   std::vector<double> E1, E2;
   std::optional<std::size_t> embedding_dimension;  // Cao's E1 saturation (none: not saturated or stochastic)
@@ -80,6 +78,6 @@ struct SeriesAnalysis {
   std::vector<std::vector<double>> correlation_sum;
 };
 
-SeriesAnalysis analyse_series(std::span<const double> series, double interval, const AnalysisOptions& options);
+SeriesAnalysis analyse_series_with_curves(std::span<const double> series, double interval, const AnalysisOptions& options);
 
 }  // namespace study

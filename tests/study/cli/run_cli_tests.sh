@@ -5,6 +5,7 @@
 # single-process run.
 set -uo pipefail
 STUDY=${STUDY:?set STUDY to the study binary}
+CHAOS=${CHAOS:?set CHAOS to the chaos binary}
 MPI_ENABLED=${MPI_ENABLED:-0}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -181,6 +182,14 @@ expect_code 0 "pipeline" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-p
 [[ $(jq -r '.analysis["E1"] | length' "$work/out") == 12 ]] || fail "pipeline reports E1 for m = 1..12"
 [[ $(jq -r .analysis.samples "$work/out") == $(grep -vc '^#' "$work/series.tsv") ]] || fail "pipeline analysed another series than it wrote"
 [[ -s "$work/fig7.svg" ]] || fail "pipeline drew nothing"
+# The pipeline's analysis is chaos analyze's: on the series it wrote (every digit), `chaos analyze`
+# reports the same delay, Theiler window, embedding dimension and D2 (the property is equality).
+cp "$work/out" "$work/pipeline.json"
+"$CHAOS" analyze "$work/series.tsv" -c 2 --json >"$work/analyze.json" 2>/dev/null || fail "chaos analyze on the pipeline's series failed"
+for pair in delay_samples:delay theiler_samples:theiler cao_dimension:embedding_dimension d2_status:d2_status d2:d2; do
+  [[ $(jq -c ".analysis.${pair%%:*}" "$work/pipeline.json") == $(jq -c ".${pair##*:}" "$work/analyze.json") ]] ||
+    fail "pipeline ${pair%%:*} $(jq -c ".analysis.${pair%%:*}" "$work/pipeline.json") differs from chaos analyze's ${pair##*:} $(jq -c ".${pair##*:}" "$work/analyze.json")"
+done
 # Issue 16, item 7: an unwritable --plot, --series or plot -o failed only after the work; all are
 # refused while the command line is read, exit 4 (input/output, docs/study.md), the file named;
 # a plot that is not .png or .svg exits 3. The run of 10^12 periods would be refused too (exit 3),

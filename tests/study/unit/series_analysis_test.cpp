@@ -2,14 +2,15 @@
 // literature's 2.05 (references/references.tsv) with a plausible delay and embedding dimension;
 // on a constant series and on one too short it says why there is no answer instead of returning
 // numbers.
-// Issue 16, item 6: a periodic steady state (5 revolutions of a period-1 motion, sampled a whole
-// number of times per revolution, as a sweep samples it) was reported D2 = -3.9e-30 "saturated".
+// A periodic steady state (5 revolutions of a period-1 motion, sampled a whole number of times per
+// revolution, as a sweep samples it) was once reported D2 = -3.9e-30 "saturated".
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <vector>
 
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/control_signals.hpp"
 #include "chaos/generate.hpp"
 #include "chaos/nonlinearity_test.hpp"
@@ -28,7 +29,7 @@ TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   const chaos::Trajectory t = chaos::generate(request);
   study::AnalysisOptions options;
   options.max_dimension = 8;
-  const study::SeriesAnalysis a = study::analyse_series(t.components[0], t.dt, options);
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(t.components[0], t.dt, options);
   EXPECT_EQ(a.status, "ok");
   ASSERT_TRUE(a.delay.has_value());
   EXPECT_GE(*a.delay, 10u);
@@ -42,6 +43,31 @@ TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   EXPECT_GT(a.e2_deviation, 0.1);  // deterministic: E2 departs from 1
   EXPECT_EQ(a.delay_source, "first mutual-information minimum");
   EXPECT_EQ(a.delay_searched, options.max_delay);  // found by the first search: it went no further
+}
+
+TEST(SeriesAnalysis, ReportsWhatChaosAnalyzeReports) {
+  // The study's analysis is chaos analyze's pipeline: on the same series it must report the same
+  // delay, Theiler window, embedding dimension and D2 as chaos::analyse_series with `chaos analyze`'s
+  // defaults (the property under test is equality; Lyapunov exponents, which the study does not
+  // compute, are left out of the reference run to keep it short).
+  chaos::GenerateRequest request;
+  request.system = chaos::SystemKind::lorenz;
+  request.length = 20000;
+  const chaos::Trajectory t = chaos::generate(request);
+  chaos::AutomaticAnalysisOptions o;
+  o.rosenstein = o.kantz = o.local_maps = false;
+  const chaos::AutomaticAnalysis reference = chaos::analyse_series(t.components[0], t.dt, o);
+  ASSERT_TRUE(reference.d2 && reference.d2->d2) << reference.stopped;
+
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(t.components[0], t.dt, study::AnalysisOptions{});
+  EXPECT_EQ(a.status, "ok");
+  EXPECT_EQ(a.delay, reference.delay);
+  EXPECT_EQ(a.delay_source, reference.delay_source);
+  EXPECT_EQ(a.theiler, reference.theiler);
+  EXPECT_EQ(a.theiler_source, reference.theiler_source);
+  EXPECT_EQ(a.embedding_dimension, reference.dimension);
+  EXPECT_EQ(a.d2_status, chaos::to_string(reference.d2->status));
+  EXPECT_EQ(a.d2, reference.d2->d2);
 }
 
 TEST(SeriesAnalysis, TheDelaySearchGoesOnWhereTheFirstFindsNoMinimum) {
@@ -60,8 +86,8 @@ TEST(SeriesAnalysis, TheDelaySearchGoesOnWhereTheFirstFindsNoMinimum) {
   ASSERT_DOUBLE_EQ(fine.dt, 0.001);
   study::AnalysisOptions options;
   options.max_dimension = 3;  // the delay is what is tested; a small m keeps the rest short
-  const study::SeriesAnalysis c = study::analyse_series(coarse.components[0], coarse.dt, options);
-  const study::SeriesAnalysis f = study::analyse_series(fine.components[0], fine.dt, options);
+  const study::SeriesAnalysis c = study::analyse_series_with_curves(coarse.components[0], coarse.dt, options);
+  const study::SeriesAnalysis f = study::analyse_series_with_curves(fine.components[0], fine.dt, options);
   ASSERT_TRUE(c.delay.has_value()) << c.status;
   ASSERT_TRUE(f.delay.has_value()) << f.status;
   EXPECT_GT(*f.delay, options.max_delay);
@@ -86,7 +112,7 @@ TEST(SeriesAnalysis, TheSurrogateTestRunsWhenAskedInCaosEmbedding) {
   options.max_dimension = 8;
   options.surrogates = 19;
   options.test_length = 2048;
-  const study::SeriesAnalysis a = study::analyse_series(t.components[0], t.dt, options);
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(t.components[0], t.dt, options);
   ASSERT_EQ(a.status, "ok");
   EXPECT_EQ(a.nonlinearity, "rejected");
   EXPECT_EQ(a.nonlinearity_rank, 1u);
@@ -95,10 +121,10 @@ TEST(SeriesAnalysis, TheSurrogateTestRunsWhenAskedInCaosEmbedding) {
                                                         a.theiler, 19, options.seed);
   EXPECT_EQ(a.nonlinearity_rank, direct.result.test.rank);
   options.surrogates = 0;
-  EXPECT_EQ(study::analyse_series(t.components[0], t.dt, options).nonlinearity, "not asked");
+  EXPECT_EQ(study::analyse_series_with_curves(t.components[0], t.dt, options).nonlinearity, "not asked");
   options.surrogates = 19;
   const std::vector<double> flat(1000, 0.25);
-  EXPECT_EQ(study::analyse_series(flat, 1e-5, options).nonlinearity, "not run: the pipeline stopped before it");
+  EXPECT_EQ(study::analyse_series_with_curves(flat, 1e-5, options).nonlinearity, "not run: the pipeline stopped before it");
 }
 
 TEST(SeriesAnalysis, AClosedCurveKeepsItsD2ThroughTheHalves) {
@@ -108,7 +134,7 @@ TEST(SeriesAnalysis, AClosedCurveKeepsItsD2ThroughTheHalves) {
   const auto x = chaos::periodic(20000, 25.0 * std::numbers::phi).components[0];
   study::AnalysisOptions options;
   options.max_dimension = 6;
-  const study::SeriesAnalysis a = study::analyse_series(x, 1.0, options);
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(x, 1.0, options);
   ASSERT_EQ(a.d2_status, "saturated") << a.status;
   EXPECT_NEAR(*a.d2, 1.0, 0.1);
   EXPECT_GE(a.theiler, 20u);  // half of 40.45 samples
@@ -124,14 +150,14 @@ TEST(SeriesAnalysis, APlateauTheHalvesDoNotShareIsNotReproduced) {
   x.insert(x.end(), torus.begin(), torus.end());
   study::AnalysisOptions options;
   options.max_dimension = 6;
-  const study::SeriesAnalysis a = study::analyse_series(x, 1.0, options);
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(x, 1.0, options);
   EXPECT_EQ(a.d2_status, "not_reproduced") << a.status << " delay " << a.delay.value_or(0) << " w " << a.theiler;
   EXPECT_FALSE(a.d2.has_value());
 }
 
 TEST(SeriesAnalysis, ConstantSeriesHasNoAnswer) {
   const std::vector<double> flat(1000, -4.9e-4);
-  const study::SeriesAnalysis a = study::analyse_series(flat, 1e-5, {});
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(flat, 1e-5, {});
   EXPECT_NE(a.status.find("constant"), std::string::npos);
   EXPECT_FALSE(a.delay.has_value());
   EXPECT_FALSE(a.d2.has_value());
@@ -140,7 +166,7 @@ TEST(SeriesAnalysis, ConstantSeriesHasNoAnswer) {
 TEST(SeriesAnalysis, TooShortSaysWhere) {
   std::vector<double> x(40);
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = std::sin(0.3 * static_cast<double>(i)) + 0.01 * static_cast<double>(i % 7);
-  const study::SeriesAnalysis a = study::analyse_series(x, 1.0, {});
+  const study::SeriesAnalysis a = study::analyse_series_with_curves(x, 1.0, {});
   EXPECT_NE(a.status, "ok");
   EXPECT_FALSE(a.d2.has_value());
 }
@@ -157,7 +183,7 @@ TEST(SeriesAnalysis, PeriodicSeriesHasNoConfidentZeroDimension) {
     std::vector<double> x(6000);
     for (std::size_t i = 0; i < x.size(); ++i)
       x[i] = std::sin(2.0 * M_PI * static_cast<double>(i % period) / static_cast<double>(period));
-    const study::SeriesAnalysis a = study::analyse_series(x, 1e-5, {});
+    const study::SeriesAnalysis a = study::analyse_series_with_curves(x, 1e-5, {});
     SCOPED_TRACE("period " + std::to_string(period) + ": " + a.status + ", d2_status " + a.d2_status);
     EXPECT_EQ(a.status, "ok");
     if (a.d2_status == "saturated") {
