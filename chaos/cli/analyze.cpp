@@ -209,14 +209,17 @@ void run(AnalyzeArgs& args) {
   } else {
     out << "not run\t[" << (a.local_maps_refusal.empty() ? not_run : a.local_maps_refusal) << "]\n";
   }
-  if (nonlinear)
+  if (nonlinear) {
+    const std::size_t ties = nonlinear->test.ties;
     out << "nonlinearity\t" << (nonlinear->test.rejected ? "rejected" : "not rejected") << ": rank "
-        << nonlinear->test.rank << " of " << nonlinear->surrogate_statistics.size() + 1 << ", significance "
+        << nonlinear->test.rank << " of " << nonlinear->surrogate_statistics.size() + 1
+        << (ties ? ", tied with " + std::to_string(ties) + " surrogates" : std::string()) << ", significance "
         << number(nonlinear->test.significance) << "\t[prediction error " << number(nonlinear->data_statistic)
         << " vs " << nonlinear->surrogate_statistics.size() << " IAAFT surrogates, samples " << segment->offset << ".."
         << segment->offset + segment->length - 1 << " (end-matched)]\n";
-  else
+  } else {
     out << "nonlinearity\tnot run\t[no embedding]\n";
+  }
   if (a.cao && fnn) {
     out << "#\n# evidence: Cao and false nearest neighbours\n# m\tE1\tE2\tfalse_fraction\n";
     for (std::size_t k = 0; k < a.cao->dimension.size(); ++k)

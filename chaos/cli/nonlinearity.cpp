@@ -33,11 +33,26 @@ void run(NonlinearityArgs& args) {
     return;
   }
   report.write_header(out);
-  out << "# data_statistic = " << number(r.data_statistic) << "\n# rank = " << r.test.rank << " of "
-      << r.surrogate_statistics.size() + 1 << " (1 = lowest)\n# significance = " << number(r.test.significance) << "\n"
-      << "# rejected = " << (r.test.rejected ? "true: the data's statistic lies beyond every surrogate's"
-                                             : "false: the data are consistent with the null hypothesis")
-      << "\n# surrogates_not_converged = " << r.surrogates_not_converged << "\n# surrogate\tstatistic\titerations\n";
+  // Ties are what keep the data from rejecting when, counted as neither side, they are all that
+  // stands between its value and the tested end of the order (nonlinearity_test.hpp, rank_test).
+  const RankTest& t = r.test;
+  const std::size_t count = r.surrogate_statistics.size();
+  const bool low_but_tied = t.ties > 0 && t.above + t.ties == count;
+  const bool high_but_tied = t.ties > 0 && t.below + t.ties == count;
+  const Alternative alternative = r.options.alternative;
+  const bool held_by_ties = alternative == Alternative::smaller  ? low_but_tied
+                            : alternative == Alternative::larger ? high_but_tied
+                                                                 : low_but_tied || high_but_tied;
+  out << "# data_statistic = " << number(r.data_statistic) << "\n# rank = " << t.rank << " of " << count + 1
+      << " (1 = lowest)\n# ties = " << t.ties << " (surrogate statistics within a relative "
+      << number(rank_tie_relative) << " of the data's)\n# significance = " << number(t.significance) << "\n# rejected = ";
+  if (t.rejected)
+    out << "true: the data's statistic lies beyond every surrogate's";
+  else if (held_by_ties)
+    out << "false: the data's statistic ties with " << t.ties << " of " << count << " surrogates: a tie cannot reject";
+  else
+    out << "false: the data are consistent with the null hypothesis";
+  out << "\n# surrogates_not_converged = " << r.surrogates_not_converged << "\n# surrogate\tstatistic\titerations\n";
   for (std::size_t k = 0; k < r.surrogate_statistics.size(); ++k)
     out << k + 1 << "\t" << number(r.surrogate_statistics[k]) << "\t" << r.surrogate_iterations[k] << "\n";
 }

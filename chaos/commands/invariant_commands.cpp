@@ -504,7 +504,8 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   }
   if (nonlinear)
     j["nonlinearity"] = {{"statistic", nonlinear->data_statistic}, {"rank", nonlinear->test.rank},
-                         {"count", nonlinear->surrogate_statistics.size()}, {"rejected", nonlinear->test.rejected},
+                         {"count", nonlinear->surrogate_statistics.size()}, {"ties", nonlinear->test.ties},
+                         {"rejected", nonlinear->test.rejected},
                          {"significance", nonlinear->test.significance}, {"offset", segment->offset},
                          {"length", segment->length}};
   else

@@ -105,6 +105,7 @@ NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams param
   j["count"] = r.surrogate_statistics.size();
   j["below"] = r.test.below;
   j["above"] = r.test.above;
+  j["ties"] = r.test.ties;
   j["rejected"] = r.test.rejected;
   j["significance"] = r.test.significance;
   j["surrogates_not_converged"] = r.surrogates_not_converged;

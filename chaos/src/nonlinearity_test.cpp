@@ -195,8 +195,15 @@ RankTest rank_test(double data_statistic, std::span<const double> surrogate_stat
       refuse("rank test: the statistic of surrogate " + std::to_string(k) + " is NaN");
   RankTest r;
   for (const double s : surrogate_statistics) {
-    if (s < data_statistic) ++r.below;
-    if (s > data_statistic) ++r.above;
+    // The header's tie rule; equal infinities tie, an infinity and a finite value do not.
+    const double scale = std::max(std::abs(s), std::abs(data_statistic));
+    const double tolerance = std::max(rank_tie_relative * scale, rank_tie_absolute);
+    if (s == data_statistic || (std::isfinite(scale) && std::abs(s - data_statistic) <= tolerance))
+      ++r.ties;
+    else if (s < data_statistic)
+      ++r.below;
+    else
+      ++r.above;
   }
   const std::size_t k = surrogate_statistics.size();
   // With one surrogate every untied rank is extreme on one side or the other: a two-sided test

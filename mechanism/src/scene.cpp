@@ -4,7 +4,9 @@
 
 #include "mechanism/scene.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -556,7 +558,140 @@ std::string_view default_scene_toml() {
   return text;
 }
 
+namespace {
+
+// The longest key of TOML text, in dotted parts, and the line it starts on.
+struct DeepestKey {
+  std::size_t parts = 0;
+  std::size_t line = 0;
+};
+
+// A lexical scan, not a parser: it finds the keys (at a line's start, after a table header's '['
+// or '[[', after an inline table's '{' or ',') and counts their parts, skipping strings and
+// comments so that dots in them do not count. Text that is not valid TOML is left to toml++ to
+// refuse; the scan only has to find every key toml++ would read before its first error. A byte
+// above 0x7F counts as a bare-key character, so a parser that accepts Unicode bare keys is covered.
+DeepestKey deepest_key(std::string_view text) {
+  const std::size_t n = text.size();
+  std::size_t i = 0, line = 1;
+  DeepestKey deepest;
+  enum class At { line_start, key, value } at = At::line_start;
+  std::vector<char> open;  // the arrays ('[') and inline tables ('{') the scan is inside
+  auto bare = [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return std::isalnum(u) || c == '_' || c == '-' || u > 0x7F;
+  };
+  // Past the string that starts at i: '...' and "..." end at their quote or at the line's end (an
+  // error toml++ reports), '''...''' and """...""" at their closing triple quote.
+  auto skip_string = [&] {
+    const char q = text[i];
+    const bool basic = q == '"';
+    const std::string triple(3, q);
+    if (text.substr(i, 3) == triple) {
+      i += 3;
+      while (i < n && text.substr(i, 3) != triple) {
+        if (basic && text[i] == '\\' && i + 1 < n && text[i + 1] != '\n') {
+          i += 2;  // an escaped character, a quote among them
+          continue;
+        }
+        if (text[i] == '\n') ++line;
+        ++i;
+      }
+      i = std::min(n, i + 3);
+      while (i < n && text[i] == q) ++i;  // up to two quotes may close the content
+      return;
+    }
+    ++i;
+    while (i < n && text[i] != q && text[i] != '\n')
+      i += basic && text[i] == '\\' && i + 1 < n && text[i + 1] != '\n' ? 2 : 1;
+    if (i < n && text[i] == q) ++i;
+  };
+  while (i < n) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      ++i;
+      if (open.empty()) at = At::line_start;
+      continue;
+    }
+    if (c == ' ' || c == '\t' || c == '\r') {
+      ++i;
+      continue;
+    }
+    if (c == '#') {
+      while (i < n && text[i] != '\n') ++i;
+      continue;
+    }
+    if (at == At::line_start && c == '[') {  // a table header: [a.b] or [[a.b]]
+      i += text.substr(i, 2) == "[[" ? 2 : 1;
+      at = At::key;
+      continue;
+    }
+    if (at != At::value) {  // a key: parts separated by dots, whitespace allowed around them
+      std::size_t parts = 0;
+      const std::size_t key_line = line;
+      for (;;) {
+        while (i < n && (text[i] == ' ' || text[i] == '\t')) ++i;
+        if (i < n && (text[i] == '"' || text[i] == '\'')) {
+          skip_string();
+        } else if (i < n && bare(text[i])) {
+          while (i < n && bare(text[i])) ++i;
+        } else {
+          break;
+        }
+        ++parts;
+        while (i < n && (text[i] == ' ' || text[i] == '\t')) ++i;
+        if (i == n || text[i] != '.') break;
+        ++i;
+      }
+      if (parts > deepest.parts) deepest = {parts, key_line};
+      at = At::value;
+      continue;
+    }
+    if (c == '"' || c == '\'') {
+      skip_string();
+      continue;
+    }
+    ++i;
+    if (c == '[' || c == '{') open.push_back(c);
+    if ((c == ']' || c == '}') && !open.empty()) open.pop_back();
+    if (c == '{' || (c == ',' && !open.empty() && open.back() == '{')) at = At::key;
+  }
+  return deepest;
+}
+
+std::string key_parts_rule(std::size_t parts) {
+  return "has " + std::to_string(parts) + " dotted parts; at most " + std::to_string(max_key_parts) +
+         " are allowed (a scene key has at most four)";
+}
+
+// Refuses input beyond the bounds of scene.hpp (max_scene_bytes, max_key_parts,
+// max_override_value_bytes) before toml++ sees it: the parser's stack and memory grow with them.
+void check_input_bounds(std::string_view toml_text, const std::vector<std::string>& overrides, std::string_view source) {
+  if (toml_text.size() > max_scene_bytes)
+    throw InvalidParameter(std::string(source), "(the file)",
+                           "is " + std::to_string(toml_text.size()) + " bytes; a scene file may have at most " +
+                               std::to_string(max_scene_bytes) + " bytes");
+  if (const DeepestKey k = deepest_key(toml_text); k.parts > max_key_parts)
+    throw InvalidParameter(std::string(source), "(the file)",
+                           "the scene key on line " + std::to_string(k.line) + " " + key_parts_rule(k.parts));
+  for (const std::string& o : overrides) {
+    const std::size_t eq = std::min(o.find('='), o.size());
+    const std::size_t parts = 1 + static_cast<std::size_t>(std::count(o.begin(), o.begin() + eq, '.'));
+    if (parts > max_key_parts)
+      throw InvalidParameter("--set", o.substr(0, 40) + "...", "the scene key " + key_parts_rule(parts));
+    const std::size_t value_bytes = o.size() - std::min(o.size(), eq + 1);
+    if (value_bytes > max_override_value_bytes)
+      throw InvalidParameter("--set", o.substr(0, std::min(eq, std::size_t{200})) + "=...",
+                             "the value is " + std::to_string(value_bytes) + " bytes; at most " +
+                                 std::to_string(max_override_value_bytes) + " are allowed");
+  }
+}
+
+}  // namespace
+
 Scene read_scene(std::string_view toml_text, const std::vector<std::string>& overrides, std::string_view source) {
+  check_input_bounds(toml_text, overrides, source);
   toml::table table;
   try {
     table = toml::parse(toml_text, source);

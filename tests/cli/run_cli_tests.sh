@@ -77,8 +77,8 @@ expect_json_keys cao "$work/henon.dat" -M 5 -- dimension E1 E2 embedding_dimensi
 expect_json_keys fnn "$work/henon.dat" -M 5 -- dimension false_fraction embedding_dimension
 expect_json_keys autocorrelation "$work/lorenz.dat" -- lag autocorrelation first_zero_crossing decorrelation_time
 expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension lambda lambda_interval lambda_status nonlinearity
-l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.35 and .lambda < 0.5), .lambda_per, .nonlinearity.rejected]')
-[[ $l == '[true,"sample",true]' ]] && pass || fail "analyze on Hénon gave $l"
+l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.35 and .lambda < 0.5), .lambda_per, .nonlinearity.rejected, .nonlinearity.ties]')
+[[ $l == '[true,"sample",true,0]' ]] && pass || fail "analyze on Hénon gave $l"
 
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
 r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
@@ -321,9 +321,16 @@ expect_error 3 "count must be at least 1" -- surrogates -n 0 "$work/henon.dat"
 expect_error 3 "constant" -- surrogates "$work/constant.dat"
 
 # chaos nonlinearity: the JSON contract; Hénon is rejected, white noise is not.
-expect_json_keys nonlinearity "$work/henon1000.dat" -n 19 -- statistic rank count rejected significance
-l=$("$CHAOS" nonlinearity "$work/henon1000.dat" --json | jq -c '[.rejected, .rank, .count, .significance, .statistic_name]')
-[[ $l == '[true,1,39,0.05,"prediction_error"]' ]] && pass || fail "nonlinearity on Hénon gave $l"
+expect_json_keys nonlinearity "$work/henon1000.dat" -n 19 -- statistic rank count ties rejected significance
+l=$("$CHAOS" nonlinearity "$work/henon1000.dat" --json | jq -c '[.rejected, .rank, .count, .ties, .significance, .statistic_name]')
+[[ $l == '[true,1,39,0,0.05,"prediction_error"]' ]] && pass || fail "nonlinearity on Hénon gave $l"
+# 4,999 ones then one 2: every surrogate is a permutation of it, and its prediction error equals the
+# data's up to rounding (13 digits), so all 19 tie with the data and the test cannot reject; compared
+# exactly it answered rejected = true.
+awk 'BEGIN { for (i = 0; i < 4999; i++) print 1; print 2 }' > "$work/spike.dat"
+out=$("$CHAOS" nonlinearity "$work/spike.dat" -n 19 -q)
+grep -q "^# ties = 19 " <<<"$out" && grep -q "^# rejected = false: the data's statistic ties with 19 of 19 surrogates: a tie cannot reject" <<<"$out" \
+  && pass || fail "nonlinearity on the spike series: $(grep -E '^# (rank|ties|rejected)' <<<"$out")"
 l=$("$CHAOS" nonlinearity "$work/noise.dat" -l 1024 --statistic time_reversal_asymmetry --method ft --json | jq -c '[.rejected, .parameters.statistic]')
 [[ $l == '[false,"time_reversal_asymmetry"]' ]] && pass || fail "nonlinearity on white noise gave $l"
 expect_error 3 "statistic must be prediction_error or time_reversal_asymmetry" -- nonlinearity --statistic skew "$work/henon.dat"

@@ -217,6 +217,40 @@ for ((n = 0; n < scenes; n += 8)); do
 done
 echo "scene files: $((passed - before)) passed"
 
+# ---- scenes beyond the bounds ----------------------------------------------------------------------
+# scene.hpp's bounds, checked before the TOML parser reads the text (a key of 50,000 dotted parts
+# overflowed its stack: exit 139): keys of at most 64 parts, in the file and in --set, scene files of
+# at most 1 MiB, --set values of at most 4096 bytes. Each is refused with exit 3 by `mechanism scene`,
+# `mechanism simulate` and `study sweep`, with the rule and the numbers, within 5 s (a Release
+# build takes a few hundredths of a second; the limit leaves room for the sanitizer build). A key
+# holding a NUL is named with the NUL escaped: the message was empty.
+before=$passed
+deep_key=$(printf 'a%.0s.' {1..49999})a
+printf '%s = 1\n' "$deep_key" > "$work/deep_key.toml"
+printf '[crank]\nmass = 0.3\n[%s]\n' "$deep_key" > "$work/deep_header.toml"
+{ printf '[crank]\nmass = 0.3\n# '; head -c $((10 * 1024 * 1024)) /dev/zero | tr '\0' x; echo; } > "$work/big_scene.toml"
+printf '"\\u0000x" = 1\n' > "$work/nul_key.toml"
+long_value="crank.mass=0.3$(printf ' %.0s' {1..5000})"
+bounded() {  # bounded NAMES ARGS...: refused with exit 3, naming NAMES, by all three commands
+  local names=$1 start run
+  shift
+  local args="$*"
+  for run in "mechanism scene" "mechanism simulate -q" "study sweep -q --threads 1 --periods 2 --keep 1 --axis joint.slider.clearance=2e-4,3e-4 -o $work/bounded_sweep"; do
+    rm -rf "$work/bounded_sweep"
+    start=$(date +%s%N)
+    # shellcheck disable=SC2086  # the command's words
+    check ${run%% *} "3" "$names" -- ${run#* } "$@" || continue
+    (($(date +%s%N) - start < 5000000000)) || fail "${run%% -*} ${args:0:100}: the refusal took over 5 s"
+  done
+}
+bounded "deep_key.toml.*line 1 has 50000 dotted parts; at most 64 are allowed" "$work/deep_key.toml"
+bounded "deep_header.toml.*line 3 has 50000 dotted parts; at most 64 are allowed" "$work/deep_header.toml"
+bounded "big_scene.toml.*is 10485782 bytes; a scene file may have at most 1048576 bytes" "$work/big_scene.toml"
+bounded "has 60000 dotted parts; at most 64 are allowed" --set "$(printf 'a%.0s.' {1..59999})a=1"
+bounded "the value is 5003 bytes; at most 4096 are allowed" --set "$long_value"
+bounded '\\x00x = 1: is not a scene key' "$work/nul_key.toml"
+echo "scenes beyond the bounds: $((passed - before)) passed"
+
 # ---- result files --------------------------------------------------------------------------------
 fast=(--set 'joint.slider.friction.sigma1_velocity=1e-3' --set 'integrator.method="dopri5"' --set integrator.relative_tolerance=1e-5)
 sweep=("${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:3 --periods 4 --keep 2 --analysis --analysis-periods 2 -q --threads 1)

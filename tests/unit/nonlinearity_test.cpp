@@ -64,6 +64,73 @@ TEST(RankTest, TiesNeverReject) {
   EXPECT_DOUBLE_EQ(chaos::rank_test(0.0, all_equal, Alternative::smaller).significance, 0.05);
 }
 
+TEST(RankTest, StatisticsWithinTheToleranceAreTies) {
+  // From the definition of the rank test with ties counted as neither below nor above (the data
+  // at the least extreme end of its tie group): K surrogates all tied with the data leave it at
+  // neither end, so no alternative rejects; a value one tolerance away is no tie and ranks as usual.
+  const double d = 1.00040018;
+  const std::vector<double> exact(19, d);
+  // Rounding-level differences, as FFT surrogates give (about 1e-13 relative): all below, all
+  // above, and both. Compared exactly, the first would be ranked highest and rejected.
+  std::vector<double> below(19), above(19), both(19);
+  for (std::size_t k = 0; k < 19; ++k) {
+    below[k] = d * (1.0 - 1e-13 * static_cast<double>(k + 1));
+    above[k] = d * (1.0 + 1e-13 * static_cast<double>(k + 1));
+    both[k] = k % 2 ? below[k] : above[k];
+  }
+  const std::vector<double>* cases[] = {&exact, &below, &above, &both};
+  for (const auto* s : cases) {
+    for (const Alternative a : {Alternative::two_sided, Alternative::smaller, Alternative::larger}) {
+      const auto t = chaos::rank_test(d, *s, a);
+      EXPECT_EQ(t.ties, 19u);
+      EXPECT_EQ(t.below, 0u);
+      EXPECT_EQ(t.above, 0u);
+      EXPECT_EQ(t.rank, 1u);
+      EXPECT_FALSE(t.rejected) << chaos::to_string(a);
+    }
+  }
+  // The relative tolerance is 1e-9 of the larger magnitude: 0.5e-9 below ties, 2e-9 below does not
+  // (then the data is highest: rank K + 1, rejected one-sided upward and two-sided).
+  EXPECT_DOUBLE_EQ(chaos::rank_tie_relative, 1e-9);
+  EXPECT_EQ(chaos::rank_test(d, std::vector<double>(19, d * (1.0 - 0.5e-9)), Alternative::larger).ties, 19u);
+  const auto apart = chaos::rank_test(d, std::vector<double>(19, d * (1.0 - 2e-9)), Alternative::larger);
+  EXPECT_EQ(apart.ties, 0u);
+  EXPECT_EQ(apart.below, 19u);
+  EXPECT_EQ(apart.rank, 20u);
+  EXPECT_TRUE(apart.rejected);
+  EXPECT_TRUE(chaos::rank_test(d, std::vector<double>(19, d * (1.0 - 2e-9)), Alternative::two_sided).rejected);
+  // Zeros: the absolute floor 1e-12 ties values that are zero up to rounding; 1e-11 is no tie.
+  EXPECT_DOUBLE_EQ(chaos::rank_tie_absolute, 1e-12);
+  const std::vector<double> near_zero = {1e-15, -1e-15, 0.0, 5e-13};
+  EXPECT_EQ(chaos::rank_test(0.0, near_zero, Alternative::smaller).ties, 4u);
+  EXPECT_FALSE(chaos::rank_test(0.0, near_zero, Alternative::two_sided).rejected);
+  const auto off_zero = chaos::rank_test(0.0, std::vector<double>(4, 1e-11), Alternative::smaller);
+  EXPECT_EQ(off_zero.above, 4u);
+  EXPECT_TRUE(off_zero.rejected);
+  // A mixed case, counted by hand: {d, d (1 + 1e-12), 0.5, 2, 3} around d: two ties, one below,
+  // two above; rank 1 + 1 = 2; below + above + ties = K.
+  const std::vector<double> mixed = {d, d * (1.0 + 1e-12), 0.5, 2.0, 3.0};
+  const auto m = chaos::rank_test(d, mixed, Alternative::two_sided);
+  EXPECT_EQ(m.ties, 2u);
+  EXPECT_EQ(m.below, 1u);
+  EXPECT_EQ(m.above, 2u);
+  EXPECT_EQ(m.rank, 2u);
+  EXPECT_FALSE(m.rejected);
+  // One tie at the tested end is enough to keep the data from rejecting: {d (1 + 1e-13), 2, 3}
+  // with the data below the other two.
+  const auto end = chaos::rank_test(d, std::vector<double>{d * (1.0 + 1e-13), 2.0, 3.0}, Alternative::smaller);
+  EXPECT_EQ(end.ties, 1u);
+  EXPECT_EQ(end.above, 2u);
+  EXPECT_FALSE(end.rejected);
+  // Equal infinities tie; an infinity and the largest finite value do not.
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(chaos::rank_test(inf, std::vector<double>{inf, inf}, Alternative::two_sided).ties, 2u);
+  const double largest = std::numeric_limits<double>::max();
+  const auto big = chaos::rank_test(largest, std::vector<double>{inf, inf}, Alternative::smaller);
+  EXPECT_EQ(big.ties, 0u);
+  EXPECT_TRUE(big.rejected);
+}
+
 TEST(RankTest, TwoSidedNeedsTwoSurrogates) {
   // With K = 1 the data's value is below or above the one surrogate's unless they tie, so a
   // two-sided test would reject every untied series: its size 2/(K+1) is 1. Refused; one-sided
@@ -268,6 +335,22 @@ void expect_refusal(const F& f, chaos::ErrorCode code, const std::string& fragme
     EXPECT_EQ(e.code(), code) << e.what();
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
+}
+
+TEST(NonlinearityTest, SpikeSeriesTiesAndDoesNotReject) {
+  // 4,999 ones then one 2, K = 19, two-sided (chaos nonlinearity -n 19). A property: the IAAFT
+  // surrogates of a two-valued series are permutations of it (one 2 among ones), and the
+  // prediction error does not depend on where the 2 stands, so every surrogate's statistic equals
+  // the data's up to rounding (they agree to 13 digits). Compared exactly, the data's ranked first
+  // and the test rejected; as ties it cannot.
+  std::vector<double> x(5000, 1.0);
+  x.back() = 2.0;
+  NonlinearityTestOptions o;
+  o.surrogates = 19;
+  const auto r = chaos::nonlinearity_test(x, o);
+  for (const double s : r.surrogate_statistics) EXPECT_NEAR(s, r.data_statistic, 1e-12 * r.data_statistic);
+  EXPECT_EQ(r.test.ties, 19u);
+  EXPECT_FALSE(r.test.rejected);
 }
 
 TEST(NonlinearityTest, Refusals) {

@@ -8,6 +8,7 @@
 // Units are SI throughout (m, kg, kg m^2, s, N, Pa) except the crank speed, given in rpm as the
 // seed does. Angles are in radians.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -214,11 +215,21 @@ struct Scene {
 // The seed's scene as commented TOML: the text `mechanism scene --default` prints.
 std::string_view default_scene_toml();
 
+// Bounds on the text read_scene accepts, checked before the TOML parser sees it. A scene is a few
+// KB with keys of at most four parts (joint.slider.friction.law). toml++ limits the nesting of
+// arrays and inline tables but not the parts of a dotted key, and recurses over the tables such a
+// key makes: a key of 50,000 parts overflowed the stack inside it. A scene file or a --set value
+// far beyond any real one is refused too. Every key counts: a `key = value` line's, a table
+// header's ([a.b.c]), an inline table's and an override's.
+inline constexpr std::size_t max_scene_bytes = std::size_t{1} << 20;  // 1 MiB
+inline constexpr std::size_t max_key_parts = 64;
+inline constexpr std::size_t max_override_value_bytes = 4096;
+
 // Reads a scene: the default scene, then the keys of `toml_text` (may be empty), then each
 // override "dotted.key=value" (the value in TOML syntax: 0.2e-3, "corners", true). Unknown keys,
 // wrong types and impossible values (negative mass, conrod not longer than the crank offset,
-// clearance <= 0, zero step, ...) throw InvalidParameter naming the key, the value and the rule.
-// `source` names the text in messages (a file name).
+// clearance <= 0, zero step, ...) throw InvalidParameter naming the key, the value and the rule,
+// as does text beyond the bounds above. `source` names the text in messages (a file name).
 Scene read_scene(std::string_view toml_text, const std::vector<std::string>& overrides = {},
                  std::string_view source = "scene");
 

@@ -418,8 +418,9 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
     function) is rejected at significance 1/(count+1) one-sided, 2/(count+1) two-sided, when the data
     rank first or last. Schreiber and Schmitz, Physica D 142, 346 (2000). docs/nonlinearity_test.md.
 
-    Result keys: statistic, statistic_name, surrogate_statistics, rank, count, below, above, rejected,
-    significance, surrogates_not_converged.
+    Result keys: statistic, statistic_name, surrogate_statistics, rank, count, below, above, ties,
+    rejected, significance, surrogates_not_converged. Statistics within 1e-9 relative of the data's
+    are ties (neither below nor above); a tie never rejects.
 
     ``progress=True`` draws a bar on stderr (or pass a callable taking the fraction of the surrogates
     done); Ctrl-C stops the surrogates' IAAFT loop within one iteration.

@@ -11,9 +11,10 @@
 namespace mechanism {
 namespace {
 
-std::string refusal(const std::string& toml, const std::vector<std::string>& overrides = {}) {
+std::string refusal(const std::string& toml, const std::vector<std::string>& overrides = {},
+                    const std::string& source = "scene") {
   try {
-    read_scene(toml, overrides);
+    read_scene(toml, overrides, source);
   } catch (const InvalidParameter& e) {
     return e.what();
   }
@@ -103,6 +104,96 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"joint.slider.friction.static_coefficient=0"})
                 .find("joint.slider.friction.static_coefficient = 0: must be finite and > 0"),
             std::string::npos);
+}
+
+// A key of `parts` dotted parts: "a.a...a".
+std::string dotted(std::size_t parts, const std::string& part = "a", const std::string& dot = ".") {
+  std::string key = part;
+  for (std::size_t i = 1; i < parts; ++i) key += dot + part;
+  return key;
+}
+
+bool refused_for_depth(const std::string& message, std::size_t parts) {
+  return message.find("has " + std::to_string(parts) + " dotted parts; at most 64 are allowed") != std::string::npos;
+}
+
+TEST(Scene, RefusesKeysFilesAndValuesBeyondItsBounds) {
+  // scene.hpp's bounds: 64 dotted parts per key, 1 MiB of scene text, 4096 bytes per --set value,
+  // checked before toml++ reads the text (a 50,000-part key overflowed the stack). At the bound a
+  // key passes the check and is refused for another reason (an unknown key), one past it by the
+  // bound, so the tests pin the limit itself.
+  EXPECT_EQ(max_key_parts, 64u);
+  const std::string deep = refusal(dotted(50000) + " = 1\n", {}, "deep.toml");
+  EXPECT_TRUE(refused_for_depth(deep, 50000)) << deep.substr(0, 300);
+  EXPECT_NE(deep.find("deep.toml = (the file): the scene key on line 1"), std::string::npos) << deep.substr(0, 300);
+  EXPECT_LT(deep.size(), 300u);  // the message does not repeat the key
+  EXPECT_NE(refusal(dotted(64) + " = 1\n").find("is not a scene key"), std::string::npos);
+  EXPECT_TRUE(refused_for_depth(refusal(dotted(65) + " = 1\n"), 65));
+  // Every kind of key counts: a table header, an array-of-tables header, an inline table's key
+  // (after '{' and after ','), quoted parts and whitespace around the dots, a key after a
+  // multi-line array; the line named is the key's.
+  const std::string header = refusal("[crank]\nmass = 0.3\n[" + dotted(65) + "]\n");
+  EXPECT_TRUE(refused_for_depth(header, 65)) << header.substr(0, 300);
+  EXPECT_NE(header.find("on line 3"), std::string::npos) << header.substr(0, 300);
+  EXPECT_TRUE(refused_for_depth(refusal("[[" + dotted(100) + "]]\n"), 100));
+  EXPECT_TRUE(refused_for_depth(refusal("x = { " + dotted(70) + " = 1 }\n"), 70));
+  EXPECT_TRUE(refused_for_depth(refusal("x = { b = 1, " + dotted(70) + " = 1 }\n"), 70));
+  EXPECT_TRUE(refused_for_depth(refusal("x = [{ b = [1, 2] }, { " + dotted(70) + " = 1 }]\n"), 70));
+  EXPECT_TRUE(refused_for_depth(refusal(dotted(65, "\"a.b\"", " . ") + " = 1\n"), 65));
+  EXPECT_TRUE(refused_for_depth(refusal("x = [\n  1.5,\n  2.5,\n]\n" + dotted(65) + " = 1\n"), 65));
+  // Dots in values, strings and comments are not keys: a valid scene stays valid with them.
+  const std::string dots = dotted(50000);
+  const Scene with_dots = read_scene("# " + dots + "\n[joint.slider]\nmodel = \"corners\" # " + dots +
+                                     "\nclearance = 0.3e-3\n[crank]\nmass = 0.25 # '''\n");
+  EXPECT_EQ(with_dots.slider_guide.model, SliderContactModel::corners);
+  EXPECT_EQ(with_dots.crank.mass, 0.25);
+  const std::string strings = refusal("x = \"" + dots + "\"\ny = '" + dots + "'\nz = \"\"\"\n" + dots + "\n\"\"\"\n");
+  EXPECT_NE(strings.find("x = \"a.a.a"), std::string::npos) << strings.substr(0, 300);
+  EXPECT_NE(strings.find("is not a scene key"), std::string::npos) << strings.substr(0, 300);
+
+  // The size of the text: one byte over 1 MiB is refused by its size; 1 MiB exactly is read.
+  EXPECT_EQ(max_scene_bytes, 1048576u);
+  const std::string comment = "[crank]\nmass = 0.25\n# ";
+  const std::string at_bound = comment + std::string(max_scene_bytes - comment.size() - 1, 'x') + "\n";
+  EXPECT_EQ(read_scene(at_bound).crank.mass, 0.25);
+  const std::string big = refusal(at_bound + "\n", {}, "big.toml");
+  EXPECT_NE(big.find("big.toml = (the file): is 1048577 bytes; a scene file may have at most 1048576 bytes"),
+            std::string::npos)
+      << big;
+
+  // Overrides: the key's parts, and the value's size (4096 bytes: a value of 4096 bytes, a number
+  // followed by blanks, is read; one byte more is refused).
+  const std::string set_deep = refusal("", {dotted(60000) + "=1"});
+  EXPECT_TRUE(refused_for_depth(set_deep, 60000)) << set_deep.substr(0, 300);
+  EXPECT_LT(set_deep.size(), 300u);
+  EXPECT_TRUE(refused_for_depth(refusal("", {dotted(65) + "=1"}), 65));
+  EXPECT_NE(refusal("", {dotted(64) + "=1"}).find("is not a scene key"), std::string::npos);
+  EXPECT_EQ(max_override_value_bytes, 4096u);
+  EXPECT_EQ(read_scene("", {"crank.mass=0.25" + std::string(4096 - 4, ' ')}).crank.mass, 0.25);
+  const std::string long_value = refusal("", {"crank.mass=0.25" + std::string(4096 - 3, ' ')});
+  EXPECT_NE(long_value.find("--set = crank.mass=...: the value is 4097 bytes; at most 4096 are allowed"),
+            std::string::npos)
+      << long_value;
+}
+
+TEST(Scene, MessagesEscapeControlBytes) {
+  // A key holding a NUL ended the message at the NUL: "\u0000x" gave an empty message. Every
+  // control byte is written as \xhh, so the message keeps the key and stays on one line.
+  const std::string nul = refusal("\"\\u0000x\" = 1\n");
+  EXPECT_NE(nul.find("\\x00x = 1: is not a scene key"), std::string::npos) << nul;
+  const std::string unit_separator = refusal("", {"cr\x1f" "ank.mass=1"});
+  EXPECT_NE(unit_separator.find("cr\\x1fank.mass = 1"), std::string::npos) << unit_separator;
+  const std::string line_break = refusal("[crank]\n\"ma\\nss\" = 1\n");
+  EXPECT_NE(line_break.find("crank.ma\\x0ass"), std::string::npos) << line_break;
+  for (const std::string& m : {nul, unit_separator, line_break})
+    for (const char c : m) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7F) << m;
+  // key() keeps the text as given, for a caller that re-throws under another key.
+  try {
+    read_scene("\"\\u0000x\" = 1\n");
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.key(), std::string("\0x", 2));
+  }
 }
 
 TEST(Scene, TiltedStartIsReadAndChecked) {
