@@ -3,9 +3,9 @@
 # clearance study (its Figs. 4 and 8) at the seed's size on the built-in seed scene: 120
 # clearances from 0.01 to 0.6 mm at 5000 rpm, 1000 crank periods each, the slider's stroboscopic
 # height over the last 500, and the mutual-information delay, Cao's E1/E2 and D2 of its last 5
-# periods. About two minutes on 2 cores once built (the sweep took 95 s on 2026-11-27).
+# periods. About two minutes on 2 cores once built (the sweep takes about 95 s).
 #
-# The built-in scene reads the seed's slider joint as the physics audit of issue 12 decided (line
+# The built-in scene reads the seed's slider joint as the physics audit decided (line
 # contact, Eq. 11 with exponent 1, the normalised LuGre with sigma1 fading: docs/mechanism/scene.md).
 # One setting differs from it, measured (docs/mechanism/performance.md): Dormand-Prince at rtol 1e-3
 # with steps up to 1e-4 s instead of RK4 at 1e-6 s, a setting that keeps the distribution of the

@@ -19,7 +19,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 out=docs/performance-d2.md
 
-# --no-halves: the knobs of the counting alone (since 2026-12-02 chaos d2 also checks a saturated D2
+# --no-halves: the knobs of the counting alone (chaos d2 also checks a saturated D2
 # on the record's halves by default, which adds about half an exact job, or, after --fast, the
 # chosen budget again).
 lorenz_args=(-d 17 -t 200 -M 6 -r 0.25 -R 5 -# 40 --no-halves)
@@ -202,7 +202,7 @@ conclusion() {
   fast_s=$(field "$case" fast 4)
   fast_d2=$(field "$case" fast 5)
   fast_diff=$(field "$case" fast 6)
-  printf -- " \`--fast\` (seed 1): %.2f s, D2 = %s (off by %s; issue 15's target: within 0.02 in at most 0.1 s, %s).\n" \
+  printf -- " \`--fast\` (seed 1): %.2f s, D2 = %s (off by %s; the target: within 0.02 in at most 0.1 s, %s).\n" \
     "$fast_s" "$fast_d2" "$fast_diff" \
     "$(awk -v t="$fast_s" -v d="$fast_diff" 'BEGIN { print (d != "-" && d + 0 <= 0.02 && t + 0 <= 0.1) ? "met" : "not met" }')"
 }
@@ -257,7 +257,7 @@ notes() {
   echo "a row shows the status instead of a number when the dimensions did not share a plateau. The pair cap"
   echo "\`-N K\` and the reference subset \`--reference-points R\` are described in \`docs/correlation_sum.md\`."
   echo "Every run has \`--no-halves\`: the table prices the counting; the check of a saturated D2 on the record's"
-  echo "halves, on by default since 2026-12-02, adds about half an exact job (a quarter of the pairs per half), or"
+  echo "halves, on by default, adds about half an exact job (a quarter of the pairs per half), or"
   echo "after \`--fast\` the chosen budget again."
   echo
   echo "Commands (the setting of a row is added to the \`chaos d2\` line):"

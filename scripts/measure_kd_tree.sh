@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Exact correlation sums by the kd-tree against the box-assisted grid (issue 15, item 2): the same
+# Exact correlation sums by the kd-tree against the box-assisted grid: the same
 # `chaos d2` job with --search kd and --search box, runs alternated back to back on one thread,
 # over cases that differ in dimension, N, radius range, norm and how clustered the data are. Both
 # must give the same pair counts (the md5 of every count is compared; a difference stops the
@@ -41,7 +41,7 @@ case_row() {
     for s in box noplane kd; do
       local search=$s plane=0
       [[ $s == noplane ]] && search=box plane=1
-      # --no-halves: the counting alone (the halves check, on by default since 2026-12-02, adds half a job).
+      # --no-halves: the counting alone (the halves check, on by default, adds half a job).
       CHAOS_NO_PLANE=$plane /usr/bin/time -f '%e' -o "$work/time" "$chaos" d2 "$work/$file" "$@" --search "$search" \
         --no-halves --threads 1 --json -q > "$work/out_$s.json"
       cat "$work/time" >> "$work/t_$s"
@@ -64,8 +64,8 @@ case_row() {
   }'
 }
 
-case_row "Lorenz x, N = 10^5 (issue 15's target)" lorenz.dat -d 17 -t 200 -M 6 -r 0.25 -R 5 -# 40
-case_row "Henon x, N = 10^5 (issue 15's target)" henon.dat -d 1 -t 10 -M 4 -r 0.005 -R 0.4 -# 40
+case_row "Lorenz x, N = 10^5 (the exact target job)" lorenz.dat -d 17 -t 200 -M 6 -r 0.25 -R 5 -# 40
+case_row "Henon x, N = 10^5 (the exact target job)" henon.dat -d 1 -t 10 -M 4 -r 0.005 -R 0.4 -# 40
 case_row "Lorenz x, Euclidean norm" lorenz.dat -d 17 -t 200 -M 6 -r 0.25 -R 5 -# 40 --norm euclidean
 case_row "Lorenz x, m = 4..6 only" lorenz.dat -d 17 -t 200 -m 4 -M 6 -r 0.25 -R 5 -# 40
 case_row "Lorenz x, m up to 10" lorenz.dat -d 17 -t 200 -M 10 -r 0.25 -R 5 -# 40

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates docs/mechanism/section-d2.md: the correlation dimension of the slider-crank's
-# stroboscopic section (one slider_y sample per crank revolution, issue 13) at three clearances of
+# stroboscopic section (one slider_y sample per crank revolution) at three clearances of
 # the Lyapunov sweep's grid (docs/mechanism/lyapunov-sweep.md), with the slider's rotation free and
 # locked, beside the Kaplan-Yorke dimension of the same scene from that sweep. For a periodically
 # forced system the section's dimension is the attractor's minus 1, so D_KY - 1 is what a section

@@ -2,7 +2,7 @@
 # The study's speed goals, measured (docs/study.md, "Speed"): the seed's 120-clearance bifurcation
 # diagram (0.01 .. 0.6 mm at 5000 rpm, 1000 periods each, the last 50 kept) and a 10 000-point
 # Poincare portrait (c_t = 0.5 mm, 100 periods of transient), for these settings:
-#   built_in            the built-in scene (issue 12's audited reading), dopri5 rtol 1e-4, max_step 1e-5
+#   built_in            the built-in scene (the audited reading), dopri5 rtol 1e-4, max_step 1e-5
 #                       (the defaults of docs/reproduction.md)
 #   built_in_fast       the same scene, dopri5 rtol 1e-3, max_step 1e-4 (scripts/demo.sh)
 #   sigma1_fading       the printed reading (scripts/printed_reading.sh) with

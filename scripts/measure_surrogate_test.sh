@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The surrogate test for nonlinearity per clearance (issue 13, item 2; docs/mechanism/dynamics.md):
+# The surrogate test for nonlinearity per clearance (docs/mechanism/dynamics.md):
 # `study sweep --analysis --surrogates K` on the slider's vertical displacement over the last
 # ANALYSIS_PERIODS revolutions (after 500), sampled every ANALYSIS_INTERVAL s, with the slider's
 # rotation free and locked. Writes a Markdown table to OUT (default: standard output).

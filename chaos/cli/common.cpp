@@ -114,7 +114,7 @@ std::string input_path(const CLI::Option* input) {
 
 void add_output_options(CLI::App& command, OutputOptions& output) {
   command.add_flag("--json", output.json, "write one JSON object instead of the table");
-  // Checked while the command line is read, before any work (issue 16: -o naming the input file
+  // Checked while the command line is read, before any work (-o naming the input file
   // overwrote the data; an unwritable -o failed only after the whole computation). The input is
   // the command's "file" argument, when it has one.
   const CLI::Option* input = command.get_option_no_throw("file");
@@ -129,7 +129,7 @@ void add_output_options(CLI::App& command, OutputOptions& output) {
 }
 
 void add_plot_option(CLI::App& command, std::string& path, const std::string& description) {
-  // Checked while the command line is read, like -o (issue 16: an unwritable --plot failed only
+  // Checked while the command line is read, like -o (an unwritable --plot failed only
   // after the whole computation), and the extension with it.
   const CLI::Option* input = command.get_option_no_throw("file");
   command.add_option("--plot", path, description)

@@ -83,6 +83,7 @@ void run(LyapunovArgs& args) {
     progress.hint("lyapunov", series.values.size(),
                   "the divergence curve follows the neighbours of every one of the points and may take long; "
                   "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
+  args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   args.params.check_progress =
       progress.callback(std::string("cross-check (") + (args.params.method == "kantz" ? "rosenstein" : "kantz") + ")");

@@ -25,6 +25,7 @@ void run(NonlinearityArgs& args) {
   progress.hint("nonlinearity", series.values.size(),
                 "each surrogate takes up to --max-iterations Fourier transforms of all the samples and may take "
                 "long; -l 100000 tests the first 10^5 samples");
+  args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("surrogates");
   auto [r, report] = run_nonlinearity({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
   std::ostream& out = report.stream();
@@ -71,12 +72,10 @@ void register_nonlinearity(CLI::App& app) {
   command->add_option("--method", args->params.method, "surrogates: ft, aaft or iaaft")->capture_default_str();
   command->add_option("--max-iterations", args->params.options.surrogate.max_iterations, "IAAFT: iteration limit")
       ->capture_default_str();
-  command->add_option("-d,--delay", args->params.delay, "delay: of the predictor's embedding, or the lag of the asymmetry")
-      ->capture_default_str();
-  command->add_option("-m,--dimension", args->params.options.prediction.dimension, "prediction: embedding dimension")
-      ->capture_default_str();
-  command->add_option("-t,--theiler", args->params.options.prediction.theiler, "prediction: Theiler window in samples")
-      ->capture_default_str();
+  command->add_option("-d,--delay", args->params.delay, "delay: of the predictor's embedding, or the lag of the asymmetry "
+                                                      "(default: automatic, the first mutual-information minimum; the output names the rule)");
+  command->add_option("-m,--dimension", args->params.dimension, "prediction: embedding dimension (default: automatic, where Cao's E1 saturates)");
+  command->add_option("-t,--theiler", args->params.theiler, "prediction: Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant period, at least the delay)");
   command->add_option("--horizon", args->params.options.prediction.horizon, "prediction: steps ahead")->capture_default_str();
   command->add_option("-k,--neighbours", args->params.options.prediction.neighbours, "prediction: neighbours averaged")
       ->capture_default_str();

@@ -105,7 +105,7 @@ struct D2Params {
   std::string norm = "max";
   std::string search = "box";
   // A saturated D2 must be reproduced by each half of the record (check_record_halves), as in
-  // chaos analyze: on by default since 2026-12-02, `--no-halves` for the plain estimate.
+  // chaos analyze; `--no-halves` for the plain estimate.
   bool halves = true;
   bool delay_check = false;  // --delay-check: a saturated D2 must be reproduced at twice the delay
   // --fast: the reference subset grows until two disjoint subsets agree (adaptive_d2.hpp).
@@ -127,10 +127,11 @@ struct LyapunovParams {
   LyapunovOptions options;
   LyapunovFitOptions fit;
   std::optional<std::size_t> delay, dimension, theiler, steps, period;
+  std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   std::string method = "rosenstein";
   std::string norm = "max";
   // Run the other method too, with the same settings, and check the two against each other
-  // (lyapunov.hpp, cross_check); its progress goes to check_progress. Since 2026-12-02 also, as the
+  // (lyapunov.hpp, cross_check); its progress goes to check_progress. Also, as the
   // pipeline does (automatic_analysis.hpp, step 6), lambda_1 from local maps at m (and m + 1 where m
   // is inconsistent): a slope stands only where the local-map exponent is consistent and within the
   // tolerance of it (lyapunov_local_maps.hpp, cross_check); otherwise it is unconfirmed.
@@ -139,7 +140,7 @@ struct LyapunovParams {
   std::function<void(double)> maps_progress;  // the local-map check: 0 before, 0.5 before m + 1, 1 after
   // Run the same estimator over each half of the record: a linear region that neither half shows,
   // or that a half contradicts, is not_reproduced (check_record_halves), before the cross-check.
-  // On by default since 2026-12-02, as in chaos analyze; `--no-halves` for the plain estimate.
+  // On by default, as in chaos analyze; `--no-halves` for the plain estimate.
   bool halves = true;
 };
 struct LyapunovRun {
@@ -156,6 +157,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
 struct LyapunovMapsParams {
   LocalMapOptions options;
   std::optional<std::size_t> delay, dimension, theiler;
+  std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   std::string norm = "max";
   double tolerance = 0.05;
 };
@@ -259,7 +261,10 @@ struct NonlinearityParams {
   std::string alternative = "two_sided";
   std::string method = "iaaft";
   std::string norm = "max";
-  std::size_t delay = 1;
+  // Left out: chosen on the (trimmed) series by choose.hpp's rules (the dimension and window for the
+  // prediction statistic only), the same embedding for the data and every surrogate.
+  std::optional<std::size_t> delay, dimension, theiler;
+  std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   bool end_match = false;
 };
 struct NonlinearityRun {

@@ -1,5 +1,6 @@
 // surrogates, nonlinearity: the computation and the JSON (commands.hpp).
 
+#include "chaos/choose.hpp"
 #include "chaos/error.hpp"
 #include "commands.hpp"
 
@@ -75,14 +76,21 @@ NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams param
   o.alternative = parse_alternative(params.alternative);
   o.surrogate.method = parse_surrogate_method(params.method);
   o.prediction.norm = parse_norm(params.norm);
-  // One delay option serves both statistics: the embedding delay of the predictor, the lag of Q.
-  o.prediction.delay = params.delay;
-  o.time_reversal_delay = params.delay;
   std::span<const double> x = in.values;
   std::optional<EndMatch> match;
   if (params.end_match) {
     match = end_match(x);
     x = x.subspan(match->offset, match->length);
+  }
+  // One delay option serves both statistics: the embedding delay of the predictor, the lag of Q.
+  const bool prediction = o.statistic == NonlinearityStatistic::prediction_error;
+  const EmbeddingChoice chosen = prediction ? choose_embedding(x, params.delay, params.theiler, params.dimension, {}, 10, params.choice_progress)
+                                            : choose_delay_and_window(x, params.delay, params.theiler);
+  o.prediction.delay = chosen.delay;
+  o.time_reversal_delay = chosen.delay;
+  if (prediction) {
+    o.prediction.dimension = *chosen.dimension;
+    o.prediction.theiler = chosen.theiler;
   }
   NonlinearityTestResult r = nonlinearity_test(x, o);
 
@@ -90,9 +98,11 @@ NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams param
   report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
       .parameter("dt", in.dt).parameter("statistic", params.statistic).parameter("alternative", params.alternative)
       .parameter("count", o.surrogates).parameter("seed", o.seed).parameter("method", params.method)
-      .parameter("max_iterations", o.surrogate.max_iterations).parameter("delay", params.delay);
-  if (o.statistic == NonlinearityStatistic::prediction_error)
-    report.parameter("dimension", o.prediction.dimension).parameter("theiler", o.prediction.theiler)
+      .parameter("max_iterations", o.surrogate.max_iterations).parameter("delay", chosen.delay)
+      .parameter("delay_source", chosen.delay_source);
+  if (prediction)
+    report.parameter("dimension", o.prediction.dimension).parameter("dimension_source", chosen.dimension_source)
+        .parameter("theiler", o.prediction.theiler).parameter("theiler_source", chosen.theiler_source)
         .parameter("horizon", o.prediction.horizon).parameter("neighbours", o.prediction.neighbours)
         .parameter("norm", params.norm);
   report.parameter("end_match", params.end_match);

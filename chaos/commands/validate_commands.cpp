@@ -11,7 +11,7 @@ std::vector<Reference> validate_cases(const ValidateParams& params) {
   std::vector<Reference> cases;
   for (const Reference& r : reference_table())
     if (params.filter.empty() || r.id.find(params.filter) != std::string::npos) cases.push_back(r);
-  // A typo in --filter ran nothing and exited 0, as if every case had passed (issue 16).
+  // A typo in --filter ran nothing and exited 0, as if every case had passed.
   if (cases.empty())
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "--filter '" + params.filter + "' matches no case id (chaos validate --list shows them)");

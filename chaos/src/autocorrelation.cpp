@@ -46,7 +46,7 @@ AutocorrelationResult autocorrelation(std::span<const double> x, std::size_t max
   require_not_constant(x, what);
   const std::size_t n = x.size();
   // r(k) does not depend on the scale, but the sums of squares below overflow beyond |x| ~ 1e150
-  // and underflow below ~ 1e-160 (NaN rows, issue 16): work on x divided by the power of two near
+  // and underflow below ~ 1e-160 (NaN rows): work on x divided by the power of two near
   // its largest magnitude, which is exact.
   const std::vector<double> y = detail::scaled_by_power_of_two(x, detail::scale_exponent(x));
   double mean = 0.0;

@@ -156,7 +156,8 @@ EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional
 
 EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::size_t> delay,
                                  std::optional<std::size_t> theiler, std::optional<std::size_t> dimension,
-                                 const DelaySearch& search, std::size_t max_dimension) {
+                                 const DelaySearch& search, std::size_t max_dimension,
+                                 std::function<void(double)> progress) {
   EmbeddingChoice out = choose_delay_and_window(x, delay, theiler, search);
   if (dimension) {
     out.dimension = dimension;
@@ -165,7 +166,7 @@ EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::s
   }
   std::string stopped;
   try {
-    const DimensionChoice m = choose_embedding_dimension(x, out.delay, out.theiler, max_dimension);
+    const DimensionChoice m = choose_embedding_dimension(x, out.delay, out.theiler, max_dimension, std::move(progress));
     if (m.dimension) {
       out.dimension = m.dimension;
       out.dimension_source = "Cao's E1 saturation";

@@ -60,7 +60,7 @@ Parsed parse_double(std::string_view token, double& value) {
 // The lines of a stream, read a block at a time (a character at a time costs half the reading of
 // a 10^5-row file). A line ends at LF, CR LF or a lone CR (a classic Mac file, or lines mixed by
 // editors): with only LF as the end, a CR-separated file read as one line of many columns, and
-// column 1 of it as a one-sample series (issue 16, corrupt-file tier). It reads ahead of the line
+// column 1 of it as a one-sample series (corrupt-file tier). It reads ahead of the line
 // it returns, so the stream is spent once the reader is done with it. A UTF-8 byte-order mark at
 // the start of the first line (spreadsheet exports) is not part of the line.
 constexpr std::string_view byte_order_mark = "\xEF\xBB\xBF";

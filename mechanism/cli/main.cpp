@@ -43,7 +43,7 @@ struct OutputRefused : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Refuses -o and --plot before the run (issue 16: -o naming the input overwrote it, and an
+// Refuses -o and --plot before the run (-o naming the input overwrote it, and an
 // unwritable -o or --plot failed only after the whole simulation): output_path.hpp's rules, the
 // scene file as the input.
 void check_output(CLI::Option* option, const char* name, const CLI::Option* scene, bool plot) {
@@ -64,7 +64,7 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
 mechanism::Scene load_scene(const SceneOptions& o) {
   std::string text;
   if (!o.file.empty()) {
-    // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+    // A directory opens as a stream that reads nothing: it ran the built-in scene.
     if (std::filesystem::is_directory(o.file)) throw mechanism::InvalidParameter("scene", o.file, "is a directory, not a scene file");
     std::ifstream in(o.file);
     if (!in) throw mechanism::InvalidParameter("scene", o.file, "cannot be opened (missing or unreadable file)");
@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
   auto* sim = app.add_subcommand("simulate", "integrate the scene and write the chosen signals");
   add_scene_options(*sim, sim_opts);
   sim->add_flag("--stroboscopic", strobe, "write one row per crank revolution (with a revolution column) instead of the time series");
-  sim->add_option("--signals", signals, "comma-separated columns to write (default: all; see docs/mechanism/simulate.md)");
+  sim->add_option("--signals", signals, "comma-separated columns to write (default: all; a name the scene lacks is answered with the list it has)");
   check_output(sim->add_option("-o,--output", out_path, "write the table to FILE (default: standard output)"), "-o",
                sim->get_option("scene"), false);
   sim->add_flag("--json", json, "write a JSON summary to standard output (the table then goes only to -o FILE)");

@@ -527,8 +527,7 @@ void check_run_size(const Scene& s) {
   const double longest = rk4 ? s.driver.period() / std::ceil(s.driver.period() / s.integrator.step - 1e-9)
                              : s.integrator.max_step;
   const double steps = simulated / longest;
-  // A step of 1e-320 s made this "needs inf RK4 steps of 0.0 s" without naming the step (issue 16,
-  // corrupt-file tier): the step's key and value are named, and an overflowing count is said so.
+  // A step of 1e-320 s made this "needs inf RK4 steps of 0.0 s" without naming the step: the step's key and value are named, and an overflowing count is said so.
   if (!(steps <= max_run_steps))
     throw InvalidParameter("run.duration", format_number(s.run.duration),
                            "with run.transient " + format_number(s.run.transient) + " s and " +

@@ -323,7 +323,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     const double t_end = loop.end_time();
     // Step k ends at k h exactly (no accumulated round-off); the last step may be shorter, and
     // ends on t_end itself: total h can round below it (2 T + T at 5000 rpm is 0.036000000000000004
-    // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution (issue 16).
+    // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution.
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {

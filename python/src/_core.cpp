@@ -298,6 +298,7 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "halves", params.halves);
   // With the cross-check the other method's curve is the second half of the work.
   const std::function<void(double)> hook = progress_hook(std::move(progress));
+  if (hook) params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there
   if (hook && params.cross_check) {
     params.options.progress = [hook](double f) { hook(0.5 * f); };
     params.check_progress = [hook](double f) { hook(0.5 + 0.5 * f); };
@@ -394,13 +395,15 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
   get(p, "method", params.method);
   get(p, "max_iterations", params.options.surrogate.max_iterations);
   get(p, "delay", params.delay);
-  get(p, "dimension", params.options.prediction.dimension);
-  get(p, "theiler", params.options.prediction.theiler);
+  get(p, "dimension", params.dimension);
+  get(p, "theiler", params.theiler);
   get(p, "horizon", params.options.prediction.horizon);
   get(p, "neighbours", params.options.prediction.neighbours);
   get(p, "norm", params.norm);
   get(p, "end_match", params.end_match);
   params.options.progress = progress_hook(std::move(progress));
+  const std::function<void(double)> hook = params.options.progress;
+  params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there
   return call([&] { return run_nonlinearity(in, params).report.json(); });
 }
 

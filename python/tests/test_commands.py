@@ -102,19 +102,19 @@ def test_lyapunov(lorenz_file, cli_args, kwargs):
 
 
 def test_lyapunov_henon(data_dir):
-    r = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2])
+    r = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2], dimension=2)
     # The other method's verdict (the cross-check) comes with the result, as in the command's JSON.
     assert r["cross_check"]["method"] == "kantz"
     single = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-cross-check"],
-                   cross_check=False)
+                   dimension=2, cross_check=False)
     assert single["cross_check"] is None and single["parameters"]["cross_check"] is False
     # The local-map check runs with the cross-check, as in analyze (clean Henon: consistent).
     assert r["local_maps"]["status"] == "consistent" and single["local_maps"] is None
-    halves = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--halves"], halves=True)
+    halves = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--halves"], dimension=2, halves=True)
     assert halves["parameters"]["halves"] is True
     # The halves check is the default (as in analyze); halves=False is the command's --no-halves.
     assert r["parameters"]["halves"] is True and r.to_dict() == halves.to_dict()
-    plain = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-halves"], halves=False)
+    plain = check(chaos.lyapunov, data_dir / "henon.txt", ["lyapunov", "-m", 2, "--no-halves"], dimension=2, halves=False)
     assert plain["parameters"]["halves"] is False
 
 
@@ -129,7 +129,7 @@ def test_lyapunov_maps(lorenz_file, cli_args, kwargs):
     r = check(chaos.lyapunov_maps, lorenz_file, ["lyapunov-maps", *cli_args], **kwargs)
     assert type(r).__name__ == "LyapunovMapsResult"
     # two delay variants (tau -+ tau/4) when tau >= 2
-    assert r.variants[0]["name"] == "base" and len(r.variants) == (9 if kwargs.get("delay", 1) == 1 else 11)
+    assert r.variants[0]["name"] == "base" and len(r.variants) == (9 if r.parameters["delay"] == 1 else 11)
 
 
 def test_lyapunov_maps_value_and_refusals():
@@ -305,3 +305,28 @@ def test_density_refuses(diagram_file, kwargs):
 def test_density_needs_equal_lengths():
     with pytest.raises(ValueError):
         chaos.density([1.0, 2.0, 3.0], [1.0, 2.0])
+
+
+def test_left_out_choices_are_the_automatic_ones():
+    # Called with the series alone, d2 chooses the delay and window as analyze does (chaos/choose.hpp)
+    # and says which rule gave them. Lorenz x at dt 0.01, N = 2*10^4: D2 = 2.05 (Grassberger &
+    # Procaccia 1983, references/references.tsv), within 0.1; the delay is analyze's.
+    x = chaos.generate("lorenz", length=20000, components="x").components["x"]
+    r = chaos.d2(x, dt=0.01)
+    assert r.parameters["delay"] == chaos.analyze(x, dt=0.01).delay
+    assert r.parameters["delay_source"] == "first mutual-information minimum"
+    assert r.parameters["theiler"] >= r.parameters["delay"]
+    assert r.d2 == pytest.approx(2.05, abs=0.1)
+
+
+def test_mutual_searches_as_far_as_the_automatic_delay():
+    # Lorenz x at dt 0.005: the information's first minimum lies near 0.16 time units, 14..20 samples
+    # at dt 0.01 (references/references.tsv), so 28..40 samples here; without max_delay the search
+    # reaches it (a fixed 20 lags did not) and, where a given range holds no minimum, says why.
+    x = chaos.generate("lorenz", length=40000, parameter={"dt": 0.005}, components="x").components["x"]
+    r = chaos.mutual(x)
+    assert 28 <= r.first_minimum <= 40
+    assert r.no_minimum is None
+    short = chaos.mutual(x, max_delay=20)
+    assert short.first_minimum is None
+    assert "still falling" in short.no_minimum

@@ -109,7 +109,7 @@ def test_ctrl_c_interrupts_a_run():
     timer = threading.Timer(0.5, _thread.interrupt_main)
     # CPU time, not wall time: the bound is on the work done between two checks for Ctrl-C, and on a
     # machine shared with other jobs the same work takes longer by the clock (the d2 test of
-    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`, 2026-12-02).
+    # test_behaviour.py took 1.61 s in a CI run beside a two-thread `chaos zoo`).
     started = time.process_time()
     timer.start()
     with pytest.raises(KeyboardInterrupt):

@@ -37,7 +37,7 @@ namespace {
 enum ExitCode : int { ok = 0, internal_error = 1, usage_error = 2, invalid_request = 3, io_error = 4, points_failed = 5 };
 
 std::string read_text(const std::string& path) {
-  // A directory opens as a stream that reads nothing: it ran the built-in scene (issue 16).
+  // A directory opens as a stream that reads nothing: it ran the built-in scene.
   if (std::filesystem::is_directory(path)) throw study::StudyError("scene", path, "is a directory, not a scene file");
   std::ifstream in(path);
   if (!in) throw study::StudyError("scene", path, "cannot be opened (missing or unreadable file)");
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
                               {"ranks", mpi.size()},
                               {"wall_seconds", wall}};
     std::cout << summary.dump(2) << "\n";
-    // Every analysis failing says the options do not fit the series (issue 16: exit 0 with no
+    // Every analysis failing says the options do not fit the series (exit 0 with no
     // analysis at all); some failing is a per-point answer that analysis.tsv gives.
     const bool no_analysis = analysed > 0 && analysis_failed == analysed;
     // Exit 5 says why, also under -q (a corrupt-file run of the tier exited 5 with no word).

@@ -28,7 +28,7 @@ void add_pipeline_options(CLI::App& cmd, PipelineRequest& r) {
   cmd.add_option("--max-delay", r.analysis.max_delay, "largest mutual-information delay of the first search, samples (with no minimum there, the search goes on to two Theiler windows)");
   cmd.add_option("--max-dimension", r.analysis.max_dimension, "Cao and D2 up to this embedding dimension (the seed: 12)");
   cmd.add_option("--delay", r.analysis.given_delay, "use this delay (samples) instead of the mutual-information minimum");
-  // Both refused before the run when they cannot be written (issue 16), as study plot's -o.
+  // Both refused before the run when they cannot be written, as study plot's -o.
   const CLI::Option* scene = cmd.get_option("scene");
   check_output(cmd.add_option("--plot", r.plot, "draw the six panels of the seed's Fig. 7 to FILE.png or FILE.svg"), "--plot",
                scene, true);

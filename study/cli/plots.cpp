@@ -35,8 +35,7 @@ struct Table {
 
 // Strict: a row cut short or with a field too many, or a number column holding something that is
 // neither a finite number nor '-', is refused naming the file and line. A truncated samples.tsv
-// was plotted with its last row read past its end, a garbled value drawn as NaN (issue 16,
-// corrupt-file tier). The text columns are status, d2_status, nonlinearity and message.
+// was plotted with its last row read past its end, a garbled value drawn as NaN. The text columns are status, d2_status, nonlinearity and message.
 Table read_table(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw StudyError("study plot", path, "cannot be read (run `study sweep` into this directory first)");

@@ -86,7 +86,7 @@ std::string rules_revision(const std::string& text) {
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);)
     if (line.rfind(rules_key, 0) == 0) return "revision " + line.substr(std::strlen(rules_key));
-  return "revision 1 (a spec without an analysis.rules line, written before 2026-12-03)";
+  return "revision 1 (a spec without an analysis.rules line, written before the revision was recorded)";
 }
 
 // The first line where two texts differ, for the resume refusal.
@@ -150,7 +150,7 @@ void write_atomically(const fs::path& path, const std::string& text) {
     const int error = errno;
     std::fclose(f);
     if (!ok) {
-      std::remove(tmp.c_str());  // a full disk left samples.tsv.tmp.PID behind (issue 16)
+      std::remove(tmp.c_str());  // a full disk left samples.tsv.tmp.PID behind
       throw StudyIoError("output", tmp.string(),
                          std::string("could not be written completely (") + std::strerror(error) + ")");
     }
@@ -163,7 +163,7 @@ ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume, bool 
   const fs::path spec_file = dir_ / "spec.txt";
   if (fs::exists(dir_) && !fs::is_directory(dir_)) throw StudyError("-o", dir_.string(), "exists and is not a directory");
   // The lock comes before anything is read: two sweeps started at once into one directory would
-  // otherwise both find it empty and mix their points (issue 16).
+  // otherwise both find it empty and mix their points.
   const bool existed = fs::exists(dir_);
   fs::create_directories(dir_);
   if (lock) lock_fd_ = take_lock(dir_);
@@ -228,7 +228,7 @@ std::string ResultStore::check_point_file(std::size_t point, const std::string& 
   if (!fields.count("spec") || fields["spec"].size() < 2 || fields["spec"][1] != spec_hash_)
     return "was computed for another spec (its hash is not " + spec_hash_ + ")";
   // The check line holds the hash of everything above it: a file edited or garbled in place
-  // (a field changed, a byte flipped) was assembled as it was (issue 16, corrupt-file tier).
+  // (a field changed, a byte flipped) was assembled as it was (corrupt-file tier).
   const std::size_t check_at = text.rfind("\ncheck\t");
   if (check_at == std::string::npos) return "has no check line (damaged, or written before point files had one)";
   if (text.compare(check_at + 1, std::string::npos, "check\t" + text_hash(text.substr(0, check_at + 1)) + "\nend\n") != 0)
@@ -316,7 +316,7 @@ std::optional<std::vector<double>> ResultStore::final_state(std::size_t point) c
     if (f[0] != "final_state") continue;
     std::vector<double> x;
     for (std::size_t i = 1; i < f.size(); ++i) {
-      // std::stod threw std::invalid_argument on a garbled file: an internal error (issue 16).
+      // std::stod threw std::invalid_argument on a garbled file: an internal error.
       char* end = nullptr;
       const double v = std::strtod(f[i].c_str(), &end);
       if (f[i].empty() || *end != '\0' || !std::isfinite(v))

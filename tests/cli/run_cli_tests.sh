@@ -122,7 +122,7 @@ h=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --delay-check --json | jq -c '
     elif .status == "not_reproduced" then (.d2 == null and (.explanation | test("at delay 2")))
     else false end)]')
 [[ $h == '[true,true]' ]] && pass || fail "d2 --delay-check on Hénon gave $h"
-# Issue 15: --inclusive counts pairs at distance <= eps (TISEAN's d2), the default < eps. Expected
+# --inclusive counts pairs at distance <= eps (TISEAN's d2), the default < eps. Expected
 # counts: every pair of a 12-sample integer series enumerated here by awk (ties at both radii).
 printf '%s\n' 0 1 2 3 1 0 2 2 3 1 0 1 > "$work/ties.dat"
 want=$(awk '{ x[NR] = $1 } END {
@@ -176,8 +176,8 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --no-cross-check --json |
 l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.status, .local_maps.status, .local_maps.dimension, (.local_maps.lambda > 0.3776 and .local_maps.lambda < 0.4615)]')
 [[ $l == '["linear_region","consistent",3,true]' ]] && pass || fail "lyapunov's local-map check on henon gave $l"
 # With 1% measurement noise both divergence curves read low alike (docs/zoo-noise.md): at m = 3 Rosenstein
-# 0.362 and Kantz 0.382 agree within 10%, so their mutual check passed and the command answered 0.362 with
-# confidence before 2026-12-02 (lambda_1 = 0.4195). The local maps find no deterministic structure at the
+# 0.362 and Kantz 0.382 agree within 10%, so their mutual check alone would pass and answer 0.362 with
+# confidence (lambda_1 = 0.4195). The local maps find no deterministic structure at the
 # neighbours' scale (not_deterministic), which leaves both unconfirmed; --no-cross-check gives the plain fit.
 l=$("$CHAOS" lyapunov "$work/henon_noisy.dat" -m 3 --json | jq -c '[.status, .lambda, .local_maps.status, (.explanation | test("local"))]')
 [[ $l == '["unconfirmed",null,"not_deterministic",true]' ]] && pass || fail "lyapunov on noisy Hénon gave $l"
@@ -195,9 +195,9 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --halves --json | jq -c '[.status, .cros
 [[ $l == '["linear_region","linear_region",true]' ]] && pass || fail "lyapunov --halves on henon gave $l"
 # The zoo's Genesio-Tesi x, its first 10^4 samples, at m = 6, tau = 31, w = 63: a confident-wrong grid row of
 # docs/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
-# from the equations). Neither half of 5000 samples has a linear region, so with the halves check (the default
-# since 2026-12-02; --no-halves before it) both are not_reproduced. Without the halves, the local maps at m = 6 and
-# 7 are inconsistent, so they confirm neither slope (the rule since 2026-12-02, third session), and only
+# from the equations). Neither half of 5000 samples has a linear region, so with the halves check (the default)
+# both are not_reproduced. Without the halves, the local maps at m = 6 and
+# 7 are inconsistent, so they confirm neither slope, and only
 # --no-cross-check gives the plain 0.0858.
 "$CHAOS" zoo --series genesio_tesi -o "$work/genesio_tesi.dat" || fail "zoo --series genesio_tesi"
 l=$("$CHAOS" lyapunov "$work/genesio_tesi.dat" -l 10000 --dt 0.05 -m 6 -d 31 -t 63 --no-halves -q --json | jq -c '[.status, .cross_check.status, .local_maps.status, .lambda]')
@@ -234,7 +234,7 @@ expect_error 3 "m = 0" -- lyapunov-maps -m 0 "$work/henon.dat"
 head -c 8 "$work/lyap.png" | od -An -c | grep -q "P   N   G" && pass || fail "lyapunov --plot made no PNG"
 expect_error 3 "png or .svg" -- lyapunov "$work/henon.dat" --plot "$work/lyap.pdf"
 
-# chaos neighbors (issue 15): every structure's answers equal brute force's (the definition, run by
+# chaos neighbors: every structure's answers equal brute force's (the definition, run by
 # the command on the same points); the rows follow the structures and queries asked for.
 l=$("$CHAOS" neighbors "$work/lorenz.dat" -m 3 -d 10 -t 50 -k 3 -r 2 --norm euclidean --json | jq -c '
   [.all_equal, (.rows | length), ([.rows[] | select(.structure != "brute_force") | .equal] | unique),
@@ -270,7 +270,7 @@ expect_error 3 "check-points 0" -- neighbors --check-points 0 "$work/henon.dat"
 expect_error 2 "excludes" -- neighbors --check-points 10 --no-brute "$work/henon.dat"
 expect_error 3 "norm must be" -- neighbors --norm taxicab "$work/henon.dat"
 
-# Issue 16, item 8: mutual, autocorrelation, cao and fnn draw their curves with --plot (PNG and
+# Mutual, autocorrelation, cao and fnn draw their curves with --plot (PNG and
 # SVG, non-empty, the PNG a PNG); a wrong suffix is refused (exit 3) before any work, like d2's.
 for cmd in mutual autocorrelation cao fnn; do
   for ext in png svg; do
@@ -447,7 +447,7 @@ expect_error 3 "--json writes a case's series: give --series NAME" -- zoo --fast
 "$CHAOS" generate white_noise -l 5000 --seed 3 | awk '{ if ($1 !~ /^#/) { s += $1; print s } }' > "$work/walk.dat"
 l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, .lambda_status, (.stationarity_explanation | test("increments"))]')
 [[ $l == '[false,"not_run","not_run",true]' ]] && pass || fail "analyze on a random walk gave $l"
-# Issue 16, item 8: analyze --plot draws the evidence in one figure (mutual information, Cao, false
+# Analyze --plot draws the evidence in one figure (mutual information, Cao, false
 # neighbours, D2 local slopes); a step that did not run is an empty panel that says so, not a failure.
 "$CHAOS" analyze --builtin-length 20000 --surrogates 4 --plot "$work/analyze.png" > /dev/null
 head -c 8 "$work/analyze.png" | od -An -c | grep -q "P   N   G" && pass || fail "analyze --plot made no PNG"
@@ -457,7 +457,7 @@ expect_error 3 "^chaos: error \[invalid_parameter\]: .*png or .svg" -- analyze -
 expect_error 3 "^chaos: error \[io\]: --plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exist" -- \
   analyze --plot "$work/no_such_dir/p.png"
 
-# Issue 16, item 8: on the logistic map analyze took delay 17, a noise-floor minimum of the mutual
+# On the logistic map analyze took delay 17, a noise-floor minimum of the mutual
 # information, and called the series stochastic. A map decorrelates within one sample (its
 # autocorrelation is below 1/e at lag 1), so the delay is 1 (chaos/automatic_analysis.hpp), and
 # then the r = 4 map's known values come out: D2 = 1 (an absolutely continuous invariant density)
@@ -479,7 +479,7 @@ l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.lambda_local_maps, .lamb
 [[ $l == '[null,"not_run",null]' ]] && pass || fail "analyze local maps on a random walk gave $l"
 "$CHAOS" analyze "$work/logistic.dat" | grep -q "^largest_lyapunov_exponent_local_maps	0.6" && pass || fail "analyze text lacks the local-maps line"
 
-# Issue 16, negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
+# Negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
 # autocorrelation, "internal error: vector::..." in d2, surrogates and analyze, 6.7 GB in density).
 # A value the option's type cannot hold is a usage error, exit 2 (docs/input.md), naming the option.
 expect_error 2 "^--max-delay: '-1' is negative" -- mutual -D -1 "$work/henon.dat"
@@ -503,7 +503,7 @@ expect_error 3 "length -l must be in 1..100000000 \(got 9223372036854775808\)" -
 expect_error 3 "iterations \+ transient = 9223372036854775808 is more than 1e15" -- spectrum henon --iterations 9223372036854775808
 expect_error 3 "highest of the 9223372036854775808 dimensions" -- lyapunov --dimensions 9223372036854775808 "$work/henon.dat"
 
-# Issue 16, item 4: extreme scales. A Lorenz series times 1e150 gave -nan autocorrelation rows, d2
+# Extreme scales. A Lorenz series times 1e150 gave -nan autocorrelation rows, d2
 # asked for "at least 9223372036854775814" samples, and times 1e306 d2 and lyapunov fell back to
 # a wrong Theiler window and gave wrong numbers, all with exit 0. Every estimate is independent of
 # the scale: times a power of two (exact) the autocorrelation, the Theiler windows and lyapunov
@@ -538,7 +538,7 @@ for f in 1e121 1e150 1e306 1e-170 1e-300 4.9e-324; do
   done
 done
 
-# Issue 16, item 8: a spreadsheet's CSV with a UTF-8 byte-order mark and a "time,value" header
+# A spreadsheet's CSV with a UTF-8 byte-order mark and a "time,value" header
 # failed with "'time' is not a number". It is read (docs/input.md), the column chosen by number or
 # by name; a name not in the header is refused with the names; a huge bad token is cut.
 { printf '\xEF\xBB\xBFtime,value\n'; awk '!/^#/ { printf "%d,%s\n", NR, $1 }' "$work/henon.dat"; } > "$work/henon.csv"
@@ -551,10 +551,10 @@ expect_error 2 "^--column: '-1' is neither a column number" -- mutual "$work/hen
 err=$("$CHAOS" mutual "$work/huge_token.dat" 2>&1)
 [[ ${#err} -lt 300 && $err == *"... (1000000 bytes)' is not a number"* ]] && pass || fail "a 1 MB token is echoed: ${err:0:300}"
 
-# Issue 16, item 8: chaos d2 on 10^6 points ran for over 15 minutes with no word. Above 2e5 points
+# Chaos d2 on 10^6 points ran for over 15 minutes with no word. Above 2e5 points
 # (exact sums) it says so with the option that shortens it, and on a terminal it draws a progress
 # line after 2 s (util-linux `script` gives it one); -q silences both. Each run is cut after 4 s.
-# -M 3: since issue 15, m <= 2 alone takes under 2 s at this N (m = 2 is counted without
+# -M 3: m <= 2 alone takes under 2 s at this N (m = 2 is counted without
 # enumerating pairs), too short for a progress line; m = 3 takes about 30 s.
 "$CHAOS" generate lorenz -l 250000 --components x > "$work/long.dat"
 err=$(timeout 4 "$CHAOS" d2 "$work/long.dat" -M 3 -o /dev/null 2>&1 >/dev/null)
@@ -565,7 +565,7 @@ if command -v script >/dev/null; then
   tty_err=$(timeout 10 script -qec "timeout 4 '$CHAOS' d2 '$work/long.dat' -M 3 -o /dev/null" /dev/null | tr '\r' '\n')
   grep -q '^\[#* *\] correlation sums .* s left' <<<"$tty_err" && pass || fail "d2 drew no progress line on a terminal: ${tty_err:0:300}"
 fi
-# Issue 16, item 8: the other long commands (lyapunov, cao, fnn, surrogates, nonlinearity,
+# The other long commands (lyapunov, cao, fnn, surrogates, nonlinearity,
 # analyze) share d2's progress line and hint (common.hpp: Progress); -q silences both. Each run is
 # cut after 1 s (the hint comes before the work), two draw on a terminal for 3.5 s.
 for cmd in lyapunov cao fnn surrogates nonlinearity analyze; do
@@ -583,7 +583,7 @@ if command -v script >/dev/null; then
   done
 fi
 
-# Issue 16, item 7: the README's order, options first and the file last, read the file as another
+# The README's order, options first and the file last, read the file as another
 # value of a list option (d2 --radius-list a,b FILE, section -c 1 FILE). Each list option takes
 # one argument per occurrence (comma-separated), so the file is the file.
 a=$("$CHAOS" d2 --radius-list 0.05,0.1,0.2 "$work/henon.dat" -d 1 -M 3 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
@@ -593,7 +593,7 @@ b=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --radius-list 0.05,0.1,0.2 --json | 
 a=$("$CHAOS" section -c 1,2 "$work/xyz.dat" --stroboscopic 10 | grep -vc '^#')
 [[ $a == 200 ]] && pass || fail "section -c 1,2 FILE gave $a rows, expected 2000 / 10"
 
-# Issue 16, item 7: "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
+# "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
 # the main help with exit 0; -o naming the input file overwrote the data; an unwritable -o failed
 # only after the work. An unknown command is a usage error (2) naming it; a bad -o is refused
 # before any work with exit 3 (docs/input.md: invalid input), the data untouched.
@@ -604,7 +604,7 @@ expect_error 3 "-o .*data.dat is the input file" -- mutual "$work/data.dat" -o "
 expect_error 3 "-o .*data.dat is the input file" -- mutual -o "$work/data.dat" "$work/data.dat"
 cmp -s "$work/henon.dat" "$work/data.dat" && pass || fail "-o naming the input file changed the data"
 expect_error 3 "-o .*/no_such_dir/out.tsv: the directory .*no_such_dir does not exist" -- d2 "$work/henon.dat" -o "$work/no_such_dir/out.tsv"
-# Issue 16, item 7: an unwritable --plot failed only after the work. Every command with --plot
+# An unwritable --plot failed only after the work. Every command with --plot
 # (d2, lyapunov, density; since item 8 also mutual, autocorrelation, cao, fnn) refuses it with
 # -o's rules while reading the command line: exit 3 and the message naming --plot and the path,
 # before the series is read (a missing series file is not what the message names).
@@ -623,7 +623,7 @@ for cmd in generate mutual autocorrelation cao fnn d2 analyze lyapunov spectrum 
   "$CHAOS" "$cmd" --help >/dev/null && pass || fail "chaos $cmd --help"
 done
 
-# Issue 16, item 7: a typo in --filter ran nothing and exited 0; it is refused (exit 3) by name.
+# A typo in --filter ran nothing and exited 0; it is refused (exit 3) by name.
 expect_error 3 "--filter 'henon.x.caoo' matches no case id" -- validate --filter henon.x.caoo
 
 # validate lists the compiled-in reference table.

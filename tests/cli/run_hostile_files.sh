@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Corrupt files (issue 16): series files to every `chaos` command that reads one, scene files to
+# Corrupt files: series files to every `chaos` command that reads one, scene files to
 # `mechanism simulate` and `scene`, `study sweep` and `study pipeline`, and result files (a point file,
 # spec.txt and the lock of a `study sweep` directory, then --resume; the assembled tables, then
 # `study plot`). Each run must end within its time limit with an exit code below 128 that is not 1

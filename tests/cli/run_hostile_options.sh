@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile values for every numeric option of every `chaos` command (issue 16): -1, 0, huge (2^63,
+# Hostile values for every numeric option of every `chaos` command: -1, 0, huge (2^63,
 # 1e300), nan and inf. Each run must end within its time limit with an exit code below 128 that
 # is not 1 (README.md: 1 is an internal error, a bug; >= 128 is a signal, a crash), a message on
 # stderr when it refuses, and no NaN in what it writes. The options are read from each command's

@@ -4,7 +4,7 @@
 //   Hénon (a = 1.4, b = 0.3): lambda1 = 0.41922 per iteration (Sprott 2003), band [0.39, 0.44];
 //   logistic r = 4: lambda = ln 2 (analytic, conjugacy to the tent map), band [0.64, 0.74];
 //   Lorenz (10, 28, 8/3): lambda1 = 0.9056 per time unit (Sprott 2003), band [0.82, 0.98];
-// all from issue 4. Each test takes well under a second on one core.
+// as stated in each test. Each test takes well under a second on one core.
 #include "chaos/lyapunov.hpp"
 
 #include <gtest/gtest.h>

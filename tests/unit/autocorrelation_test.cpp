@@ -126,7 +126,7 @@ void expect_refused(F&& f, chaos::ErrorCode code, const std::string& fragment) {
   }
 }
 
-// Issue 16: a Lorenz series times 1e150 gave -nan rows and a wrong zero crossing, and so did one
+// A Lorenz series times 1e150 gave -nan rows and a wrong zero crossing, and so did one
 // below 1e-170 or in denormals. r(k) does not depend on the scale: times a power of two it is the
 // same bit for bit (the series is divided by a power of two internally, which is exact), and even
 // in denormals, where few bits are left, it stays a finite correlation with the same crossing.

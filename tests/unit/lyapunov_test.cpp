@@ -640,7 +640,7 @@ TEST(LyapunovCrossCheck, TwoEstimatesWithinTheToleranceStandAndAnythingElseIsUnc
 
 TEST(LyapunovCrossCheck, HenonIsConfirmedByBothEstimators) {
   // Henon x, N = 5000, m = 2: both estimators have a linear region near lambda_1 = 0.41922 (Sprott;
-  // docs/reference-values.md), within 10% of each other, so the check leaves both standing; the
+  // references/references.tsv), within 10% of each other, so the check leaves both standing; the
   // per-time values survive with them.
   const auto x = chaos::henon(5000).components[0];
   LyapunovOptions o;
@@ -715,7 +715,7 @@ TEST(LyapunovHalves, ARegionStaysOnlyWhenAHalfShowsItAndNoHalfContradictsIt) {
 
 TEST(LyapunovHalves, HenonIsReproducedAndAShortRotatingFlowIsNot) {
   // Henon x, N = 2 * 10^4, m = 2: each half of 10^4 iterations diverges at lambda_1 = 0.41922 (Sprott;
-  // docs/reference-values.md) as the whole does, so the check keeps the value and its per-time twin.
+  // references/references.tsv) as the whole does, so the check keeps the value and its per-time twin.
   const auto h = chaos::henon(20000).components[0];
   LyapunovOptions o;
   o.dimension = 2;

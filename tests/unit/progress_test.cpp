@@ -1,4 +1,4 @@
-// The progress callbacks of the long estimators (issue 16, item 8: the commands draw them): every
+// The progress callbacks of the long estimators (the commands draw them): every
 // report is a fraction in [0, 1] that never goes back, some are made, and the result is the one
 // computed without a callback. Expected values are the same calls without `progress`.
 

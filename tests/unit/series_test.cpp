@@ -56,7 +56,7 @@ TEST(ReadSeries, NumberFormats) {
   EXPECT_EQ(values[3], 4.9e-324);  // the smallest subnormal survives parsing
 }
 
-// Issue 16, item 8: a spreadsheet's CSV ("time,value" header, often after a UTF-8 byte-order
+// A spreadsheet's CSV ("time,value" header, often after a UTF-8 byte-order
 // mark) failed with "'time' is not a number". The mark is skipped, a first data line with no
 // number on it is a header, and a column can be named by it; -x and -l count the rows after it.
 TEST(ReadSeries, HeaderRowByteOrderMarkAndColumnNames) {
@@ -101,7 +101,7 @@ TEST(ReadSeries, RefusedTokensAreShownShortAndVisible) {
   expect_refusal([] { read("nan\n1\n"); }, ErrorCode::non_finite, {"input.dat:1"});  // not a header
 }
 
-// Issue 16, corrupt-file tier: a file with lone CR line ends (or CR, LF and CR LF mixed) was read
+// Corrupt-file tier: a file with lone CR line ends (or CR, LF and CR LF mixed) was read
 // as one line of many columns, so column 1 gave a one-sample series (or silently fewer samples);
 // 1e400 was "not a number"; a line of NUL bytes passed for a header; a directory was "read error".
 TEST(ReadSeries, LineEndsRangeAndBinary) {
@@ -194,7 +194,7 @@ TEST(Checks, ConstantFiniteLength) {
   EXPECT_NO_THROW(chaos::require_not_constant(tiny, "s"));  // tiny but distinct values are dynamics
 }
 
-// Issue 16: beyond |x| = 1e120 or below a spread of 1e-120 the estimators' sums of squares
+// Beyond |x| = 1e120 or below a spread of 1e-120 the estimators' sums of squares
 // overflow or underflow; such a series is refused with its numbers and the bound (series.hpp).
 TEST(Checks, Scale) {
   expect_refusal([] { chaos::require_scale(std::vector<double>{1.0, 2e150}, "s"); }, ErrorCode::scale,

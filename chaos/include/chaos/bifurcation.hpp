@@ -47,7 +47,7 @@ enum class BinRule {
 };
 
 // More bins than this resolve nothing a plot or a table can show, and each parameter value holds
-// a density per bin: the cap keeps a mistyped count (issue 16: -b -1 read as 2^64-1) from
+// a density per bin: the cap keeps a mistyped count (-b -1 read as 2^64-1) from
 // allocating gigabytes.
 inline constexpr std::size_t max_density_bins = 100000;
 

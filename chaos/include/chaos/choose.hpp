@@ -112,9 +112,11 @@ inline constexpr std::size_t fallback_delay = 1;
 inline constexpr std::size_t fallback_dimension = 2;
 EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional<std::size_t> delay,
                                         std::optional<std::size_t> theiler, const DelaySearch& search = {});
-// ... and the dimension (Cao's method up to max_dimension when it is left out).
+// ... and the dimension (Cao's method up to max_dimension when it is left out; `progress` is
+// called with Cao's fraction done, and may throw to stop it).
 EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::size_t> delay,
                                  std::optional<std::size_t> theiler, std::optional<std::size_t> dimension,
-                                 const DelaySearch& search = {}, std::size_t max_dimension = 10);
+                                 const DelaySearch& search = {}, std::size_t max_dimension = 10,
+                                 std::function<void(double)> progress = nullptr);
 
 }  // namespace chaos

@@ -129,8 +129,8 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
 // region stands only where the local-map result is `consistent` and its value differs from the slope
 // by at most `tolerance` times their mean; otherwise the fit becomes `unconfirmed`: its value and
 // region are withdrawn, and its explanation says why (both values where both exist). Where the maps
-// are `inconsistent` or `not_positive` they confirm nothing (since 2026-12-02: before, only a
-// contradiction withdrew a slope, and Sprott F x with 1% noise kept a slope 15% low that Rosenstein
+// are `inconsistent` or `not_positive` they confirm nothing (with only a contradiction withdrawing
+// a slope, Sprott F x with 1% noise kept a slope 15% low that Rosenstein
 // and Kantz agreed on, beside inconsistent maps; docs/zoo-notes.md, section 4). The local-map value
 // keeps its status: it has passed its own ten variants, and the disagreements found so far were the
 // divergence curves' known low bias on flows (Genesio-Tesi: Rosenstein 10% low, inside a straight

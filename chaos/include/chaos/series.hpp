@@ -49,7 +49,7 @@ void require_finite(std::span<const double> x, const std::string& what);
 void require_not_constant(std::span<const double> x, const std::string& what);
 // The estimators square and sum distances and FFT coefficients: beyond |x| = 1e120 those overflow
 // double, and below a spread (max - min) of 1e-120 they underflow, giving NaN or a silently wrong
-// answer. Inside these bounds every estimate is unchanged by scaling the series (issue 16), so a
+// answer. Inside these bounds every estimate is unchanged by scaling the series, so a
 // series outside them is refused with its numbers and the advice to rescale it. A constant series
 // (spread 0) passes, for require_not_constant to name.
 inline constexpr double largest_magnitude = 1e120;

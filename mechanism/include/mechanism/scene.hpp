@@ -87,7 +87,7 @@ struct TranslationalJoint {
   JointKind kind = JointKind::clearance;
   double clearance = 0.5e-3;  // gap per side: guide height = slider height + 2 clearance
   // The built-in reading of the seed's slider joint is the one that passes the physics audit
-  // (issue 12; docs/mechanism/scene.md): a line contact (conserves energy from any tilt), Eq. 11
+  // (docs/mechanism/scene.md): a line contact (conserves energy from any tilt), Eq. 11
   // with exponent 1 (its stiffness is in N/m), and the normalised LuGre of Eqs. 14-15 with sigma1
   // fading (bounded by mu F_N). The seed's printed reading is `model = "face"`, `exponent = 1.5`,
   // `law = "lugre_absolute"`, `sigma1_velocity = 0`.
@@ -175,7 +175,7 @@ struct IntegratorSettings {
 
 // Refused before a run starts (read_scene, check_run_size): more simulated steps, or more
 // time-series rows, than these. No run of the seed's comes near them (about 1e7 steps and 1e5
-// rows); beyond them a run would not finish or would fill the disk (issue 16: a duration of
+// rows); beyond them a run would not finish or would fill the disk (a duration of
 // 1.9e13 s wrapped the step count to 0 and "completed"; an output interval of 1e-300 s wrote rows
 // until the disk was full). integrator.max_steps stays the run-time limit below them.
 inline constexpr double max_run_steps = 1e12;

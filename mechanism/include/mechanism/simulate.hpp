@@ -24,7 +24,7 @@ const char* to_string(SimulationStatus status) noexcept;
 // (docs/mechanism/model.md, "The energy balance"): sigma1 fading, dopri5 rtol 1e-4, 2e-8 per
 // revolution; rtol 1e-3 with steps up to 1e-4 s (scripts/demo.sh) at most 1.2e-4; the scene as
 // printed (constant sigma1) with RK4 at 5000 rpm at most 5e-3; the same at 50 rpm and 1e-6 m
-// clearance (issue 16) 0.18, whose stroboscopic samples are the constant sigma1's kicks, not the
+// clearance 0.18, whose stroboscopic samples are the constant sigma1's kicks, not the
 // mechanism. 0.03 is the geometric middle of the last two, six times from either.
 inline constexpr double max_energy_defect_per_revolution = 0.03;
 // The same limit holds for one step: a run is `energy_defect` when a single step changes the

@@ -408,7 +408,7 @@ def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, toler
 
 
 def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
-                 max_iterations=1000, delay=1, dimension=3, theiler=0, horizon=1, neighbours=5, norm="max",
+                 max_iterations=1000, delay=None, dimension=None, theiler=None, horizon=1, neighbours=5, norm="max",
                  end_match=False, progress=None, dt=None, column=1, skip=0, length=None):
     """Rank-order surrogate test for nonlinearity (``chaos nonlinearity``).
 
@@ -417,6 +417,9 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
     ``count`` surrogates; the null hypothesis (a linear Gaussian process, measured through a monotonic
     function) is rejected at significance 1/(count+1) one-sided, 2/(count+1) two-sided, when the data
     rank first or last. Schreiber and Schmitz, Physica D 142, 346 (2000). docs/nonlinearity_test.md.
+
+    ``delay``, ``dimension`` and ``theiler`` left out are chosen on the data as ``analyze`` chooses
+    them (the same embedding for the data and every surrogate); ``parameters`` names each rule.
 
     Result keys: statistic, statistic_name, surrogate_statistics, rank, count, below, above, ties,
     rejected, significance, surrogates_not_converged. Statistics within 1e-9 relative of the data's

@@ -65,10 +65,10 @@ struct SweepSpec {
 // The largest --max-dimension worth computing, 33: an analysed series has at most
 // mechanism::max_output_rows = 1e8 samples, so no dimension above 2 log10 N = 16 can be measured
 // in it (Eckmann & Ruelle 1992), and 2 D + 1 = 33 embeds any that can (Takens 1981). Beyond it
-// the analysis of every point fails (issue 16: --max-dimension 1000 needed 22232 samples of 2401).
+// the analysis of every point fails (--max-dimension 1000 needed 22232 samples of 2401).
 std::size_t largest_analysis_dimension();
 
-// Refuses analysis options outside their ranges before any point runs (issue 16: --max-delay 0
+// Refuses analysis options outside their ranges before any point runs (--max-delay 0
 // and --max-dimension 1000 failed every point's analysis): interval <= 0, samples_per_period 1,
 // max_delay 0 without a given delay, max_dimension outside 2 .. largest_analysis_dimension().
 // The message names the command-line option.

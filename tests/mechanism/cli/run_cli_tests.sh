@@ -36,7 +36,7 @@ expect 3 "is not a signal" -- simulate -q --set run.duration=0.001 --signals t,n
 expect 2 "" -- simulate --no-such-flag
 # The seed's printed mu_s < mu_k is accepted with a warning.
 expect 0 "no stiction peak" -- scene
-# Issue 16, item 8: the warnings printed on every run; simulate -q silences them.
+# The warnings printed on every run; simulate -q silences them.
 expect 0 "no stiction peak" -- simulate --set run.duration=0.001 -o /dev/null
 expect 0 "" -- simulate -q --set run.duration=0.001 -o /dev/null
 [[ ! -s $work/err ]] || fail "simulate -q still warns: $(head -c 300 "$work/err")"
@@ -67,8 +67,8 @@ expect 5 "no plot: the run wrote no samples" -- simulate -q -o /dev/null --set i
   --set run.transient=0.001 --set run.duration=0.001 --plot "$work/none.png"
 [[ ! -e $work/none.png ]] || fail "a run with no samples still drew $work/none.png"
 
-# Issue 16, item 6: 1e-6 m clearance at 50 rpm on the scene as printed (face contact, exponent 1.5,
-# absolute LuGre with a constant sigma1; the built-in scene's reading since issue 12 completes it)
+# 1e-6 m clearance at 50 rpm on the scene as printed (face contact, exponent 1.5,
+# absolute LuGre with a constant sigma1; the built-in scene's reading completes it)
 # reported "completed" with energy_balance_relative 0.53 (3 revolutions). Half a revolution
 # measures 0.075, above the limit of 0.03 per revolution (mechanism/simulate.hpp): status
 # energy_defect, exit 5, the numbers named.
@@ -77,7 +77,7 @@ expect 5 "above the limit 0.03" -- simulate -q --json "${printed[@]}" --set join
   --set driver.speed_rpm=50 --set run.duration=0.6 --set run.output_interval=0
 [[ $(jq -r .status "$work/out") == energy_defect ]] || fail "the issue's case has status $(jq -r .status "$work/out"), expected energy_defect"
 
-# Issue 16, item 5: runs that did nothing or never ended. A duration of 1.9e13 s wrapped the RK4
+# Runs that did nothing or never ended. A duration of 1.9e13 s wrapped the RK4
 # step count to 0 and "completed"; an output interval of 1e-300 s wrote rows until the disk was
 # full. Both are refused before the run (exit 3, README.md) with the numbers and the limit
 # (mechanism/scene.hpp: 1e12 steps, 1e8 rows).
@@ -88,12 +88,12 @@ expect 3 "run.output_interval = 1e-300: gives 6e+298 rows over run.duration 0.06
 expect 3 "integrator.max_steps = 1e+30: must be at most 1e+12" -- simulate -q --set integrator.max_steps=1e30
 [[ ! -s $work/out ]] || fail "a refused run wrote rows"
 
-# Issue 16, item 7: a scene file after --set k=v was read as another --set value ("must be
+# A scene file after --set k=v was read as another --set value ("must be
 # KEY=VALUE"). Each --set takes one value; the file is the scene, the override applies.
 "$m" scene --set joint.slider.clearance=2e-4 "$work/default.toml" > "$work/order.toml" 2> "$work/err" || fail "scene --set k=v FILE: $(head -c 300 "$work/err")"
 grep -A12 '^\[joint.slider\]' "$work/order.toml" | grep -q '^clearance = 2e-04$' || fail "scene --set k=v FILE did not apply the override"
 
-# Issue 16, item 7: -o naming the input overwrote it, and an unwritable -o or --plot failed only
+# -o naming the input overwrote it, and an unwritable -o or --plot failed only
 # after the whole run. Both are refused while the command line is read (exit 3, README.md), with
 # the option and the path named; a run of 1e13 s would be refused too, so the message shows the
 # output was checked first.
@@ -107,10 +107,10 @@ expect 3 "--plot .*/no_such_dir/p.png: the directory .*no_such_dir does not exis
   --plot "$work/no_such_dir/p.png" --set run.duration=1e13
 expect 3 "--plot: the file must end in .png or .svg" -- simulate -q --json --plot "$work/p.pdf" --set run.duration=1e13
 
-# Issue 16, item 7: a directory given as the scene ran the built-in scene; it is refused (exit 3).
+# A directory given as the scene ran the built-in scene; it is refused (exit 3).
 expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 
-# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+# An unknown command is named (exit 2), also with --help after it.
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
 

@@ -34,7 +34,7 @@ SceneLyapunov run(std::vector<std::string> overrides, double perturbation = 1e-8
   return scene_lyapunov(read_scene("", overrides), o);
 }
 
-// The audit's generic start: tilted and spinning (issue 12), the line model (conservative).
+// The audit's generic start: tilted and spinning, the line model (conservative).
 std::vector<std::string> tilted(const std::string& restitution) {
   return {"joint.slider.model=line", "joint.slider.friction.law=none", "joint.slider.contact.restitution=" + restitution,
           "initial.slider_angle=0.01", "initial.slider_rate=20"};

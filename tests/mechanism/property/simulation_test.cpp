@@ -186,7 +186,7 @@ TEST(Simulation, NormalisedLuGreAndCoulombStayWithinMuTimesTheNormalForce) {
   //   term is therefore at most sigma1 v_d (1 + mu_max / mu_min) / sqrt(2 e), the maximum over v. Here
   //   that is 400 * 1e-3 * 2.1 / 2.33 = 0.36. Where the cap is active (|v| above g / (sigma0 floor) =
   //   1 m/s), the fading factor is exp(-1e6) = 0. sigma2 = 0 in the scene.
-  // The absolute form (the seed's printed reading, the built-in one before issue 12) has no such
+  // The absolute form (the seed's printed reading, once the built-in one) has no such
   // bound: z_ss scales with the normal force it had, and 1% of its contact samples exceed 8 mu F_N
   // even with sigma1 = 0 (scripts/measure_friction_bound.sh).
   const double mu_max = 0.11, mu_min = 0.1, sigma1 = 400, v_d = 1e-3;

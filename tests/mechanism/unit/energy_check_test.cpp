@@ -1,6 +1,6 @@
-// The energy check on a finished run (simulate.hpp, max_energy_defect_per_revolution): issue 16's
+// The energy check on a finished run (simulate.hpp, max_energy_defect_per_revolution): a hostile-input
 // case, 1e-6 m clearance at 50 rpm on the scene as printed (face contact, exponent 1.5, absolute
-// LuGre with a constant sigma1: the built-in reading before issue 12), reported
+// LuGre with a constant sigma1: once the built-in reading), reported
 // `completed` with energy_balance_relative 0.53 after 3 revolutions. Half a revolution of it is
 // measured at 0.075 (counted as one revolution, 2.5 times the limit of 0.03); the same run with
 // sigma1 fading (the scene's own warning) measures 3e-11 and must stay completed, so the check

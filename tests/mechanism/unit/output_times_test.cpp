@@ -35,7 +35,7 @@ TEST(OutputTimes, RevolutionJustAfterAStepEndIsWritten) {
 
 }  // namespace
 
-// Found by issue 16's sweep at --periods 3 --keep 1: at 5000 rpm (T = 0.012 s) a transient of
+// Found by a sweep at --periods 3 --keep 1: at 5000 rpm (T = 0.012 s) a transient of
 // 2 T plus a duration of T sum to 0.036000000000000004 s, while RK4's last step ended at
 // 36000 h = 0.036 s, just short of it: the run stopped there and the last revolution (t = 3 T,
 // the only one kept) was never written. Expected: the run ends at its end time and writes

@@ -79,7 +79,7 @@ TEST(Scene, RefusesUnknownKeysWrongTypesAndImpossibleValues) {
   EXPECT_NE(refusal("", {"joint.slider.clearance=0"}).find("joint.slider.clearance"), std::string::npos);
   EXPECT_NE(refusal("", {"integrator.step=0"}).find("integrator.step"), std::string::npos);
   EXPECT_NE(refusal("", {"conrod.length=0.05"}).find("must exceed crank.length + joint.slider.clearance"), std::string::npos);
-  // Issue 16, corrupt-file tier: a huge clearance was refused naming only conrod.length and "the
+  // Corrupt-file tier: a huge clearance was refused naming only conrod.length and "the
   // clearances"; a step of 1e-320 s as "needs inf RK4 steps of 0.0 s". The keys are named, and a
   // subnormal size, modulus or step is refused as such.
   EXPECT_NE(refusal("", {"joint.crank_ground.type=\"clearance\"", "joint.crank_ground.clearance=1.0"})
@@ -235,7 +235,7 @@ TEST(Scene, AcceptsEveryLawByItsOwnName) {
 
 TEST(Scene, WarnsWhenStaticFrictionIsBelowKinetic) {
   // The seed prints mu_s = 0.1 < mu_k = 0.11 (kept in the built-in scene, so it warns) and a
-  // constant sigma1 (the built-in scene fades it since issue 12; set back to 0 it warns too).
+  // constant sigma1 (the built-in scene fades it; set back to 0 it warns too).
   EXPECT_EQ(scene_warnings(read_scene("")).size(), 1u);
   EXPECT_EQ(scene_warnings(read_scene("", {"joint.slider.friction.sigma1_velocity=0"})).size(), 2u);
   EXPECT_TRUE(scene_warnings(read_scene("", {"joint.slider.friction.static_coefficient=0.12",

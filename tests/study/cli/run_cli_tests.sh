@@ -33,16 +33,16 @@ expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/
 expect_message "is not a signal" "unknown signal"
 expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
 expect_message "cannot be opened" "missing scene file"
-# Issue 16, item 7: an unknown command is named (exit 2), also with --help after it.
+# An unknown command is named (exit 2), also with --help after it.
 expect_code 2 "unknown command" "$STUDY" foo --help
 expect_message "unknown command 'foo'; the commands are: sweep, pipeline, plot" "unknown command"
-# Issue 16, items 6-7: a directory as the scene ran the built-in scene and spec.txt recorded the
+# A directory as the scene ran the built-in scene and spec.txt recorded the
 # directory; --max-delay 0 failed every point's analysis with exit 0. Both are refused up front.
 expect_code 3 "directory as scene" "$STUDY" sweep "$work" -o "$work/x"
 expect_message "is a directory, not a scene file" "directory as scene"
 expect_code 3 "max-delay 0" "$STUDY" sweep --analysis --max-delay 0 -o "$work/x"
 expect_message "max-delay = 0: must be at least 1 sample" "max-delay 0"
-# Issue 16, item 6: --max-dimension 1000 failed every point's analysis with exit 0; the range is
+# --max-dimension 1000 failed every point's analysis with exit 0; the range is
 # 2 .. 33 (study/sweep.hpp: Eckmann-Ruelle and Takens on the mechanism's 1e8-row limit), checked
 # before the run by sweep and pipeline alike.
 expect_code 3 "max-dimension 1000" "$STUDY" sweep --analysis --max-dimension 1000 -o "$work/x"
@@ -67,7 +67,7 @@ grep -q '^lyapunov.periods = 10$' "$work/lyap/spec.txt" || fail "sweep --lyapuno
 [[ $(jq -r .lyapunov_failed "$work/out") == 0 ]] || fail "sweep --lyapunov: lyapunov_failed is not 0"
 expect_code 3 "lyapunov periods 5" "$STUDY" sweep --lyapunov --lyapunov-periods 5 -o "$work/x"
 expect_message "lyapunov-periods = 5: must be >= 10" "lyapunov periods 5"
-# Issue 16, items 3 and 5: --periods -1 was read as 2^64-1 and "completed" with nothing done. A
+# --periods -1 was read as 2^64-1 and "completed" with nothing done. A
 # negative count is a usage error (exit 2); a run too large to finish is refused (exit 3).
 expect_code 2 "negative periods" "$STUDY" sweep --periods -1 -o "$work/x"
 expect_message "'-1' is negative" "negative periods"
@@ -75,8 +75,8 @@ expect_code 3 "periods beyond any run" "$STUDY" sweep --periods 9223372036854775
 expect_message "point 0's run is too large" "periods beyond any run"
 [[ ! -e "$work/x/points" ]] || fail "a refused sweep left a result directory"
 
-# Issue 16, item 6: at 1e-6 m clearance and 50 rpm (the scene as printed: face contact, exponent
-# 1.5, absolute LuGre with a constant sigma1, no longer the built-in reading since issue 12)
+# At 1e-6 m clearance and 50 rpm (the scene as printed: face contact, exponent
+# 1.5, absolute LuGre with a constant sigma1, no longer the built-in reading)
 # energy_balance_relative was 0.53 with status "completed" and 0 failed points. One revolution
 # measures 0.18, above the limit of 0.03 per revolution (mechanism/simulate.hpp): the point is
 # energy_defect, counted as failed, exit 5 (docs/study.md); the 5000 rpm point of the same sweep
@@ -133,7 +133,7 @@ expect_code 0 "resume after SIGKILL" "$STUDY" sweep "${long[@]}" -o "$work/k" --
 [[ $(jq -r .resumed_from_disk "$work/out") == "$before" ]] || fail "resume after SIGKILL did not keep the $before finished point(s): $(cat "$work/out")"
 cmp -s "$work/u/samples.tsv" "$work/k/samples.tsv" || fail "a sweep killed and resumed differs from an uninterrupted one"
 
-# Issue 16, item 1: a second sweep into a directory another sweep is writing is refused (exit 3,
+# A second sweep into a directory another sweep is writing is refused (exit 3,
 # docs/study.md: a refused request), naming the lock's holder; the first finishes untouched.
 "$STUDY" sweep "${long[@]}" -o "$work/l" >/dev/null 2>&1 &
 holder=$!
@@ -143,7 +143,7 @@ expect_message "is in use by another sweep (process $holder holds" "a second swe
 wait "$holder" || fail "the first sweep into the held directory failed"
 cmp -s "$work/u/samples.tsv" "$work/l/samples.tsv" || fail "the held directory's sweep differs from an uninterrupted one"
 
-# Issue 16, item 2: a point file cut short (there to 1000 bytes; here to half of its size) was
+# A point file cut short (there to 1000 bytes; here to half of its size) was
 # kept on --resume. It is recomputed, said on stderr, and the table equals the uninterrupted run's.
 size=$(stat -c %s "$work/u/points/000003.tsv")
 head -c $((size / 2)) "$work/u/points/000003.tsv" > "$work/cut.tsv" && mv "$work/cut.tsv" "$work/u/points/000003.tsv"
@@ -190,7 +190,7 @@ for pair in delay_samples:delay theiler_samples:theiler cao_dimension:embedding_
   [[ $(jq -c ".analysis.${pair%%:*}" "$work/pipeline.json") == $(jq -c ".${pair##*:}" "$work/analyze.json") ]] ||
     fail "pipeline ${pair%%:*} $(jq -c ".analysis.${pair%%:*}" "$work/pipeline.json") differs from chaos analyze's ${pair##*:} $(jq -c ".${pair##*:}" "$work/analyze.json")"
 done
-# Issue 16, item 7: an unwritable --plot, --series or plot -o failed only after the work; all are
+# An unwritable --plot, --series or plot -o failed only after the work; all are
 # refused while the command line is read, exit 4 (input/output, docs/study.md), the file named;
 # a plot that is not .png or .svg exits 3. The run of 10^12 periods would be refused too (exit 3),
 # so exit 4 shows the file was checked first.
@@ -200,7 +200,7 @@ expect_code 3 "pipeline --plot not png or svg" "$STUDY" pipeline --periods 10000
 expect_message "--plot: the file must end in .png or .svg" "pipeline --plot not png or svg"
 expect_code 4 "plot -o into a missing directory" "$STUDY" plot "$work/no_such_sweep" --figure bifurcation -o "$work/no_dir/b.png"
 expect_message "-o .*/no_dir/b.png: the directory .*no_dir does not exist" "plot -o into a missing directory"
-# Issue 16, item 7: an output that cannot be written exited 3; docs/study.md says 4 (input/output).
+# An output that cannot be written exited 3; docs/study.md says 4 (input/output).
 expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
 expect_message "--series .*/no_dir/series.tsv: the directory .*no_dir does not exist" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18

@@ -73,7 +73,7 @@ TEST(SeriesAnalysis, ReportsWhatChaosAnalyzeReports) {
 TEST(SeriesAnalysis, TheDelaySearchGoesOnWhereTheFirstFindsNoMinimum) {
   // The same Lorenz x sampled ten times finer (dt = 0.001, 4*10^4 samples): its first information
   // minimum lies near 0.16 time units, about 160 samples, beyond the first search's 100. The search
-  // goes on to two Theiler windows (the library's rule, tests/unit/automatic_delay_test.cpp), and
+  // goes on to two Theiler windows (the library's rule, tests/unit/choose_test.cpp), and
   // the delay it finds is the coarse series' in time, within 15% (the grid of 16 boxes moves the
   // minimum by a few samples). Before, the point stopped at "no mutual-information minimum".
   chaos::GenerateRequest request;
@@ -175,9 +175,9 @@ TEST(SeriesAnalysis, PeriodicSeriesHasNoConfidentZeroDimension) {
   // A sine of exactly P samples per period over 6000 samples (a sweep's default series length):
   // the embedded points are P distinct points met again every period, so below the spacing of
   // neighbouring points the pair counts hold the repeats only and stop changing with eps. A slope
-  // read there is 0 to rounding: with chaos/scaling_region.cpp's rule that a region must gain
+  // read there is 0 to rounding: with chaos/src/scaling_region.cpp's rule that a region must gain
   // pairs (support) switched off, P = 12, 100 and 300 give D2 = -1.4e-31, 4.4e-31 and 4.3e-30
-  // "saturated" (measured), the issue's -3.9e-30. The curve's own dimension is 1: D2 is either
+  // "saturated" (measured); -3.9e-30 was seen on a mechanism series. The curve's own dimension is 1: D2 is either
   // near it (P = 300 resolves the curve: 1.02) or not given (no_scaling_region), never <= 0.
   for (const std::size_t period : {12, 100, 300}) {
     std::vector<double> x(6000);

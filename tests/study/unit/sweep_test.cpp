@@ -198,7 +198,7 @@ TEST(Sweep, ResumeRecomputesOnlyMissingPoints) {
 }
 
 // A directory whose points were analysed under older series-analysis rules (the delay search
-// changed on 2026-12-03) was resumed silently: old and new points mixed two rules. The spec records
+// changed) was resumed silently: old and new points mixed two rules. The spec records
 // the rules' revision; a resume that differs only there is refused with that reason, and a spec
 // from before the revision was recorded reads as revision 1. No point is computed: the spec alone
 // decides.
@@ -238,7 +238,7 @@ TEST(Sweep, ResumeRefusesPointsAnalysedUnderOtherRules) {
   fs::remove_all(dir);
 }
 
-// Issue 16, item 1: two sweeps writing one directory at once mixed their points. The directory's
+// Two sweeps writing one directory at once mixed their points. The directory's
 // lock refuses the second, naming the holder's process; it is free again once the first closes.
 TEST(Sweep, ASecondSweepIntoAHeldDirectoryIsRefused) {
   const study::SweepSpec spec = short_spec();
@@ -258,7 +258,7 @@ TEST(Sweep, ASecondSweepIntoAHeldDirectoryIsRefused) {
   fs::remove_all(dir);
 }
 
-// Issue 16, item 2: a point file cut short was kept on resume (2 of 50 rows, one cut in half).
+// A point file cut short was kept on resume (2 of 50 rows, one cut in half).
 // Every point file is checked on resume (end line, spec hash, sample count): a bad one is deleted
 // and recomputed, and the tables equal an uninterrupted run's.
 TEST(Sweep, ResumeRecomputesADamagedPointFile) {
@@ -291,7 +291,7 @@ TEST(Sweep, ResumeRecomputesADamagedPointFile) {
     store.assemble();
   }
   EXPECT_EQ(slurp(dir / "samples.tsv"), before);
-  // A sample row dropped from a file that still ends properly, and (issue 16, corrupt-file tier) a
+  // A sample row dropped from a file that still ends properly, and (corrupt-file tier) a
   // field edited in place, which was assembled as it stood (a final_state of "x" made a resumed
   // continuation chain exit with an internal error), are caught by the check line.
   const std::string again = slurp(dir / "points" / "000000.tsv");
@@ -312,7 +312,7 @@ TEST(Sweep, ResumeRecomputesADamagedPointFile) {
   fs::remove_all(dir);
 }
 
-// Issue 16, item 7: a result that cannot be written is an input/output error (exit 4 in
+// A result that cannot be written is an input/output error (exit 4 in
 // docs/study.md), not a refused request (3), and leaves no temporary file.
 TEST(Sweep, AnUnwritableResultIsAnIoError) {
   const fs::path dir = scratch("unwritable");
@@ -411,7 +411,7 @@ TEST(Sweep, RefusesImpossibleSpecs) {
 
 TEST(Sweep, AnalysisDimensionRange) {
   // 2 .. 33: 2 log10(1e8 samples, the mechanism's row limit) = 16 is the largest dimension any
-  // analysed series resolves (Eckmann-Ruelle), 2 * 16 + 1 = 33 embeds it (Takens); issue 16's
+  // analysed series resolves (Eckmann-Ruelle), 2 * 16 + 1 = 33 embeds it (Takens); a
   // --max-dimension 1000 ran and failed every point's analysis.
   EXPECT_EQ(study::largest_analysis_dimension(), 33u);
   study::SweepSpec spec = short_spec();
