@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "chaos/error.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 #include "nanoflann_search.hpp"
 
 namespace {
