@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "chaos/correlation_sum.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include "chaos/cao.hpp"
 #include "chaos/embedding.hpp"
 #include "chaos/neighbors.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "chaos/lyapunov.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "chaos/autocorrelation.hpp"
 #include "chaos/mutual_information.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -8,10 +8,10 @@
 #include <map>
 #include <vector>
 
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/surrogates.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -20,7 +20,7 @@
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/nonlinearity_test.hpp"

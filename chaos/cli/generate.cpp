@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/zoo.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
-#include "chaos/lyapunov_spectrum.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
+#include "chaos/models/zoo.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 

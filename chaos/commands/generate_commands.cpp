@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "chaos/error.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 #include "commands.hpp"
 
 namespace chaos::cli {

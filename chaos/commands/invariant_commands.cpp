@@ -5,7 +5,7 @@
 
 #include "chaos/choose.hpp"
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 #include "chaos/time_scales.hpp"
 #include "commands.hpp"
 

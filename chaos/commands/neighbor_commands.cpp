@@ -13,7 +13,11 @@
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "commands.hpp"
+// nanoflann, the outside reference, where it is built (CHAOS_WITH_NANOFLANN, on by default): the
+// test-support adaptor tests/support/nanoflann_search.hpp. Without it its rows say so.
+#if CHAOS_WITH_NANOFLANN
 #include "nanoflann_search.hpp"
+#endif
 
 namespace chaos::cli {
 
@@ -23,6 +27,7 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t no_slot = std::numeric_limits<std::size_t>::max();
 constexpr std::size_t kd_leaf_size = 8;         // the library's default
 constexpr std::size_t nanoflann_leaf_size = 10;  // nanoflann's default
+constexpr bool nanoflann_built = CHAOS_WITH_NANOFLANN;
 constexpr double grid_points_per_box = 4.0;     // BoxGrid::box_for's default, for k nearest
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -100,7 +105,9 @@ NeighborsRow nanoflann_skipped(const Setting& s, const DelayEmbedding& points, c
   NeighborsRow row = row_for(s, points, "nanoflann", query);
   row.ran = false;
   row.equal = "skipped";
-  row.note = "nanoflann has no maximum norm (its pruning bound is Euclidean): --norm euclidean runs it";
+  row.note = nanoflann_built
+                 ? "nanoflann has no maximum norm (its pruning bound is Euclidean): --norm euclidean runs it"
+                 : "this chaos was built without nanoflann (-DCHAOS_WITH_NANOFLANN=OFF)";
   return row;
 }
 
@@ -160,11 +167,12 @@ void measure_counts(const Setting& s, const DelayEmbedding& points, double radiu
     rows.push_back(row);
     ++tick.done;
   }
-  if (s.norm != Norm::euclidean) {
+  if (s.norm != Norm::euclidean || !nanoflann_built) {
     rows.push_back(nanoflann_skipped(s, points, "count"));
     ++tick.done;
     return;
   }
+#if CHAOS_WITH_NANOFLANN
   NeighborsRow row = row_for(s, points, "nanoflann", "count");
   const auto t0 = Clock::now();
   const NanoflannSearch nano(points, nanoflann_leaf_size);
@@ -178,6 +186,7 @@ void measure_counts(const Setting& s, const DelayEmbedding& points, double radiu
   judge(row, checks, mismatches());
   rows.push_back(row);
   ++tick.done;
+#endif
 }
 
 // The k nearest of every point, per structure; brute force (at the check points) first. Ours must
@@ -257,11 +266,12 @@ void measure_nearest(const Setting& s, const DelayEmbedding& points, std::size_t
     rows.push_back(row);
     ++tick.done;
   }
-  if (s.norm != Norm::euclidean) {
+  if (s.norm != Norm::euclidean || !nanoflann_built) {
     rows.push_back(nanoflann_skipped(s, points, "knn"));
     ++tick.done;
     return;
   }
+#if CHAOS_WITH_NANOFLANN
   NeighborsRow row = row_for(s, points, "nanoflann", "knn");
   const auto t0 = Clock::now();
   const NanoflannSearch nano(points, nanoflann_leaf_size);
@@ -293,6 +303,7 @@ void measure_nearest(const Setting& s, const DelayEmbedding& points, std::size_t
   row.tie_swaps = swaps;
   rows.push_back(row);
   ++tick.done;
+#endif
 }
 
 // Each point needs k admissible candidates: P - (2w + 1) >= k, P = n - (m - 1) tau (P >= 2w + 2

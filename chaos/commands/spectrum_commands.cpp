@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "chaos/error.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 #include "commands.hpp"
 
 namespace chaos::cli {

@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "chaos/zoo_suite.hpp"
+#include "chaos/models/zoo_suite.hpp"
 
 namespace chaos::cli {
 

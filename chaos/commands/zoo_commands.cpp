@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "chaos/error.hpp"
-#include "chaos/zoo_suite.hpp"
+#include "chaos/models/zoo_suite.hpp"
 #include "commands.hpp"
 #include "zoo_checkpoint.hpp"
 
@@ -175,7 +175,7 @@ ZooRun run_zoo(const ZooParams& params,
   std::ostringstream md;
   md << "# The zoo: out-of-sample regression of the automatic estimates\n\n"
      << "Made by `chaos zoo" << (params.fast ? " --fast" : "") << (!params.grid ? " --no-grid" : "")
-     << " --threads " << params.threads << "` (chaos/cli/zoo.cpp, rules in chaos/include/chaos/zoo_suite.hpp and "
+     << " --threads " << params.threads << "` (chaos/cli/zoo.cpp, rules in chaos/models/include/chaos/models/zoo_suite.hpp and "
      << "automatic_analysis.hpp). Machine: " << machine() << ". Wall time: " << num(wall, 4) << " s on "
      << params.threads << " thread(s)";
   if (resumed > 0) {

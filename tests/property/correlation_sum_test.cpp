@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "chaos/random.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

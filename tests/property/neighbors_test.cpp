@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

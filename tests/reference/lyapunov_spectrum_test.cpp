@@ -6,7 +6,7 @@
 //               trace), known exactly for Lorenz, Henon and Ikeda; ln 2 for the logistic map at r = 4.
 // Runtimes are kept to about a second each (Rossler, whose small lambda1 converges slowly, is the
 // longest).
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 
 #include <gtest/gtest.h>
 

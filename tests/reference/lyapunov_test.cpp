@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "chaos/validation.hpp"
+#include "chaos/models/validation.hpp"
 
 namespace chaos {
 // Names the row in test listings instead of dumping its bytes.

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "chaos/surrogates.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

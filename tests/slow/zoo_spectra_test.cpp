@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace {
 

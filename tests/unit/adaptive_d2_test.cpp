@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "chaos/error.hpp"
-#include "chaos/systems.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/systems.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace {
 

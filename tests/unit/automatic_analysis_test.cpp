@@ -22,7 +22,7 @@
 
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/random.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

@@ -23,7 +23,7 @@
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/mutual_information.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 #include "chaos/time_scales.hpp"
 
 namespace {

@@ -2,7 +2,7 @@
 // distribution, exact repetition and distinct-value counts of rational periods (analytic), the
 // torus constants, realised SNR against its sampling error, quantiser level counts, determinism
 // and parameter validation.
-#include "chaos/control_signals.hpp"
+#include "chaos/models/control_signals.hpp"
 
 #include <gtest/gtest.h>
 

@@ -19,7 +19,7 @@
 
 #include "chaos/error.hpp"
 #include "chaos/random.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace {
 

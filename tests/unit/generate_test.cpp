@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 
 namespace {
 

@@ -27,8 +27,8 @@
 
 #include "chaos/error.hpp"
 #include "chaos/random.hpp"
-#include "chaos/systems.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/systems.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Lyapunov spectrum by tangent dynamics: linear flows and maps whose exponents are known in closed
 // form, the Kaplan-Yorke formula on hand-worked cases, the analytic Jacobians of the reference
 // systems against finite differences, and refusals of invalid options and systems.
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 
 #include <gtest/gtest.h>
 
@@ -274,7 +274,7 @@ TEST(LyapunovSpectrum, HenonAndIkedaJacobiansAgreeWithFiniteDifferences) {
 }
 
 TEST(LyapunovSpectrum, StartsWhereTheGeneratorsStart) {
-  // chaos/systems.hpp: flows from (1, 1, 1), Henon and Ikeda from (0, 0).
+  // chaos/models/systems.hpp: flows from (1, 1, 1), Henon and Ikeda from (0, 0).
   FlowSpectrumOptions f;
   f.time = 1.0;
   EXPECT_EQ(chaos::lorenz_spectrum({}, f).initial_state, (std::vector<double>{1.0, 1.0, 1.0}));

@@ -23,9 +23,9 @@
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 #include "chaos/time_scales.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace {
 

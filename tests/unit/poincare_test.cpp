@@ -11,7 +11,7 @@
 
 #include "chaos/error.hpp"
 #include "chaos/poincare.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 namespace {

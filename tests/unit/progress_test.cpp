@@ -9,7 +9,7 @@
 
 #include "chaos/cao.hpp"
 #include "chaos/fnn.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/nonlinearity_test.hpp"
 #include "chaos/surrogates.hpp"

@@ -12,7 +12,7 @@
 #include "chaos/error.hpp"
 #include "chaos/poincare.hpp"
 #include "chaos/section_stream.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 namespace {

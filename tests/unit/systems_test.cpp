@@ -1,6 +1,6 @@
 // Reference systems: integrator order, hand-iterated maps, analytic identities of the flows,
 // documented initial conditions, determinism and parameter validation.
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 #include <gtest/gtest.h>
 

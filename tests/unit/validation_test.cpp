@@ -6,8 +6,8 @@
 #include <set>
 
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
-#include "chaos/validation.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/validation.hpp"
 
 namespace {
 

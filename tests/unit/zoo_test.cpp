@@ -10,10 +10,10 @@
 #include <set>
 
 #include "chaos/error.hpp"
-#include "chaos/generate.hpp"
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 #include "chaos/random.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace {
 

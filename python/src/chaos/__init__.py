@@ -615,7 +615,7 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
     """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
     controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
     short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
-    against a band fixed in advance (chaos/include/chaos/zoo_suite.hpp): D2 within +-0.1 of a cited
+    against a band fixed in advance (chaos/models/include/chaos/models/zoo_suite.hpp): D2 within +-0.1 of a cited
     literature D2, else not above D_KY + 0.1 (Kaplan and Yorke 1979, from the equations); lambda_1
     within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
     no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 #include "mechanism/finite_difference_lyapunov.hpp"
 #include "mechanism/rk4.hpp"
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "chaos/automatic_analysis.hpp"
-#include "chaos/control_signals.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/control_signals.hpp"
+#include "chaos/models/generate.hpp"
 #include "chaos/nonlinearity_test.hpp"
 #include "study/series_analysis.hpp"
 

@@ -1,4 +1,4 @@
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 
 #include <array>
 #include <cmath>

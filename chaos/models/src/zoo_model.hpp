@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 #include "dual.hpp"
 
 namespace chaos::detail {

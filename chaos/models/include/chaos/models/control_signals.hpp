@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 

@@ -9,7 +9,7 @@
 // iteration for maps. The Kaplan-Yorke (Lyapunov) dimension comes with every spectrum.
 //
 // The reference systems use the equations, parameter structs and initial conditions of
-// chaos/systems.hpp; any other system is given as a vector field (or map) with its Jacobian.
+// chaos/models/systems.hpp; any other system is given as a vector field (or map) with its Jacobian.
 
 #include <cstddef>
 #include <cstdint>
@@ -20,8 +20,8 @@
 #include <variant>
 #include <vector>
 
-#include "chaos/generate.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 

@@ -1,4 +1,4 @@
-#include "chaos/zoo_suite.hpp"
+#include "chaos/models/zoo_suite.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,12 +12,12 @@
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
-#include "chaos/control_signals.hpp"
+#include "chaos/models/control_signals.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/surrogates.hpp"
-#include "chaos/systems.hpp"
-#include "chaos/zoo.hpp"
+#include "chaos/models/systems.hpp"
+#include "chaos/models/zoo.hpp"
 
 namespace chaos {
 

@@ -26,14 +26,14 @@
 #include <string_view>
 #include <vector>
 
-#include "chaos/generate.hpp"
-#include "chaos/lyapunov_spectrum.hpp"
-#include "chaos/systems.hpp"
+#include "chaos/models/generate.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 
 namespace detail {
-struct ZooModel;  // the equations (private: chaos/src/zoo_model.hpp)
+struct ZooModel;  // the equations (private: chaos/models/src/zoo_model.hpp)
 // The Mackey-Glass scheme the delay spectrum linearises, run on doubles (beta, gamma, n, tau in
 // p), sampled every per_sample steps after skip steps: for the test that it is chaos::mackey_glass.
 std::vector<double> delay_orbit(const std::vector<double>& p, std::size_t steps_per_delay, std::size_t skip,

@@ -1,7 +1,7 @@
 // The zoo registry: the entry lists of zoo_flows.cpp and zoo_maps.cpp, the literature and dysts
 // values of references/zoo.tsv (compiled in), and generation and spectra by entry.
 
-#include "chaos/zoo.hpp"
+#include "chaos/models/zoo.hpp"
 
 #include <Eigen/Dense>
 

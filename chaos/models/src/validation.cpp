@@ -1,4 +1,4 @@
-#include "chaos/validation.hpp"
+#include "chaos/models/validation.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -14,9 +14,9 @@
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "chaos/fnn.hpp"
-#include "chaos/generate.hpp"
+#include "chaos/models/generate.hpp"
 #include "chaos/lyapunov.hpp"
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/time_scales.hpp"
 

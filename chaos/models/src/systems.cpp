@@ -1,4 +1,4 @@
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 #include <array>
 #include <cmath>

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "chaos/systems.hpp"
+#include "chaos/models/systems.hpp"
 
 namespace chaos {
 

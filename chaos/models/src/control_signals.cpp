@@ -1,4 +1,4 @@
-#include "chaos/control_signals.hpp"
+#include "chaos/models/control_signals.hpp"
 
 #include <fftw3.h>
 

@@ -1,4 +1,4 @@
-#include "chaos/lyapunov_spectrum.hpp"
+#include "chaos/models/lyapunov_spectrum.hpp"
 
 #include <Eigen/Dense>
 
