@@ -13,7 +13,7 @@ import sys
 ROOT = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[1])
 TOP = ("docs", "scripts", "references", "chaos", "mechanism", "study", "python", "tests", "bench", "cmake", "support")
 NAMED = re.compile(r"(?<![\w./-])((?:%s)/[\w./+-]*\w\.(?:md|sh|py|hpp|cpp|h|tsv|toml|txt|json|in|cmake))" % "|".join(TOP))
-INCLUDE_DIRS = ["", "chaos/include/", "mechanism/include/", "study/include/", "chaos/src/", "chaos/commands/", "tests/"]
+INCLUDE_DIRS = ["", "chaos/include/", "chaos/models/include/", "chaos/models/src/", "mechanism/include/", "study/include/", "chaos/src/", "chaos/commands/", "tests/"]
 SOURCES = ("*.cpp", "*.hpp", "*.h", "*.py", "*.sh", "*.in", "CMakeLists.txt", "*.cmake", "*.toml")
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 

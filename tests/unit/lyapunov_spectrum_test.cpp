@@ -209,7 +209,7 @@ void finite_difference_jacobian(const F& f, std::span<const double> x, std::span
 }
 
 TEST(LyapunovSpectrum, LorenzAndRosslerJacobiansAgreeWithFiniteDifferences) {
-  // The same equations as chaos/src/systems.cpp, written out here; the orbit is computed by identical
+  // The same equations as chaos/models/src/systems.cpp, written out here; the orbit is computed by identical
   // operations, so only the Jacobian differs (analytic in the library, numerical here).
   const chaos::LorenzParameters p;
   const auto lorenz = [&p](std::span<const double> x, std::span<double> d) {
