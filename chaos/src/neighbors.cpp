@@ -70,10 +70,6 @@ struct KdTree::Impl {
   std::size_t dim;
   spatial::KdTree tree;
   std::vector<double> coords_;  // coordinate k of the point at position p: coords_[p * dim + k]
-  // The tree's arrays, under the names the searches use.
-  const std::vector<std::size_t>& index_;
-  const std::vector<Node>& nodes_;
-  const std::vector<std::size_t>& leaf_of_;
 
   Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size);
 
@@ -186,8 +182,8 @@ struct KdTree::Impl {
 
   // Smallest index of a sorted (uniform) leaf outside the Theiler window of i, or not_found.
   std::size_t first_admissible(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
-    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
-    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    const auto first = tree.index().begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = tree.index().begin() + static_cast<std::ptrdiff_t>(node.end);
     if (!within_window(i, *first, theiler)) return *first;
     // The smallest index is inside the window, so none lies below it: the answer is past i + theiler.
     const auto it = std::upper_bound(first, last, add_sat(i, theiler));
@@ -196,8 +192,8 @@ struct KdTree::Impl {
 
   // Number of indices of a sorted (uniform) leaf inside the Theiler window of i.
   std::size_t count_excluded(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
-    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
-    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    const auto first = tree.index().begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = tree.index().begin() + static_cast<std::ptrdiff_t>(node.end);
     const std::size_t lower = i > theiler ? i - theiler : 0;
     return static_cast<std::size_t>(std::upper_bound(first, last, add_sat(i, theiler)) -
                                     std::lower_bound(first, last, lower));
@@ -215,7 +211,7 @@ struct KdTree::Impl {
       } else {
         // Ascending indices at one distance: once one fails to improve, all later ones fail.
         for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-          const std::size_t j = index_[pos];
+          const std::size_t j = tree.index()[pos];
           if (within_window(s.i, j, s.query.theiler)) continue;
           if (!s.improved_by(d, j)) break;
           s.offer(d, j);
@@ -224,7 +220,7 @@ struct KdTree::Impl {
       return;
     }
     for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-      const std::size_t j = index_[pos];
+      const std::size_t j = tree.index()[pos];
       if (within_window(s.i, j, s.query.theiler)) continue;
       const double d = point_distance<Metric, D>(s.q, pos, s.best);
       if (s.query.skip_zero_distance && d == 0.0) continue;
@@ -237,7 +233,7 @@ struct KdTree::Impl {
   // with skip_zero_distance, all its points coincide with the query.
   template <class Metric, std::size_t D, class S>
   bool prunable(std::size_t node_id, const S& s) const noexcept {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, s.i, s.query.theiler)) return true;
     const double d = box_distance<Metric, D>(s.q, node_id, s.best);
     if (d > s.best || (d == s.best && node.min_index > s.best_index)) return true;
@@ -248,7 +244,7 @@ struct KdTree::Impl {
   // the tree depth, at most log_{4/3}(N) + 1 because every child holds at least a quarter.
   template <class Metric, std::size_t D, class S>
   void nearest_in(std::size_t node_id, S& s) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (node.left == no_child) {
       scan_leaf<Metric, D>(node, s);
       return;
@@ -266,11 +262,11 @@ struct KdTree::Impl {
   // of a top-down search goes (the boxes on the path contain the query and cannot prune).
   template <class Metric, std::size_t D, class S>
   void nearest_from_leaf(S& s) const {
-    std::size_t node_id = leaf_of_[s.i];
-    scan_leaf<Metric, D>(nodes_[node_id], s);
+    std::size_t node_id = tree.leaf_of()[s.i];
+    scan_leaf<Metric, D>(tree.nodes()[node_id], s);
     while (node_id != 0) {
-      const std::size_t parent = nodes_[node_id].parent;
-      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      const std::size_t parent = tree.nodes()[node_id].parent;
+      const std::size_t sibling = node_id == tree.nodes()[parent].left ? node_id + 1 : node_id - 1;
       if (!prunable<Metric, D>(sibling, s)) nearest_in<Metric, D>(sibling, s);
       node_id = parent;
     }
@@ -279,7 +275,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   std::size_t count_in(std::size_t node_id, const double* q, std::size_t i, double radius,
                        const NeighborQuery& query) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, i, query.theiler)) return 0;
     const double near = box_distance<Metric, D>(q, node_id, radius);
     if (!(near < radius)) return 0;
@@ -293,7 +289,7 @@ struct KdTree::Impl {
     if (node.left == no_child) {
       std::size_t count = 0;
       for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-        if (within_window(i, index_[pos], query.theiler)) continue;
+        if (within_window(i, tree.index()[pos], query.theiler)) continue;
         const double d = point_distance<Metric, D>(q, pos, radius);
         if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++count;
       }
@@ -307,7 +303,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   void collect_in(std::size_t node_id, const double* q, std::size_t i, double radius, const NeighborQuery& query,
                   std::vector<std::size_t>& out) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, i, query.theiler)) return;
     const double near = box_distance<Metric, D>(q, node_id, radius);
     if (!(near < radius)) return;
@@ -317,7 +313,7 @@ struct KdTree::Impl {
                                         box_far_distance<Metric, D>(q, node_id) < radius);
     if (whole || node.left == no_child) {
       for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-        const std::size_t j = index_[pos];
+        const std::size_t j = tree.index()[pos];
         if (within_window(i, j, query.theiler)) continue;
         if (whole) {
           out.push_back(j);
@@ -338,11 +334,11 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   void collect_from_leaf(const double* q, std::size_t i, double radius, const NeighborQuery& query,
                          std::vector<std::size_t>& out) const {
-    std::size_t node_id = leaf_of_[i];
+    std::size_t node_id = tree.leaf_of()[i];
     collect_in<Metric, D>(node_id, q, i, radius, query, out);
     while (node_id != 0) {
-      const std::size_t parent = nodes_[node_id].parent;
-      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      const std::size_t parent = tree.nodes()[node_id].parent;
+      const std::size_t sibling = node_id == tree.nodes()[parent].left ? node_id + 1 : node_id - 1;
       collect_in<Metric, D>(sibling, q, i, radius, query, out);
       node_id = parent;
     }
@@ -365,12 +361,11 @@ KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size)
     : points(p), norm(n), dim(p.dimension()),
       // Split coordinates are read from the view: the series (N doubles) is more cache-friendly
       // than any N x m copy. The boxes are fitted from the copy in leaf order.
-      tree(p.size(), dim, leaf_size, [&p](std::size_t i, std::size_t k) { return p(i, k); }),
-      index_(tree.index()), nodes_(tree.nodes()), leaf_of_(tree.leaf_of()) {
+      tree(p.size(), dim, leaf_size, [&p](std::size_t i, std::size_t k) { return p(i, k); }) {
   const std::size_t count = points.size();
   coords_.resize(count * dim);
   for (std::size_t pos = 0; pos < count; ++pos)
-    for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(index_[pos], k);
+    for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(tree.index()[pos], k);
   tree.fit_boxes([this](std::size_t pos, std::size_t k) { return coords_[pos * dim + k]; });
 }
 
@@ -382,7 +377,7 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 const DelayEmbedding& KdTree::points() const noexcept { return impl_->points; }
 Norm KdTree::norm() const noexcept { return impl_->norm; }
-std::span<const std::size_t> KdTree::leaf_order() const noexcept { return impl_->index_; }
+std::span<const std::size_t> KdTree::leaf_order() const noexcept { return impl_->tree.index(); }
 
 std::optional<Neighbor> KdTree::nearest(std::size_t i, const NeighborQuery& query) const {
   const Impl& t = *impl_;

@@ -51,14 +51,14 @@ class BoxGrid {
   BoxGrid(std::size_t count, GridAxis columns, GridAxis rows, const ColumnValue& column_value, const RowValue& row_value)
       : columns_(columns), rows_(rows) {
     const std::size_t boxes = columns.boxes * rows.boxes;
-    std::vector<std::size_t> box(count);
-    for (std::size_t i = 0; i < count; ++i) box[i] = rows.box_of(row_value(i)) * columns.boxes + columns.box_of(column_value(i));
+    // Each point's box is computed twice (count, then place): cheaper than storing N of them.
+    const auto box = [&](std::size_t i) { return rows.box_of(row_value(i)) * columns.boxes + columns.box_of(column_value(i)); };
     start_.assign(boxes + 1, 0);
-    for (std::size_t i = 0; i < count; ++i) ++start_[box[i] + 1];
+    for (std::size_t i = 0; i < count; ++i) ++start_[box(i) + 1];
     for (std::size_t b = 0; b < boxes; ++b) start_[b + 1] += start_[b];
     std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
     order_.resize(count);
-    for (std::size_t i = 0; i < count; ++i) order_[next[box[i]]++] = i;
+    for (std::size_t i = 0; i < count; ++i) order_[next[box(i)]++] = i;
   }
 
   const GridAxis& columns() const noexcept { return columns_; }
