@@ -26,7 +26,7 @@ Simd simd_level();
 // h[g * copies + c]: consecutive survivors often share a bin, and back-to-back increments of one
 // counter wait for each other, so `copies` interleaved histograms take turns and are added up at
 // the end.
-constexpr std::size_t histogram_copies = 4;  // the unrolled loops below assume 4
+constexpr std::size_t histogram_copies = 4;  // the unrolled binning loops assume 4
 
 // Survivors' accumulators per level (dimension m = 2 .. max at level m - 2), binned in batches.
 // Collecting them first keeps the filter loops free of table lookups; the binning loop then runs
@@ -93,7 +93,7 @@ void kd_partners(const Problem& pb, const KdLayout& t, std::size_t p, std::size_
     stack.pop_back();
     const spatial::KdTree::Node& node = t.tree.nodes()[id];
     if (node.end <= from || !(t.near<N>(id, p) < threshold)) continue;
-    if (node.left == 0) {
+    if (node.left == spatial::KdTree::no_child) {
       scan_candidates<N, check_window>(pb, t, p, std::max(node.begin, from), node.end, s, simd, threshold);
     } else {
       stack.push_back(node.left + 1);
