@@ -8,11 +8,11 @@
 #include "chaos/error.hpp"
 #include "metric_dispatch.hpp"
 #include "numeric.hpp"
+#include "spatial/box_grid.hpp"
 
-// Layout: boxes are numbered row by row (box = y * nx + x over coordinates 1 and 0), the points are
-// sorted into them by a counting sort (so each box holds ascending indices), start_[b] .. start_[b+1]
-// are box b's positions in order_, and coords_ copies the coordinates in that order, point after
-// point, so a box's points are contiguous in memory (the kd-tree does the same).
+// Layout: the boxes are spatial::BoxGrid's (box = y * nx + x over coordinates 1 and 0, each holding
+// ascending indices), and coords_ copies the coordinates in the grid's order, point after point, so
+// a box's points are contiguous in memory (the kd-tree does the same).
 //
 // The lower bound behind the rings: a point whose box is c > ρ columns (or rows) away from the
 // query's has a coordinate at least (c - 1) boxes away, up to the rounding of (x - lo) / box, a
@@ -44,7 +44,7 @@ struct BoxGrid::Impl {
   std::size_t axes;  // grid coordinates: 1 for m = 1, else 2
   double lo = 0.0, side = 1.0, slack = 0.0;
   std::size_t nx = 1, ny = 1;
-  std::vector<std::size_t> start_, order_;
+  spatial::BoxGrid grid;
   std::vector<double> coords_;
 
   Impl(const DelayEmbedding& p, Norm n, double box) : points(p), norm(n), dim(p.dimension()), axes(std::min<std::size_t>(dim, 2)) {
@@ -58,38 +58,24 @@ struct BoxGrid::Impl {
         lo = std::min(lo, points(i, a));
         hi = std::max(hi, points(i, a));
       }
-    const double range = hi - lo;
-    slack = 1e-12 * range;
+    slack = 1e-12 * (hi - lo);
     // Boxes per axis, capped so that the grid holds at most max(4 N, 1024) boxes.
     const double cap_boxes = std::max(4.0 * static_cast<double>(count), 1024.0);
-    const double cap_axis = axes == 1 ? cap_boxes : std::floor(std::sqrt(cap_boxes));
-    side = box;
-    double per_axis = std::floor(range / side) + 1.0;
-    if (per_axis > cap_axis) {
-      per_axis = cap_axis;
-      side = range / (cap_axis - 1.0);
-    }
-    nx = static_cast<std::size_t>(per_axis);
-    ny = axes == 2 ? nx : 1;
-    start_.assign(nx * ny + 1, 0);
-    for (std::size_t i = 0; i < count; ++i) ++start_[box_of(i) + 1];
-    for (std::size_t b = 0; b < nx * ny; ++b) start_[b + 1] += start_[b];
-    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    order_.resize(count);
-    for (std::size_t i = 0; i < count; ++i) order_[next[box_of(i)]++] = i;
+    const spatial::GridAxis x_axis = spatial::GridAxis::over(lo, hi, box, axes == 1 ? cap_boxes : std::floor(std::sqrt(cap_boxes)));
+    const spatial::GridAxis y_axis = axes == 2 ? x_axis : spatial::GridAxis{lo, x_axis.side, 1};
+    side = x_axis.side;
+    nx = x_axis.boxes;
+    ny = y_axis.boxes;
+    grid = spatial::BoxGrid(count, x_axis, y_axis, [&](std::size_t i) { return points(i, 0); },
+                            [&](std::size_t i) { return axes == 2 ? points(i, 1) : lo; });
     coords_.resize(count * dim);
+    const std::vector<std::size_t>& order = grid.order();
     for (std::size_t pos = 0; pos < count; ++pos)
-      for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(order_[pos], k);
+      for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(order[pos], k);
   }
 
-  std::size_t cell(double v, std::size_t n) const noexcept {
-    const double c = std::floor((v - lo) / side);
-    return c <= 0.0 ? 0 : std::min(static_cast<std::size_t>(c), n - 1);  // the clamp only meets rounding
-  }
-  std::size_t column_of(std::size_t i) const noexcept { return cell(points(i, 0), nx); }
-  std::size_t row_of(std::size_t i) const noexcept { return axes == 2 ? cell(points(i, 1), ny) : 0; }
-  std::size_t box_of(std::size_t i) const noexcept { return row_of(i) * nx + column_of(i); }
-
+  std::size_t column_of(std::size_t i) const noexcept { return grid.columns().box_of(points(i, 0)); }
+  std::size_t row_of(std::size_t i) const noexcept { return axes == 2 ? grid.rows().box_of(points(i, 1)) : 0; }
   // The last ring that holds any box: beyond it the whole grid has been seen.
   std::size_t last_ring(std::size_t x, std::size_t y) const noexcept {
     return std::max(std::max(x, nx - 1 - x), std::max(y, ny - 1 - y));
@@ -102,7 +88,7 @@ struct BoxGrid::Impl {
   template <class F>
   void ring(std::size_t x, std::size_t y, std::size_t rho, F&& f) const {
     const auto range = [&](std::size_t row, std::size_t x0, std::size_t x1) {  // x0 <= x1 < nx
-      f(start_[row * nx + x0], start_[row * nx + x1 + 1]);
+      f(grid.start()[row * nx + x0], grid.start()[row * nx + x1 + 1]);
     };
     const std::size_t x0 = x >= rho ? x - rho : 0, x1 = std::min(nx - 1, x + rho);
     if (rho == 0) {
@@ -144,7 +130,7 @@ struct BoxGrid::Impl {
     for (std::size_t rho = 0; rho <= last; ++rho) {
       ring(x, y, rho, [&](std::size_t begin, std::size_t end) {
         for (std::size_t pos = begin; pos < end; ++pos) {
-          if (within_window(i, order_[pos], query.theiler)) continue;
+          if (within_window(i, grid.order()[pos], query.theiler)) continue;
           const double d = point_distance<Metric, D>(q, pos, radius);
           if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++found;
         }
@@ -163,7 +149,7 @@ struct BoxGrid::Impl {
     for (std::size_t rho = 0; rho <= last; ++rho) {
       ring(x, y, rho, [&](std::size_t begin, std::size_t end) {
         for (std::size_t pos = begin; pos < end; ++pos) {
-          const std::size_t j = order_[pos];
+          const std::size_t j = grid.order()[pos];
           if (within_window(i, j, query.theiler)) continue;
           const double d = point_distance<Metric, D>(q, pos, bound);
           if (query.skip_zero_distance && d == 0.0) continue;
@@ -235,7 +221,7 @@ std::size_t BoxGrid::boxes() const noexcept { return impl_->nx * impl_->ny; }
 
 std::size_t BoxGrid::memory_bytes() const noexcept {
   const Impl& g = *impl_;
-  return (g.start_.capacity() + g.order_.capacity()) * sizeof(std::size_t) + g.coords_.capacity() * sizeof(double);
+  return g.grid.memory_bytes() + g.coords_.capacity() * sizeof(double);
 }
 
 }  // namespace chaos

@@ -1,24 +1,21 @@
 #include "chaos/lyapunov.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <functional>
 #include <iomanip>
 #include <limits>
-#include <mutex>
 #include <numbers>
 #include <sstream>
-#include <thread>
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
+#include "detail/parallel.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -167,44 +164,27 @@ struct Scratch {
 
 // Runs work(reference index, partial, scratch) for every reference point, in blocks, on `threads`
 // threads, and adds the blocks' partial sums in block order. An exception in a worker is
-// rethrown here after every thread has stopped. The calling thread reports the fraction of
-// blocks taken to `progress`, when set.
+// rethrown here after every thread has stopped. The fraction of blocks done is reported to
+// `progress`, when set, on the calling thread.
 template <class Work>
 Partial for_each_reference(const std::vector<std::size_t>& references, std::size_t steps, std::size_t threads,
                            const std::function<void(double)>& progress, const Work& work) {
   const std::size_t blocks = (references.size() + block_size - 1) / block_size;
   std::vector<Partial> partials(std::min(blocks, round_blocks), Partial(steps));
+  std::vector<Scratch> scratch(detail::worker_count(threads, partials.size()));
   Partial total(steps);
   for (std::size_t first = 0; first < blocks; first += round_blocks) {
     const std::size_t count = std::min(round_blocks, blocks - first);
     for (std::size_t b = 0; b < count; ++b) partials[b].clear();
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_lock;
-    const auto run = [&](bool report) {
-      try {
-        Scratch scratch;
-        for (std::size_t b; (b = next.fetch_add(1)) < count;) {
-          if (report && progress) progress(static_cast<double>(first + b) / static_cast<double>(blocks));
-          const std::size_t begin = (first + b) * block_size;
-          const std::size_t end = std::min(references.size(), begin + block_size);
-          for (std::size_t r = begin; r < end; ++r) {
-            work(references[r], partials[b], scratch);
-            partials[b].reference_done();
-          }
-          partials[b].flush();
-        }
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_lock);
-        if (!failure) failure = std::current_exception();
-        next.store(count);  // the others stop after their current block
+    detail::parallel_tasks(threads, count, [&](std::size_t b, std::size_t worker) {
+      const std::size_t begin = (first + b) * block_size;
+      const std::size_t end = std::min(references.size(), begin + block_size);
+      for (std::size_t r = begin; r < end; ++r) {
+        work(references[r], partials[b], scratch[worker]);
+        partials[b].reference_done();
       }
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < std::min(threads, count); ++t) pool.emplace_back(run, false);
-    run(true);
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+      partials[b].flush();
+    }, &progress, {first, blocks});
     for (std::size_t b = 0; b < count; ++b) total.add(partials[b]);
   }
   return total;

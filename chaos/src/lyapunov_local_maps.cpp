@@ -3,19 +3,16 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <span>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
+#include "detail/parallel.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -237,42 +234,30 @@ std::vector<LocalMapEstimate> estimates_on_one_chain(std::span<const double> x, 
   walks.reserve(runs);
   for (const FitChoice& c : choices) walks.emplace_back(m, chain, c.max_residual);
   std::vector<FittedMap> fitted(std::min(chain, round) * runs);  // [point in round * runs + run]
+  struct Workspace {  // one per worker
+    std::vector<Neighbor> found;
+    Matrix a, b;
+  };
+  std::vector<Workspace> workspace(detail::worker_count(options.threads, std::min(chain, round)));
 
   for (std::size_t first = 0; first < chain; first += round) {
     const std::size_t count = std::min(round, chain - first);
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_lock;
-    const auto fit_round = [&] {
-      try {
-        std::vector<Neighbor> found;
-        Matrix a, b;
-        for (std::size_t r; (r = next.fetch_add(1)) < count;) {
-          const std::size_t i = (first + r) * s;
-          tree.k_nearest(i, k_max, found, query);
-          for (std::size_t c = 0; c < runs; ++c) {
-            const std::size_t k = std::min(choices[c].neighbours, found.size());
-            FittedMap& f = fitted[r * runs + c];
-            if (k < m + 1) {
-              f.map.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
-              f.rank = 0;
-              f.residual = 1.0;
-              continue;
-            }
-            fit_map(images, std::span<const Neighbor>(found.data(), k), s, choices[c].cutoff, f, a, b);
-          }
+    detail::parallel_tasks(options.threads, count, [&](std::size_t r, std::size_t worker) {
+      Workspace& ws = workspace[worker];
+      const std::size_t i = (first + r) * s;
+      tree.k_nearest(i, k_max, ws.found, query);
+      for (std::size_t c = 0; c < runs; ++c) {
+        const std::size_t k = std::min(choices[c].neighbours, ws.found.size());
+        FittedMap& f = fitted[r * runs + c];
+        if (k < m + 1) {
+          f.map.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+          f.rank = 0;
+          f.residual = 1.0;
+          continue;
         }
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_lock);
-        if (!failure) failure = std::current_exception();
-        next.store(count);
+        fit_map(images, std::span<const Neighbor>(ws.found.data(), k), s, choices[c].cutoff, f, ws.a, ws.b);
       }
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < std::min(options.threads, count); ++t) pool.emplace_back(fit_round);
-    fit_round();
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    });
 
     for (std::size_t c = 0; c < runs; ++c)
       for (std::size_t r = 0; r < count; ++r) walks[c].take(fitted[r * runs + c]);

@@ -9,24 +9,16 @@
 
 #include "chaos/error.hpp"
 #include "metric_dispatch.hpp"
+#include "spatial/kd_tree.hpp"
 
-// Layout of the kd-tree. The embedding itself is only a view (x[i + k tau]), so reading a point
-// touches `dimension` cache lines far apart. The tree therefore keeps, besides its nodes:
-//   index_    the embedded point indices permuted into leaf order (N entries),
-//   coords_   a copy of the coordinates in that same order, point after point (N * m doubles), so a
-//             leaf's points are contiguous in memory, and
-//   leaf_of_  the leaf holding each point (N entries), where a query for that point starts.
-// Node boxes take 2 m doubles per node and there are fewer than N nodes, so memory is O(N m):
-// linear in N.
+// The tree itself (nodes, splits, boxes, the leaf order) is spatial::KdTree. Besides it, the
+// embedding is only a view (x[i + k tau]), so reading a point touches `dimension` cache lines far
+// apart; the searcher therefore keeps a copy of the coordinates in leaf order, point after point
+// (N * m doubles), so a leaf's points are contiguous in memory. Memory is O(N m): linear in N.
 //
-// Splits are by position: at the median (std::nth_element on the coordinate of widest spread),
-// moved to the nearer end of the block of points equal to the median value when both children
-// still get at least a quarter of the points. So the tree stays balanced (depth <= log_{4/3} N + 1)
-// whatever the data, equal coordinates cannot produce an empty side, and in quantised data the
-// points sharing a value end up in the same subtree. A node whose points are all identical is not split:
-// it becomes a "uniform" leaf with its indices sorted, so all its points share one distance to the
-// query and the Theiler window and tie rule reduce to binary searches. This keeps quantised
-// series (thousands of equal points) from turning queries quadratic.
+// A uniform leaf (all points identical) shares one distance to the query among all its points, so
+// the Theiler window and the tie rule reduce to binary searches over its sorted indices. This keeps
+// quantised series (thousands of equal points) from turning queries quadratic.
 //
 // Pruning uses the distance from the query to a node's bounding box, a lower bound of the distance
 // to every point in it for the maximum norm and for the Euclidean norm alike. All distances are
@@ -38,7 +30,7 @@ namespace chaos {
 
 namespace {
 
-constexpr std::size_t no_child = 0;  // the root is never a child, so 0 marks a leaf
+constexpr std::size_t no_child = spatial::KdTree::no_child;
 
 bool within_window(std::size_t i, std::size_t j, std::size_t theiler) noexcept {
   return (i > j ? i - j : j - i) <= theiler;
@@ -71,24 +63,13 @@ std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > not_foun
 }  // namespace
 
 struct KdTree::Impl {
-  struct Node {
-    std::size_t begin = 0, end = 0;            // range of positions in index_ / coords_
-    std::size_t min_index = 0, max_index = 0;  // smallest and largest embedded index inside
-    std::size_t left = no_child;               // children are left and left + 1; no_child: a leaf
-    std::size_t parent = 0;                    // the root's parent is itself
-    std::size_t split_dim = 0;                 // children: left has coordinate <= split_value,
-    double split_value = 0.0;                  //           right has coordinate >= split_value
-    bool uniform = false;  // every point identical; index_[begin, end) sorted ascending
-  };
+  using Node = spatial::KdTree::Node;
 
   DelayEmbedding points;
   Norm norm;
   std::size_t dim;
-  std::vector<std::size_t> index_;
-  std::vector<double> coords_;
-  std::vector<Node> nodes_;
-  std::vector<double> box_;  // node box: lo at box_[2 * (node * dim + k)], hi right after it
-  std::vector<std::size_t> leaf_of_;  // the leaf holding each embedded point
+  spatial::KdTree tree;
+  std::vector<double> coords_;  // coordinate k of the point at position p: coords_[p * dim + k]
 
   Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size);
 
@@ -157,7 +138,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   double box_distance(const double* q, std::size_t node, double limit) const noexcept {
     const std::size_t m = dims<D>();
-    const double* box = &box_[2 * node * m];
+    const double* box = tree.box(node);
     double acc = 0.0;
     for (std::size_t k = 0; k < m; ++k) {
       const double lo = box[2 * k], hi = box[2 * k + 1];
@@ -173,7 +154,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   bool box_is_query(const double* q, std::size_t node) const noexcept {
     const std::size_t m = dims<D>();
-    const double* box = &box_[2 * node * m];
+    const double* box = tree.box(node);
     for (std::size_t k = 0; k < m; ++k)
       if (box[2 * k] != q[k] || box[2 * k + 1] != q[k]) return false;
     return true;
@@ -183,7 +164,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   double box_far_distance(const double* q, std::size_t node) const noexcept {
     const std::size_t m = dims<D>();
-    const double* box = &box_[2 * node * m];
+    const double* box = tree.box(node);
     double acc = 0.0;
     for (std::size_t k = 0; k < m; ++k)
       acc = Metric::add(acc, std::max(std::abs(q[k] - box[2 * k]), std::abs(q[k] - box[2 * k + 1])));
@@ -201,8 +182,8 @@ struct KdTree::Impl {
 
   // Smallest index of a sorted (uniform) leaf outside the Theiler window of i, or not_found.
   std::size_t first_admissible(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
-    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
-    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    const auto first = tree.index().begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = tree.index().begin() + static_cast<std::ptrdiff_t>(node.end);
     if (!within_window(i, *first, theiler)) return *first;
     // The smallest index is inside the window, so none lies below it: the answer is past i + theiler.
     const auto it = std::upper_bound(first, last, add_sat(i, theiler));
@@ -211,8 +192,8 @@ struct KdTree::Impl {
 
   // Number of indices of a sorted (uniform) leaf inside the Theiler window of i.
   std::size_t count_excluded(const Node& node, std::size_t i, std::size_t theiler) const noexcept {
-    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(node.begin);
-    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(node.end);
+    const auto first = tree.index().begin() + static_cast<std::ptrdiff_t>(node.begin);
+    const auto last = tree.index().begin() + static_cast<std::ptrdiff_t>(node.end);
     const std::size_t lower = i > theiler ? i - theiler : 0;
     return static_cast<std::size_t>(std::upper_bound(first, last, add_sat(i, theiler)) -
                                     std::lower_bound(first, last, lower));
@@ -230,7 +211,7 @@ struct KdTree::Impl {
       } else {
         // Ascending indices at one distance: once one fails to improve, all later ones fail.
         for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-          const std::size_t j = index_[pos];
+          const std::size_t j = tree.index()[pos];
           if (within_window(s.i, j, s.query.theiler)) continue;
           if (!s.improved_by(d, j)) break;
           s.offer(d, j);
@@ -239,7 +220,7 @@ struct KdTree::Impl {
       return;
     }
     for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-      const std::size_t j = index_[pos];
+      const std::size_t j = tree.index()[pos];
       if (within_window(s.i, j, s.query.theiler)) continue;
       const double d = point_distance<Metric, D>(s.q, pos, s.best);
       if (s.query.skip_zero_distance && d == 0.0) continue;
@@ -252,7 +233,7 @@ struct KdTree::Impl {
   // with skip_zero_distance, all its points coincide with the query.
   template <class Metric, std::size_t D, class S>
   bool prunable(std::size_t node_id, const S& s) const noexcept {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, s.i, s.query.theiler)) return true;
     const double d = box_distance<Metric, D>(s.q, node_id, s.best);
     if (d > s.best || (d == s.best && node.min_index > s.best_index)) return true;
@@ -263,7 +244,7 @@ struct KdTree::Impl {
   // the tree depth, at most log_{4/3}(N) + 1 because every child holds at least a quarter.
   template <class Metric, std::size_t D, class S>
   void nearest_in(std::size_t node_id, S& s) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (node.left == no_child) {
       scan_leaf<Metric, D>(node, s);
       return;
@@ -281,11 +262,11 @@ struct KdTree::Impl {
   // of a top-down search goes (the boxes on the path contain the query and cannot prune).
   template <class Metric, std::size_t D, class S>
   void nearest_from_leaf(S& s) const {
-    std::size_t node_id = leaf_of_[s.i];
-    scan_leaf<Metric, D>(nodes_[node_id], s);
+    std::size_t node_id = tree.leaf_of()[s.i];
+    scan_leaf<Metric, D>(tree.nodes()[node_id], s);
     while (node_id != 0) {
-      const std::size_t parent = nodes_[node_id].parent;
-      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      const std::size_t parent = tree.nodes()[node_id].parent;
+      const std::size_t sibling = node_id == tree.nodes()[parent].left ? node_id + 1 : node_id - 1;
       if (!prunable<Metric, D>(sibling, s)) nearest_in<Metric, D>(sibling, s);
       node_id = parent;
     }
@@ -294,7 +275,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   std::size_t count_in(std::size_t node_id, const double* q, std::size_t i, double radius,
                        const NeighborQuery& query) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, i, query.theiler)) return 0;
     const double near = box_distance<Metric, D>(q, node_id, radius);
     if (!(near < radius)) return 0;
@@ -308,7 +289,7 @@ struct KdTree::Impl {
     if (node.left == no_child) {
       std::size_t count = 0;
       for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-        if (within_window(i, index_[pos], query.theiler)) continue;
+        if (within_window(i, tree.index()[pos], query.theiler)) continue;
         const double d = point_distance<Metric, D>(q, pos, radius);
         if (d < radius && !(query.skip_zero_distance && d == 0.0)) ++count;
       }
@@ -322,7 +303,7 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   void collect_in(std::size_t node_id, const double* q, std::size_t i, double radius, const NeighborQuery& query,
                   std::vector<std::size_t>& out) const {
-    const Node& node = nodes_[node_id];
+    const Node& node = tree.nodes()[node_id];
     if (all_excluded(node, i, query.theiler)) return;
     const double near = box_distance<Metric, D>(q, node_id, radius);
     if (!(near < radius)) return;
@@ -332,7 +313,7 @@ struct KdTree::Impl {
                                         box_far_distance<Metric, D>(q, node_id) < radius);
     if (whole || node.left == no_child) {
       for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-        const std::size_t j = index_[pos];
+        const std::size_t j = tree.index()[pos];
         if (within_window(i, j, query.theiler)) continue;
         if (whole) {
           out.push_back(j);
@@ -353,11 +334,11 @@ struct KdTree::Impl {
   template <class Metric, std::size_t D>
   void collect_from_leaf(const double* q, std::size_t i, double radius, const NeighborQuery& query,
                          std::vector<std::size_t>& out) const {
-    std::size_t node_id = leaf_of_[i];
+    std::size_t node_id = tree.leaf_of()[i];
     collect_in<Metric, D>(node_id, q, i, radius, query, out);
     while (node_id != 0) {
-      const std::size_t parent = nodes_[node_id].parent;
-      const std::size_t sibling = node_id == nodes_[parent].left ? node_id + 1 : node_id - 1;
+      const std::size_t parent = tree.nodes()[node_id].parent;
+      const std::size_t sibling = node_id == tree.nodes()[parent].left ? node_id + 1 : node_id - 1;
       collect_in<Metric, D>(sibling, q, i, radius, query, out);
       node_id = parent;
     }
@@ -377,122 +358,15 @@ struct KdTree::Impl {
 };
 
 KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size)
-    : points(p), norm(n), dim(p.dimension()) {
+    : points(p), norm(n), dim(p.dimension()),
+      // Split coordinates are read from the view: the series (N doubles) is more cache-friendly
+      // than any N x m copy. The boxes are fitted from the copy in leaf order.
+      tree(p.size(), dim, leaf_size, [&p](std::size_t i, std::size_t k) { return p(i, k); }) {
   const std::size_t count = points.size();
-  if (leaf_size == 0) leaf_size = 1;
-  index_.resize(count);
-  std::iota(index_.begin(), index_.end(), std::size_t{0});
-  if (count == 0) return;
-
-  // Iterative build (an explicit work list), so no recursion however the data look. Coordinates
-  // are read from the view here: the series (N doubles) is more cache-friendly than any N x m copy.
-  // The split coordinate is the one of widest spread among at most `sample` evenly spaced points of
-  // the node (all of them in small nodes): that choice only shapes the tree, while the boxes used for
-  // pruning are computed exactly afterwards, bottom-up, in O(N m) instead of O(N m log N).
-  constexpr std::size_t sample = 64;
-  std::vector<double> lo(dim), hi(dim);
-  const auto widest = [&](std::size_t begin, std::size_t end, std::size_t stride, std::size_t& split) {
-    std::fill(lo.begin(), lo.end(), std::numeric_limits<double>::infinity());
-    std::fill(hi.begin(), hi.end(), -std::numeric_limits<double>::infinity());
-    for (std::size_t pos = begin; pos < end; pos += stride)
-      for (std::size_t k = 0; k < dim; ++k) {
-        const double v = points(index_[pos], k);
-        lo[k] = std::min(lo[k], v);
-        hi[k] = std::max(hi[k], v);
-      }
-    double spread = 0.0;
-    for (std::size_t k = 0; k < dim; ++k)
-      if (hi[k] - lo[k] > spread) {
-        spread = hi[k] - lo[k];
-        split = k;
-      }
-    return spread;
-  };
-  leaf_of_.resize(count);
-  nodes_.push_back(Node{0, count});
-  std::vector<std::size_t> work{0};
-  while (!work.empty()) {
-    const std::size_t id = work.back();
-    work.pop_back();
-    const std::size_t begin = nodes_[id].begin, end = nodes_[id].end, size = end - begin;
-    const std::size_t stride = size > sample ? size / sample : 1;
-    std::size_t split = 0;
-    double spread = widest(begin, end, stride, split);
-    if (spread == 0.0 && stride > 1) spread = widest(begin, end, 1, split);  // are they really all equal?
-    const auto first = index_.begin() + static_cast<std::ptrdiff_t>(begin);
-    const auto last = index_.begin() + static_cast<std::ptrdiff_t>(end);
-    if (spread == 0.0 || size <= leaf_size) {
-      nodes_[id].uniform = spread == 0.0;
-      if (nodes_[id].uniform) std::sort(first, last);
-      for (auto it = first; it != last; ++it) leaf_of_[*it] = id;
-      continue;
-    }
-    auto middle = index_.begin() + static_cast<std::ptrdiff_t>(begin + size / 2);
-    std::nth_element(first, middle, last,
-                     [&](std::size_t a, std::size_t b) { return points(a, split) < points(b, split); });
-    // Points equal to the median coordinate v may lie on both sides. Quantised data have thousands
-    // of them, and smearing them over both children leaves many mixed nodes that a query must open.
-    // So gather the block of v's and cut at the nearer end of it, unless that would leave either
-    // child with less than a quarter of the points (depth stays below log_{4/3} N + 1).
-    const double v = points(*middle, split);
-    const auto block_begin = std::partition(first, middle, [&](std::size_t a) { return points(a, split) < v; });
-    const auto block_end = std::partition(middle, last, [&](std::size_t a) { return points(a, split) == v; });
-    const auto quarter = static_cast<std::ptrdiff_t>(std::max<std::size_t>(size / 4, 1));
-    const auto lower_cut = block_begin, upper_cut = block_end;
-    if (middle - lower_cut <= upper_cut - middle) {
-      if (lower_cut - first >= quarter) middle = lower_cut;
-      else if (last - upper_cut >= quarter) middle = upper_cut;
-    } else {
-      if (last - upper_cut >= quarter) middle = upper_cut;
-      else if (lower_cut - first >= quarter) middle = lower_cut;
-    }
-    const std::size_t mid = static_cast<std::size_t>(middle - index_.begin());
-    nodes_[id].left = nodes_.size();
-    nodes_[id].split_dim = split;
-    nodes_[id].split_value = v;
-    nodes_.push_back(Node{begin, mid});
-    nodes_.push_back(Node{mid, end});
-    nodes_[nodes_.size() - 2].parent = id;
-    nodes_[nodes_.size() - 1].parent = id;
-    work.push_back(nodes_[id].left + 1);
-    work.push_back(nodes_[id].left);
-  }
   coords_.resize(count * dim);
   for (std::size_t pos = 0; pos < count; ++pos)
-    for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(index_[pos], k);
-
-  // Tight boxes and index ranges, children before parents (children are numbered after them).
-  box_.resize(2 * nodes_.size() * dim);
-  for (std::size_t id = nodes_.size(); id-- > 0;) {
-    Node& node = nodes_[id];
-    double* box = &box_[2 * id * dim];
-    if (node.left == no_child) {
-      for (std::size_t k = 0; k < dim; ++k) {
-        box[2 * k] = std::numeric_limits<double>::infinity();
-        box[2 * k + 1] = -std::numeric_limits<double>::infinity();
-      }
-      node.min_index = not_found;
-      node.max_index = 0;
-      for (std::size_t pos = node.begin; pos < node.end; ++pos) {
-        node.min_index = std::min(node.min_index, index_[pos]);
-        node.max_index = std::max(node.max_index, index_[pos]);
-        const double* c = &coords_[pos * dim];
-        for (std::size_t k = 0; k < dim; ++k) {
-          box[2 * k] = std::min(box[2 * k], c[k]);
-          box[2 * k + 1] = std::max(box[2 * k + 1], c[k]);
-        }
-      }
-      continue;
-    }
-    const double* a = &box_[2 * node.left * dim];
-    const double* b = &box_[2 * (node.left + 1) * dim];
-    for (std::size_t k = 0; k < dim; ++k) {
-      box[2 * k] = std::min(a[2 * k], b[2 * k]);
-      box[2 * k + 1] = std::max(a[2 * k + 1], b[2 * k + 1]);
-    }
-    node.min_index = std::min(nodes_[node.left].min_index, nodes_[node.left + 1].min_index);
-    node.max_index = std::max(nodes_[node.left].max_index, nodes_[node.left + 1].max_index);
-  }
+    for (std::size_t k = 0; k < dim; ++k) coords_[pos * dim + k] = points(tree.index()[pos], k);
+  tree.fit_boxes([this](std::size_t pos, std::size_t k) { return coords_[pos * dim + k]; });
 }
 
 KdTree::KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size)
@@ -503,7 +377,7 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 const DelayEmbedding& KdTree::points() const noexcept { return impl_->points; }
 Norm KdTree::norm() const noexcept { return impl_->norm; }
-std::span<const std::size_t> KdTree::leaf_order() const noexcept { return impl_->index_; }
+std::span<const std::size_t> KdTree::leaf_order() const noexcept { return impl_->tree.index(); }
 
 std::optional<Neighbor> KdTree::nearest(std::size_t i, const NeighborQuery& query) const {
   const Impl& t = *impl_;
@@ -535,9 +409,7 @@ void KdTree::k_nearest(std::size_t i, std::size_t k, std::vector<Neighbor>& out,
 
 std::size_t KdTree::memory_bytes() const noexcept {
   const Impl& t = *impl_;
-  return t.index_.capacity() * sizeof(std::size_t) + t.coords_.capacity() * sizeof(double) +
-         t.nodes_.capacity() * sizeof(Impl::Node) + t.box_.capacity() * sizeof(double) +
-         t.leaf_of_.capacity() * sizeof(std::size_t);
+  return t.tree.memory_bytes() + t.coords_.capacity() * sizeof(double);
 }
 
 std::size_t KdTree::count_within(std::size_t i, double radius, const NeighborQuery& query) const {
