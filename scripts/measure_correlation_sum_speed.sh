@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Times the two exact correlation-sum target jobs of issue 15 with `chaos d2` on one thread (and
+# Times the two exact correlation-sum target jobs with `chaos d2` on one thread (and
 # two), and prints the pair throughput and a checksum of every pair count, so a faster kernel can
 # be checked to count exactly what the previous one counted.
 #   Lorenz x, N = 10^5: -d 17 -t 200 -M 6 -r 0.25 -R 5 -# 40
@@ -43,7 +43,7 @@ if [[ -n ${BASELINE:-} ]]; then
   programs=("$BASELINE" "$chaos")
   labels=(baseline this)
 fi
-# The counting alone: since 2026-12-02 `chaos d2` also counts each half of the record to check a
+# The counting alone: `chaos d2` also counts each half of the record to check a
 # saturated D2 (half a job more); builds from before then neither know --no-halves nor check.
 plain=()
 for ((e = 0; e < ${#programs[@]}; e++)); do

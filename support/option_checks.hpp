@@ -17,7 +17,7 @@ void check_numeric_options(CLI::App& app);
 
 // Makes every repeatable (vector) option take one value per occurrence (a comma-separated list
 // still splits where the option has a delimiter). CLI11 lets such an option swallow every
-// argument after it, so "--set k=v scene.toml" read the scene as another --set (issue 16); now
+// argument after it, so "--set k=v scene.toml" would read the scene as another --set; here
 // the file is left to the positional argument, and several values need the option repeated.
 void one_value_per_occurrence(CLI::App& app);
 

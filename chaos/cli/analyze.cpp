@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "chaos/format.hpp"
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/autocorrelation.hpp"
 #include "chaos/cao.hpp"
@@ -107,11 +108,7 @@ std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualIn
   if (slopes) {
     const CorrelationDimensionResult& d = *a.d2;
     std::string title = to_string(d.status);
-    if (d.d2) {
-      char d2_text[32];
-      std::snprintf(d2_text, sizeof d2_text, "%.4g", *d.d2);
-      title += std::string(": D2 = ") + d2_text;
-    }
+    if (d.d2) title += ": D2 = " + format_number(*d.d2, Precision::title);
     local_slopes_panel(s, d, title, 0.3);
   } else {
     empty_panel(s, "correlation dimension", a.d2 ? std::string("no local slopes") : stopped);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "chaos/autocorrelation.hpp"
+#include "chaos/format.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "plot.hpp"
@@ -21,13 +22,6 @@ struct AutocorrelationArgs {
   std::string plot;
 };
 
-// Four significant digits: enough for a plot's title.
-std::string short_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", value);
-  return buffer;
-}
-
 // r(lag) against the lag (samples, or time units with --dt), the 1/e level and its crossing marked.
 std::string plot_script(const AutocorrelationResult& result, const std::optional<double>& decay,
                         const std::optional<std::size_t>& zero, const std::optional<double>& dt) {
@@ -37,7 +31,7 @@ std::string plot_script(const AutocorrelationResult& result, const std::optional
   s << "set grid\nset key top right\nset xlabel '" << (dt ? "lag (time units)" : "lag (samples)")
     << "'\nset ylabel 'r(lag)'\nset yrange [-1:1]\nset title 'autocorrelation: 1/e time ";
   if (decay)
-    s << short_number(*decay) << " samples" << (dt ? " = " + short_number(*decay * scale) + " time units" : std::string());
+    s << format_number(*decay, Precision::title) << " samples" << (dt ? " = " + format_number(*decay * scale, Precision::title) + " time units" : std::string());
   else
     s << "none within the range";
   s << ", first zero crossing " << (zero ? std::to_string(*zero) : std::string("none")) << "' noenhanced\n";

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include "chaos/format.hpp"
 #include "chaos/time_scales.hpp"
 
 #include <algorithm>
@@ -54,9 +55,7 @@ void write_columns(std::ostream& out, const std::vector<std::string>& names,
   const std::size_t rows = columns.empty() ? 0 : columns.front().size();
   for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%.17g", columns[c][i]);
-      out << (c ? "\t" : "") << buffer;
+      out << (c ? "\t" : "") << format_number(columns[c][i], Precision::round_trip);
     }
     out << "\n";
   }

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "chaos/format.hpp"
 #include "chaos/error.hpp"
 #include "chaos/surrogates.hpp"
 #include "commands.hpp"
@@ -47,11 +48,9 @@ void run(SurrogatesArgs& args) {
   out << "\n";
   // Full precision: IAAFT and AAFT surrogates are permutations of the data, and the output keeps
   // them so.
-  char buffer[32];
   for (std::size_t i = 0; i < length; ++i) {
     for (std::size_t k = 0; k < made.size(); ++k) {
-      std::snprintf(buffer, sizeof buffer, "%.17g", made[k].values[i]);
-      out << (k ? "\t" : "") << buffer;
+      out << (k ? "\t" : "") << format_number(made[k].values[i], Precision::round_trip);
     }
     out << "\n";
   }

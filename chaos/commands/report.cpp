@@ -5,16 +5,13 @@
 #include <iostream>
 
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "chaos/series.hpp"
 #include "chaos/time_scales.hpp"
 
 namespace chaos::cli {
 
-std::string number(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  return buffer;
-}
+std::string number(double value) { return format_number(value, Precision::result); }
 
 std::string interval_text(const std::optional<Interval>& interval) {
   return interval ? "[" + number(interval->low) + ", " + number(interval->high) + "]" : std::string("none");

@@ -2,7 +2,6 @@
 // case's series and the JSON.
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <exception>
 #include <fstream>
@@ -11,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "chaos/detail/parallel.hpp"
 #include "chaos/error.hpp"
 #include "chaos/models/zoo_suite.hpp"
 #include "commands.hpp"
@@ -112,30 +112,17 @@ ZooRun run_zoo(const ZooParams& params,
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return cases[a].grid * cases[a].length > cases[b].grid * cases[b].length;
   });
-  std::atomic<std::size_t> next{0};
+  // An exception from a case or from `each` stops the others after their case and is rethrown.
   std::mutex progress;
   std::size_t done = resumed;
-  std::exception_ptr failure;  // the first exception from `each`: the others stop after their case
-  const auto worker = [&] {
-    try {
-      for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
-        const std::size_t i = order[k];
-        results[i] = run_zoo_case(cases[i], i, options);
-        const std::lock_guard<std::mutex> lock(progress);
-        if (checkpoint) checkpoint->append(cases[i].name, results[i]);
-        ++done;
-        if (each) each(done, cases.size(), cases[i], results[i]);
-      }
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(progress);
-      if (!failure) failure = std::current_exception();
-      next = order.size();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < std::min(params.threads, order.size()); ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  detail::parallel_tasks(params.threads, order.size(), [&](std::size_t k, std::size_t) {
+    const std::size_t i = order[k];
+    results[i] = run_zoo_case(cases[i], i, options);
+    const std::lock_guard<std::mutex> lock(progress);
+    if (checkpoint) checkpoint->append(cases[i].name, results[i]);
+    ++done;
+    if (each) each(done, cases.size(), cases[i], results[i]);
+  });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Judgement.

@@ -129,7 +129,7 @@ CorrelationSumResult assemble(const Prepared& p, Totals totals, std::size_t refe
 }  // namespace correlation_detail
 
 namespace {
-const auto& number = detail::format_number;
+const auto number = [](double v) { return format_number(v); };
 using namespace correlation_detail;
 }  // namespace
 

@@ -12,7 +12,7 @@
 #include "correlation_sum_layouts.hpp"
 #include "correlation_sum_problem.hpp"
 #include "correlation_sum_scan.hpp"
-#include "detail/parallel.hpp"
+#include "chaos/detail/parallel.hpp"
 #include "numeric.hpp"
 
 namespace chaos::correlation_detail {

@@ -9,7 +9,7 @@
 #include "chaos/correlation_sum.hpp"
 #include "chaos/error.hpp"
 #include "correlation_sum_problem.hpp"
-#include "detail/parallel.hpp"
+#include "chaos/detail/parallel.hpp"
 
 namespace chaos {
 

@@ -18,7 +18,7 @@ namespace {
 
 using detail::add_sat;
 using detail::mul_sat;
-const auto& number = detail::format_number;
+const auto number = [](double v) { return format_number(v); };
 
 // Population standard deviation (Kennel et al.'s R_A), two-pass for accuracy.
 double standard_deviation(const std::vector<double>& y) {

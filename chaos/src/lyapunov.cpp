@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <iomanip>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -15,7 +14,7 @@
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
-#include "detail/parallel.hpp"
+#include "chaos/detail/parallel.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -557,7 +556,7 @@ std::string verdict(const char* name, const LyapunovFit& fit) {
   std::ostringstream s;
   s << name << " ";
   if (fit.lambda)
-    s << "gives " << std::setprecision(4) << *fit.lambda << " per sample (steps " << *fit.first_step << ".."
+    s << "gives " << format_number(*fit.lambda, Precision::title) << " per sample (steps " << *fit.first_step << ".."
       << *fit.last_step << ")";
   else
     s << "has " << to_string(fit.status);
@@ -620,7 +619,7 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
   std::ostringstream why;
   if (local_maps.status == LocalMapStatus::not_deterministic) {
     // The nearest neighbours the divergence curves start from are the neighbourhoods the maps fit.
-    why << "the local linear maps leave " << std::setprecision(2) << local_maps.base.median_residual * 100
+    why << "the local linear maps leave " << format_number(local_maps.base.median_residual * 100, Precision::title)
         << "% of their neighbourhoods' image spread unexplained (not_deterministic): at the scale of the nearest "
         << "neighbours the data are not deterministic (measurement noise), and there the divergence curve "
         << "rises more slowly than lambda_1 before it bends into saturation (" << verdict(name.c_str(), fit)
@@ -643,7 +642,8 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
   }
   if (agree(*fit.lambda, *local_maps.lambda, tolerance)) return;
   why << "the local-map exponent contradicts this slope: " << verdict(name.c_str(), fit) << ", local maps give "
-      << std::setprecision(4) << *local_maps.lambda << " per sample (consistent over their variants), more than " << tolerance * 100
+      << format_number(*local_maps.lambda, Precision::title) << " per sample (consistent over their variants), more than "
+      << format_number(tolerance * 100, Precision::title)
       << "% apart; a divergence-curve slope that the local maps contradict is not trusted";
   withdraw(fit, why.str());
 }

@@ -12,7 +12,7 @@
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
-#include "detail/parallel.hpp"
+#include "chaos/detail/parallel.hpp"
 #include "numeric.hpp"
 
 namespace chaos {

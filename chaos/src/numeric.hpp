@@ -1,17 +1,17 @@
 #pragma once
 // Small private helpers shared by the estimators: saturating index arithmetic for length checks,
-// full-precision numbers in messages, and the exact power-of-two rescaling that keeps sums of
+// the formatter for numbers in messages, and the exact power-of-two rescaling that keeps sums of
 // squares finite for data of any magnitude.
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <span>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "chaos/format.hpp"
 
 namespace chaos::detail {
 
@@ -22,20 +22,9 @@ inline constexpr std::size_t size_max = std::numeric_limits<std::size_t>::max();
 inline std::size_t mul_sat(std::size_t a, std::size_t b) noexcept { return a != 0 && b > size_max / a ? size_max : a * b; }
 inline std::size_t add_sat(std::size_t a, std::size_t b) noexcept { return a > size_max - b ? size_max : a + b; }
 
-// The shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
-inline std::string shortest_number(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-// All 17 significant digits, so a message shows the number that was really used.
-inline std::string format_number(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
+// Numbers in messages: the library's one formatter (chaos/format.hpp), all 17 digits by default so
+// a message shows the number that was really used.
+using chaos::format_number;
 
 // The power of two 2^exponent with max |x| / 2^exponent in [0.5, 1). Dividing by it is exact, so
 // neighbours, ratios and comparisons are unchanged bit for bit while squares cannot overflow or

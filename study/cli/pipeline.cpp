@@ -10,6 +10,7 @@
 
 #include "gnuplot.hpp"
 #include "outputs.hpp"
+#include "chaos/format.hpp"
 #include "mechanism/simulate.hpp"
 #include "study/error.hpp"
 #include "study/grid.hpp"
@@ -81,8 +82,11 @@ bool run_pipeline(const PipelineRequest& r) {
     std::ofstream f(r.series_output);
     if (!f) throw StudyIoError("--series", r.series_output, "cannot be written");
     // Every digit, so that another tool reads the series the pipeline analysed.
-    f << "# t\tslider_y\tslider_vy\n" << std::setprecision(17);
-    for (std::size_t i = 0; i < t.size(); ++i) f << t[i] << '\t' << y[i] << '\t' << vy[i] << '\n';
+    f << "# t\tslider_y\tslider_vy\n";
+    using chaos::format_number, chaos::Precision;
+    for (std::size_t i = 0; i < t.size(); ++i)
+      f << format_number(t[i], Precision::round_trip) << '\t' << format_number(y[i], Precision::round_trip) << '\t'
+        << format_number(vy[i], Precision::round_trip) << '\n';
   }
   const SeriesAnalysis a = analyse_series_with_curves(y, analysis.interval, analysis);
   auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };

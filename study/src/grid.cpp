@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "chaos/format.hpp"
 #include "study/error.hpp"
 
 namespace study {
@@ -34,11 +35,7 @@ std::vector<std::string_view> split(std::string_view s, char sep) {
 
 }  // namespace
 
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string exact(double v) { return chaos::format_number(v, chaos::Precision::round_trip); }
 
 Axis parse_axis(std::string_view text) {
   const std::size_t eq = text.find('=');

@@ -13,6 +13,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include "chaos/format.hpp"
 #include "study/error.hpp"
 #include "study/series_analysis.hpp"
 
@@ -22,11 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
+std::string number(double v) { return chaos::format_number(v, chaos::Precision::table); }
 
 std::string optional_number(const std::optional<double>& v) { return v ? number(*v) : "-"; }
 

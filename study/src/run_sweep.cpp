@@ -1,13 +1,12 @@
 #include "study/run_sweep.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "chaos/detail/parallel.hpp"
 #include "study/error.hpp"
 
 namespace study {
@@ -32,59 +31,45 @@ SweepProgress run_sweep(const SweepSpec& spec, const ResultStore& store, const S
     if (unfinished) mine.push_back(u);
   }
 
-  std::atomic<std::size_t> next{0};
-  std::mutex mutex;  // guards progress and the first error
-  std::exception_ptr error;
-  auto worker = [&] {
-    try {
-      for (std::size_t i = next++; i < mine.size(); i = next++) {
-        const std::size_t first = mine[i] * unit_length;
-        std::optional<mechanism::State> state;
-        for (std::size_t k = 0; k < unit_length; ++k) {
-          const std::size_t p = first + k;
-          if (store.finished(p)) {
-            // A resumed chain continues from the stored final state of its last finished point.
-            if (chains) {
-              const auto x = store.final_state(p);
-              if (x) state = Eigen::Map<const mechanism::State>(x->data(), static_cast<Eigen::Index>(x->size()));
-            }
-            continue;
-          }
-          PointResult r;
-          try {
-            r = run_point(spec, p, state ? &*state : nullptr);
-          } catch (const std::exception& e) {
-            // Name the point, so the failure can be rerun alone (study sweep --set for each axis).
-            std::string where = "point " + std::to_string(p);
-            for (const std::string& o : grid.overrides(p)) where += " " + o;
-            throw std::runtime_error(where + ": " + e.what());
-          }
-          store.write(r);
-          if (chains) {
-            if (r.summary.status == mechanism::SimulationStatus::completed) {
-              state = r.summary.final_state;
-            } else {
-              state.reset();  // a failed point's state is no place to continue from
-            }
-          }
-          std::lock_guard<std::mutex> lock(mutex);
-          ++progress.done;
-          if (r.summary.status != mechanism::SimulationStatus::completed) ++progress.failed;
-          if (exec.progress) exec.progress(progress);
+  std::mutex mutex;  // guards progress
+  // An exception stops the other threads after their current unit and is rethrown here.
+  const std::size_t n = std::min(exec.threads, std::max<std::size_t>(1, mine.size()));
+  chaos::detail::parallel_tasks(n, mine.size(), [&](std::size_t i, std::size_t) {
+    const std::size_t first = mine[i] * unit_length;
+    std::optional<mechanism::State> state;
+    for (std::size_t k = 0; k < unit_length; ++k) {
+      const std::size_t p = first + k;
+      if (store.finished(p)) {
+        // A resumed chain continues from the stored final state of its last finished point.
+        if (chains) {
+          const auto x = store.final_state(p);
+          if (x) state = Eigen::Map<const mechanism::State>(x->data(), static_cast<Eigen::Index>(x->size()));
+        }
+        continue;
+      }
+      PointResult r;
+      try {
+        r = run_point(spec, p, state ? &*state : nullptr);
+      } catch (const std::exception& e) {
+        // Name the point, so the failure can be rerun alone (study sweep --set for each axis).
+        std::string where = "point " + std::to_string(p);
+        for (const std::string& o : grid.overrides(p)) where += " " + o;
+        throw std::runtime_error(where + ": " + e.what());
+      }
+      store.write(r);
+      if (chains) {
+        if (r.summary.status == mechanism::SimulationStatus::completed) {
+          state = r.summary.final_state;
+        } else {
+          state.reset();  // a failed point's state is no place to continue from
         }
       }
-    } catch (...) {
       std::lock_guard<std::mutex> lock(mutex);
-      if (!error) error = std::current_exception();
-      next = mine.size();  // stop the others after their current unit
+      ++progress.done;
+      if (r.summary.status != mechanism::SimulationStatus::completed) ++progress.failed;
+      if (exec.progress) exec.progress(progress);
     }
-  };
-  const std::size_t n = std::min(exec.threads, std::max<std::size_t>(1, mine.size()));
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < n; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  });
   return progress;
 }
 

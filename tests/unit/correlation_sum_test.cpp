@@ -36,7 +36,7 @@ constexpr Norm both_norms[] = {Norm::max, Norm::euclidean};
 // The box-assisted search and the kd-tree have an AVX-512 scan (maximum norm), an AVX2 one and a
 // portable one; CHAOS_NO_AVX512=1 selects AVX2 and CHAOS_NO_SIMD=1 the portable path, so every
 // path the machine runs is checked against the same expectations. Likewise CHAOS_NO_PLANE=1 makes
-// the grid bin m = 2 itself instead of counting it by plane_counts (maximum norm, issue 15).
+// the grid bin m = 2 itself instead of counting it by plane_counts (maximum norm).
 class ScopedEnv {
  public:
   explicit ScopedEnv(const char* name) : name_(name) { ::setenv(name_, "1", 1); }
@@ -224,7 +224,7 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnRandomData) {
     for (const std::size_t w : {0u, 1u, 10u}) expect_all_modes_exact(x, options(1, 1, 5, w, radii, norm));
   // m from 3 only (nothing counted for m = 1, 2) and a delay of 3.
   expect_all_modes_exact(x, options(3, 3, 4, 2, radii, Norm::max));
-  // m = 2 alone: with the maximum norm only plane_counts runs, no grid scan (issue 15).
+  // m = 2 alone: with the maximum norm only plane_counts runs, no grid scan.
   for (const std::size_t w : {0u, 5u}) expect_all_modes_exact(x, options(2, 2, 2, w, radii, Norm::max));
 }
 
@@ -247,7 +247,7 @@ TEST(CorrelationSum, EveryModeEqualsBruteForceOnLorenz) {
   expect_all_modes_exact(x, options(17, 1, 5, 400, radii, Norm::euclidean));
 }
 
-// Issue 16: chaos d2 draws a progress line from this callback. It is called with growing fractions
+// chaos d2 draws a progress line from this callback. It is called with growing fractions
 // below 1, in every exact search mode and on 1 or 2 threads, and the counts do not depend on it.
 TEST(CorrelationSum, ProgressIsReportedAndChangesNothing) {
   // max m = 2: the box-assisted search counts m = 2 by plane_counts alone and reports from there.
@@ -294,7 +294,7 @@ TEST(CorrelationSum, TiesExactlyAtTheRadiiAreNotCounted) {
 }
 
 TEST(CorrelationSum, InclusiveCountsTiesAtTheRadii) {
-  // Issue 15: `inclusive` counts d <= eps (TISEAN's convention). Expected counts: the brute force
+  // `inclusive` counts d <= eps (TISEAN's convention). Expected counts: the brute force
   // above with <=, on integer data with integer radii (ties at every radius, both norms) and on a
   // dyadic grid, in every search mode and the portable path.
   chaos::Random rng(5);
@@ -614,7 +614,7 @@ TEST(CorrelationSum, SubsetsShareOneStructureAndGiveTheSameCounts) {
 }
 
 TEST(CorrelationSum, ReferenceSubsetOnTheGridWithTiesBothNormsAndWindows) {
-  // Issue 15: the box-assisted reference walk scans the exact walk's grid (only as far as the
+  // The box-assisted reference walk scans the exact walk's grid (only as far as the
   // largest open radius under a cap) and takes i and its Theiler-window partners out afterwards;
   // the kd-tree walk scans the leaves within that radius and does the same. Expected: the
   // documented walk above, on integer data (ties at the radii, so many leaves of equal values),

@@ -28,7 +28,7 @@ __extension__ typedef unsigned __int128 uint128;
 constexpr std::uint64_t max_exact = std::uint64_t{1} << 53;
 
 // Shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
-std::string num(double v) { return detail::shortest_number(v); }
+std::string num(double v) { return format_number(v, Precision::shortest); }
 
 [[noreturn]] void refuse(const std::string& message) {
   throw InvalidInput(ErrorCode::invalid_parameter, message);

@@ -1,9 +1,7 @@
 #include "chaos/models/zoo_suite.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <exception>
-#include <thread>
 #include <utility>
 #include <chrono>
 #include <numbers>
@@ -11,6 +9,7 @@
 #include <sstream>
 
 #include "chaos/automatic_analysis.hpp"
+#include "chaos/detail/parallel.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/models/control_signals.hpp"
 #include "chaos/correlation_sum.hpp"
@@ -167,18 +166,15 @@ std::vector<ZooCase> zoo_cases(const ZooSuiteOptions& options) {
   }
   // The spectra behind the bands, one entry per task (each is deterministic on its own).
   std::vector<std::optional<ChaoticReference>> references(entries.size());
-  std::atomic<std::size_t> next{0};
+  // Each task's failure is kept by entry, so the one rethrown is the first entry's whatever the threads.
   std::vector<std::exception_ptr> failures(entries.size());
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < std::max<std::size_t>(1, std::min(options.threads, entries.size())); ++t)
-    pool.emplace_back([&] {
-      for (std::size_t k; (k = next.fetch_add(1)) < entries.size();) try {
-          references[k] = reference_bands(*entries[k]);
-        } catch (...) {
-          failures[k] = std::current_exception();
-        }
-    });
-  for (auto& t : pool) t.join();
+  detail::parallel_tasks(options.threads, entries.size(), [&](std::size_t k, std::size_t) {
+    try {
+      references[k] = reference_bands(*entries[k]);
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  });
   for (const auto& f : failures)
     if (f) std::rethrow_exception(f);
   for (std::size_t k = 0; k < entries.size(); ++k) {
