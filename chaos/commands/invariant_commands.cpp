@@ -27,11 +27,10 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   const EmbeddingChoice chosen = choose_delay_and_window(x, params.delay, params.theiler);
   params.sums.delay = chosen.delay;
   params.sums.theiler = chosen.theiler;
-  // Radii: given, or from the data's range as choose_radii sets them.
-  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  const double range = *hi - *lo;
-  const double r_max = params.r_max.value_or(range / 4.0);
-  const double r_min = params.r_min.value_or(range / 1000.0);
+  // Radii: given, or the automatic range (choose_radius_range).
+  const RadiusRange automatic = choose_radius_range(x);
+  const double r_max = params.r_max.value_or(automatic.largest);
+  const double r_min = params.r_min.value_or(automatic.smallest);
   // Checked before the grid is made: with one radius log_radii would ask for r_min = r_max, naming
   // radii the user may not have given, when the rule that fails is D2's (a slope needs two radii).
   if (params.radius_list.empty() && params.radii < 2)

@@ -72,9 +72,14 @@ DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_
   return out;
 }
 
-std::vector<double> choose_radii(std::span<const double> x, std::size_t count) {
+RadiusRange choose_radius_range(std::span<const double> x) {
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  return log_radii((*hi - *lo) / 1000.0, (*hi - *lo) / 4.0, count);
+  return {(*hi - *lo) / 1000.0, (*hi - *lo) / 4.0};
+}
+
+std::vector<double> choose_radii(std::span<const double> x, std::size_t count) {
+  const RadiusRange r = choose_radius_range(x);
+  return log_radii(r.smallest, r.largest, count);
 }
 
 CorrelationSumOptions choose_correlation_sum_options(std::span<const double> x, std::size_t delay, std::size_t theiler,

@@ -77,7 +77,11 @@ DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_
                                            std::size_t max_dimension = 10,
                                            std::function<void(double)> progress = nullptr);
 
-// The radii above over the range of x.
+// The radii above over the range of x: the smallest and the largest, then the log-spaced grid.
+struct RadiusRange {
+  double smallest = 0.0, largest = 0.0;
+};
+RadiusRange choose_radius_range(std::span<const double> x);
 std::vector<double> choose_radii(std::span<const double> x, std::size_t count = 40);
 // The correlation sums D2 is read from: m = 1..max_dimension on choose_radii(x, radii).
 CorrelationSumOptions choose_correlation_sum_options(std::span<const double> x, std::size_t delay, std::size_t theiler,

@@ -1,8 +1,8 @@
 #pragma once
 // The time scales of a series that the automatic choices rest on, from its autocorrelation
 // (autocorrelation.hpp): the 1/e decorrelation time, the half period of a dominant oscillation,
-// the Theiler window built from them, and whether the record is long enough against its own
-// correlation to be treated as stationary.
+// the correlation time the Theiler window is built from (choose.hpp), and whether the record is
+// long enough against its own correlation to be treated as stationary.
 //
 // Theiler window: temporally correlated neighbours bias D2 and Lyapunov estimates (Theiler 1986,
 // Phys. Rev. A 34:2427); it must cover the time over which the series stays correlated. The 1/e
@@ -27,7 +27,9 @@ struct TimeScales {
   std::optional<double> decorrelation_time;        // 1/e time, samples
   std::optional<std::size_t> first_zero_crossing;  // samples
   std::optional<std::size_t> half_period;          // of a dominant oscillation, samples
-  std::size_t theiler = 0;                         // the window chosen, samples
+  // The correlation time the Theiler window is built from, samples: max(ceil(1/e time), half
+  // period). choose_theiler_window (choose.hpp) makes it at least the delay.
+  std::size_t theiler = 0;
   std::string theiler_source;                      // why, in words
   bool stationary = true;                          // false: fewer than 50 correlation times
   std::string stationarity_explanation;            // empty when stationary
