@@ -73,6 +73,7 @@ void run(const AutocorrelationArgs& args) {
 void register_autocorrelation(CLI::App& app) {
   auto args = std::make_shared<AutocorrelationArgs>();
   CLI::App* command = app.add_subcommand("autocorrelation", "autocorrelation r(k), first zero crossing and 1/e time");
+  add_quiet_option(*command);
   add_input_options(*command, args->input);
   command->add_option("-D,--max-lag", args->params.max_lag, "largest lag (default N/10, at most 1000)");
   add_plot_option(*command, args->plot, "draw r(lag) with the 1/e level and its crossing to FILE.png or FILE.svg");

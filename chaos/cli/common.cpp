@@ -24,6 +24,10 @@ void add_quiet_option(CLI::App& command, bool& quiet) {
   command.add_flag("-q,--quiet", quiet, "no progress line and no long-run hint on standard error");
 }
 
+void add_quiet_option(CLI::App& command) {
+  command.add_flag("-q,--quiet")->description("accepted as by every command (this one writes only its errors to standard error)");
+}
+
 Progress::Progress(bool quiet) : quiet_(quiet), bar_(!quiet && isatty(fileno(stderr))) {}
 
 void Progress::hint(const std::string& command, std::size_t n, const std::string& text) const {

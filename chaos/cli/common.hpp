@@ -55,6 +55,9 @@ void add_plot_option(CLI::App& command, std::string& path, const std::string& de
 // short runs show none); -q,--quiet, which add_quiet_option registers, silences both.
 constexpr std::size_t long_run_points = 200'000;
 void add_quiet_option(CLI::App& command, bool& quiet);
+// -q,--quiet on a command that writes nothing to standard error but its errors: accepted, so a
+// script can pass -q to every command alike.
+void add_quiet_option(CLI::App& command);
 class Progress {
  public:
   explicit Progress(bool quiet);

@@ -99,6 +99,7 @@ void run(DensityArgs& a) {
 void register_density(CLI::App& app) {
   auto a = std::make_shared<DensityArgs>();
   CLI::App* command = app.add_subcommand("density", "density map of a bifurcation diagram: rows of (parameter, value) -> (parameter, bin centre, density)");
+  add_quiet_option(*command);
   a->input.column = 1;
   command->add_option("file", a->input.file, "input file, rows of parameter and value; - for stdin")->capture_default_str();
   command->add_option("-c,--column", a->input.column, "the parameter column (1-based)")->capture_default_str();

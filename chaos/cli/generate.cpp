@@ -86,6 +86,7 @@ void run(const GenerateArgs& args) {
 void register_generate(CLI::App& app) {
   auto args = std::make_shared<GenerateArgs>();
   CLI::App* command = app.add_subcommand("generate", "write a series from a reference system (full precision)");
+  add_quiet_option(*command);
   command->add_option("system", args->system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, "
                                                "white_noise, uniform_noise, ar1, or a zoo system (--list)");
   command->add_flag("--list", args->list, "list the zoo systems with their parameters, sampling and citation");

@@ -49,6 +49,7 @@ void register_lyapunov_maps(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "lyapunov-maps", "largest Lyapunov exponent from local linear maps (Eckmann-Ruelle 1985, Sano-Sawada 1985), "
                        "reported only when it holds over the estimator's choices");
+  add_quiet_option(*command);
   add_input_options(*command, args->input);
   command->add_option("-m,--dimension", args->params.dimension, "embedding dimension (default: automatic, where Cao's E1 saturates)");
   command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");

@@ -63,6 +63,7 @@ void run(MutualArgs& args) {
 void register_mutual(CLI::App& app) {
   auto args = std::make_shared<MutualArgs>();
   CLI::App* command = app.add_subcommand("mutual", "average mutual information I(tau) in nats and its first minimum");
+  add_quiet_option(*command);
   add_input_options(*command, args->input);
   command->add_option("-D,--max-delay", args->params.max_delay, "largest delay (default: automatic, 100 (at most N/10), and where the information has no minimum there, on to two Theiler windows, as chaos analyze searches)");
   command->add_option("-b,--boxes", args->params.options.boxes, "boxes per axis")->capture_default_str();

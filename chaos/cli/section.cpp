@@ -53,6 +53,7 @@ void run(SectionArgs& a) {
 void register_section(CLI::App& app) {
   auto a = std::make_shared<SectionArgs>();
   CLI::App* command = app.add_subcommand("section", "Poincaré section: stroboscopic (every PERIOD-th row) or hyperplane crossings with return times");
+  add_quiet_option(*command);
   command->add_option("file", a->file, "input file, columns separated by blanks, tabs or commas; - for stdin")->capture_default_str();
   command->add_option("-c,--columns", a->params.columns, "columns to read, 1-based, comma separated (default: every column but the time column)")
       ->delimiter(',');

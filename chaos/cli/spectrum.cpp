@@ -40,6 +40,7 @@ void register_spectrum(CLI::App& app) {
   auto args = std::make_shared<SpectrumArgs>();
   CLI::App* command = app.add_subcommand("spectrum", "Lyapunov spectrum of a reference system from its equations, with "
                                                      "the Kaplan-Yorke dimension");
+  add_quiet_option(*command);
   command->add_option("system", args->params.system, "lorenz, rossler, henon, logistic, ikeda or any zoo system "
                                                "(chaos generate --list)")->required();
   command->add_option("-p,--parameter", args->settings, "model parameter name=value (repeatable), as in chaos generate");

@@ -55,6 +55,7 @@ void run(const ValidateArgs& args) {
 void register_validate(CLI::App& app) {
   auto args = std::make_shared<ValidateArgs>();
   CLI::App* command = app.add_subcommand("validate", "run the reference cases (references/references.tsv) on this machine");
+  add_quiet_option(*command);
   command->add_option("--filter", args->filter, "only cases whose id contains this text");
   command->add_flag("--list", args->list, "list the cases without running them");
   add_output_options(*command, args->output);

@@ -224,3 +224,14 @@ def test_numpy_integers_are_integers(lorenz):
         chaos.mutual(lorenz, max_delay=np.True_)
     with pytest.raises(ValueError, match="must be >= 0"):
         chaos.mutual(lorenz, max_delay=np.int32(-1))
+
+
+def test_a_masked_array_is_refused_naming_the_choices():
+    # The masked values would otherwise be analysed as data (np.asarray drops the mask); a mask with
+    # nothing masked is the plain array.
+    x = np.ma.masked_array(np.sin(0.1 * np.arange(500.0)), mask=False)
+    assert chaos.autocorrelation(x).to_dict() == chaos.autocorrelation(x.data).to_dict()
+    x[10] = np.ma.masked
+    with pytest.raises(ValueError, match=r"masked array with 1 masked value\(s\) of 500.*compressed"):
+        chaos.autocorrelation(x)
+    assert chaos.autocorrelation(x.compressed()).parameters["N"] == 499

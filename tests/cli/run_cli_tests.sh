@@ -629,5 +629,12 @@ expect_error 3 "--filter 'henon.x.caoo' matches no case id" -- validate --filter
 # validate lists the compiled-in reference table.
 "$CHAOS" validate --list | grep -q "henon.x.cao.embedding_dimension" && pass || fail "validate --list"
 
+# -q is accepted by every command, so a script can pass it to all alike (commands with nothing to
+# silence say so in their help).
+for c in generate mutual autocorrelation cao fnn d2 analyze lyapunov lyapunov-maps neighbors spectrum surrogates \
+         nonlinearity section density validate zoo; do
+  "$CHAOS" "$c" --help 2>&1 | grep -q -- "-q,--quiet" && pass || fail "chaos $c does not accept -q"
+done
+
 echo "$passed passed, $failed failed"
 [[ $failed -eq 0 ]]

@@ -44,6 +44,13 @@ def _series(x, dt, column=1, skip=0, length=None):
         return values, path, column, dt
     if column != 1 or skip != 0 or length is not None:
         raise TypeError("column, skip and length select rows of a file; slice an array instead")
+    if isinstance(x, np.ma.MaskedArray) and np.ma.count_masked(x) > 0:
+        # np.asarray would hand over the masked values as if they were data. Dropping them
+        # (x.compressed()) would join the samples on either side of each gap, which is a choice the
+        # caller must make: the series is refused instead.
+        raise ValueError(f"the series is a masked array with {np.ma.count_masked(x)} masked value(s) of {x.size}: "
+                         "pass x.compressed() to analyse the unmasked values joined across the gaps, "
+                         "or x.filled(value), or analyse each unmasked stretch on its own")
     a = np.asarray(x)
     if a.dtype.kind not in "iuf":
         raise TypeError(f"the series must hold real numbers (got an array of dtype {a.dtype})")
