@@ -173,21 +173,33 @@ void run(AnalyzeArgs& args) {
   } else {
     out << "not run\t[" << not_run << "]\n";
   }
+  const char* per = per_time ? "time unit" : "sample";
+  // An answer as "value in [low, high] per unit (status)", or "none".
+  const auto estimate_text = [&](const Estimate& e) {
+    std::string text = e.value ? number(*e.value) : "none";
+    if (e.value && e.interval)
+      text += " in [" + number(e.interval->low) + ", " + number(e.interval->high) + "] per " + per;
+    return text + " (" + to_string(e.status) + ")";
+  };
+  out << "largest_lyapunov_exponent\t";
+  if (a.lyapunov) {
+    const Estimate e = a.lyapunov->per_time();
+    out << estimate_text(e) << "\t[" << (a.lyapunov->source.empty() ? "" : a.lyapunov->source + ": ") << e.reason << "]\n";
+  } else {
+    out << "not run\t[" << not_run << "]\n";
+  }
+  // The evidence: each estimator's own answer, with its detailed status.
   const auto lambda_text = [&](const std::optional<LyapunovResult>& l, const char* method) {
     out << "largest_lyapunov_exponent_" << method << "\t";
     if (!l) {
       out << "not run\t[" << not_run << "]\n";
       return;
     }
-    const auto lambda = per_time ? l->lambda_per_time : l->fit.lambda;
-    const auto range = per_time ? l->lambda_per_time_interval : l->fit.lambda_interval;
-    if (lambda)
-      out << number(*lambda) << " in [" << number(range->low) << ", " << number(range->high) << "] per "
-          << (per_time ? "time unit" : "sample");
-    else
-      out << "none";
-    out << "\t[" << l->options.steps << " steps, m = " << l->dimensions.front() << ".." << l->dimensions.back() << "; "
-        << to_string(l->fit.status) << ": " << l->fit.explanation << "]\n";
+    const Estimate e = per_time ? scaled(l->fit.estimate, 1.0 / *l->dt) : l->fit.estimate;
+    out << estimate_text(e) << "\t[" << l->options.steps << " steps, m = " << l->dimensions.front() << ".."
+        << l->dimensions.back() << "; " << to_string(l->fit.status) << ": " << l->fit.explanation;
+    if (e.status != EstimateStatus::confident && !e.reason.empty()) out << "; answer: " << e.reason;
+    out << "]\n";
   };
   lambda_text(a.rosenstein, "rosenstein");
   lambda_text(a.kantz, "kantz");

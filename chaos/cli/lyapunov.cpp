@@ -100,6 +100,18 @@ void run(LyapunovArgs& args) {
     return;
   }
   report.write_header(out);
+  // The answers first (the JSON's lambda_1 and estimate), then the strict fit behind them.
+  const auto answer_text = [&](const nlohmann::ordered_json& e) {
+    std::string text = e["value"].is_null() ? std::string("none") : number(e["value"].get<double>());
+    if (!e["interval"].is_null())
+      text += " in [" + number(e["interval"][0].get<double>()) + ", " + number(e["interval"][1].get<double>()) + "]";
+    return text + " per " + (per_time ? "time unit" : "sample") + " (" + e["status"].get<std::string>() +
+           "): " + e["reason"].get<std::string>();
+  };
+  const auto& j = report.json();
+  if (!j["lambda_1"].is_null())
+    out << "# lambda_1 = " << answer_text(j["lambda_1"]) << " [" << j["lambda_1"]["source"].get<std::string>() << "]\n";
+  out << "# estimate = " << answer_text(j["estimate"]) << " [" << args.params.method << "]\n";
   out << "# status = " << to_string(r.fit.status) << ": " << r.fit.explanation << "\n";
   out << "# lambda = " << (lambda ? number(*lambda) : "none") << "  interval " << interval_text(lambda_interval)
       << "  per " << (per_time ? "time unit" : "sample") << "\n";

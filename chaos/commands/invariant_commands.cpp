@@ -5,6 +5,7 @@
 
 #include "chaos/choose.hpp"
 #include "chaos/error.hpp"
+#include "chaos/lyapunov_answer.hpp"
 #include "chaos/models/generate.hpp"
 #include "chaos/time_scales.hpp"
 #include "commands.hpp"
@@ -270,6 +271,21 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
       .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions)
       .parameter("cross_check", params.cross_check).parameter("halves", params.halves);
   auto& j = report.json();
+  // The answer: this method's estimate, and lambda_1 from every estimator run (lyapunov_answer.hpp).
+  // Without the cross-checks a confident estimate is only the fit's own verdict: rough.
+  Estimate estimate = r.fit.estimate;
+  if (!params.cross_check || !params.halves)
+    estimate.downgrade(std::string("checks off (") + (!params.cross_check ? "--no-cross-check" : "--no-halves") + ")");
+  const LyapunovAnswer answer = combine_lyapunov(r.options.method == LyapunovMethod::rosenstein ? &r : check ? &*check : nullptr,
+                                                 r.options.method == LyapunovMethod::kantz ? &r : check ? &*check : nullptr,
+                                                 maps ? &*maps : nullptr, in.dt);
+  j["estimate"] = estimate_json(per_time ? scaled(estimate, 1.0 / *in.dt) : estimate);
+  if (params.cross_check && params.halves) {
+    j["lambda_1"] = estimate_json(answer.per_time());
+    j["lambda_1"]["source"] = answer.source;
+  } else {
+    j["lambda_1"] = nullptr;
+  }
   j["lambda"] = optional_json(lambda);
   j["lambda_interval"] = interval_json(lambda_interval);
   j["per"] = per_time ? "time" : "sample";
@@ -469,7 +485,16 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
                              {"d2", optional_json(a.d2->variant_delay_d2)}};
   else
     j["d2_delay_variant"] = nullptr;
+  // lambda_1, one answer (lyapunov_answer.hpp); the three estimators below are its evidence.
+  if (a.lyapunov) {
+    j["lambda_1"] = estimate_json(a.lyapunov->per_time());
+    j["lambda_1"]["source"] = a.lyapunov->source;
+  } else {
+    j["lambda_1"] = estimate_json(Estimate{EstimateStatus::none, std::nullopt, std::nullopt, a.stopped});
+  }
   const auto lambda_json = [&](const std::optional<LyapunovResult>& l, const std::string& prefix) {
+    j[prefix + "_estimate"] = l ? estimate_json(per_time ? scaled(l->fit.estimate, 1.0 / *l->dt) : l->fit.estimate)
+                                : nlohmann::ordered_json(nullptr);
     if (l) {
       j[prefix] = optional_json(per_time ? l->lambda_per_time : l->fit.lambda);
       j[prefix + "_interval"] = interval_json(per_time ? l->lambda_per_time_interval : l->fit.lambda_interval);

@@ -58,6 +58,11 @@ nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
   return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
 }
 
+nlohmann::ordered_json estimate_json(const Estimate& e) {
+  return {{"value", optional_json(e.value)}, {"interval", interval_json(e.interval)}, {"status", to_string(e.status)},
+          {"reason", e.reason}};
+}
+
 Norm parse_norm(const std::string& name) {
   if (name == "max") return Norm::max;
   if (name == "euclidean") return Norm::euclidean;

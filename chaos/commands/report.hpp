@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "chaos/estimate.hpp"
 #include "chaos/norm.hpp"
 #include "chaos/scaling_region.hpp"
 
@@ -84,6 +85,9 @@ nlohmann::ordered_json optional_json(const std::optional<T>& v) {
 
 // [low, high], or null.
 nlohmann::ordered_json interval_json(const std::optional<Interval>& i);
+// An answer (estimate.hpp) as {"value", "interval", "status", "reason"}: the one shape every
+// command and the Python package give an estimate in.
+nlohmann::ordered_json estimate_json(const Estimate& e);
 
 Norm parse_norm(const std::string& name);
 

@@ -41,7 +41,7 @@ void check_record_halves(CorrelationDimensionResult& d2, std::span<const double>
 
 void check_record_halves(LyapunovResult& result, std::span<const double> x, LyapunovOptions options,
                          const LyapunovFitOptions& fit) {
-  if (result.fit.status != LyapunovStatus::linear_region) return;
+  if (!result.fit.estimate.value) return;
   const auto [first, second] = record_halves(x);
   options.progress = nullptr;  // the progress shown is the whole record's curve
   try {
@@ -197,6 +197,9 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     }
     if (options.progress) options.progress("Lyapunov exponent (local maps)", 1.0);
   }
+  if (a.rosenstein || a.kantz || a.local_maps)
+    a.lyapunov = combine_lyapunov(a.rosenstein ? &*a.rosenstein : nullptr, a.kantz ? &*a.kantz : nullptr,
+                                  a.local_maps ? &*a.local_maps : nullptr, dt);
   return a;
 }
 

@@ -412,6 +412,7 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
       why << "none of the " << c.reference_points << " reference points has a neighbour"
           << (c.method == LyapunovMethod::kantz ? " within eps" : "") << " outside the Theiler window";
       fit.explanation = why.str();
+      fit.estimate.reason = fit.explanation;
       return fit;
     }
   // Only a rising curve carries a positive exponent, and these methods estimate nothing else: the
@@ -429,6 +430,7 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
     fit.status = LyapunovStatus::not_diverging;
     why << "no local slope of the divergence curve is positive: no exponential divergence";
     fit.explanation = why.str();
+    fit.estimate.reason = fit.explanation;
     return fit;
   }
   // Among the straight stretches, the one across which the curve rises most wins, and it must rise
@@ -443,9 +445,68 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
       }
     if (n > 0) level[k] /= static_cast<double>(n);
   }
-  ScalingRegionOptions rising_options = region_options;
-  rising_options.min_support_gain = options.min_rise;
-  const auto region = find_scaling_region(x, rising, rising_options, level);
+  const auto search = [&](double tolerance, double min_rise) {
+    ScalingRegionOptions o = region_options;
+    o.tolerance = tolerance;
+    o.min_support_gain = min_rise;
+    return find_scaling_region(x, rising, o, level);
+  };
+  // The least-squares slope of each curve over steps [first, last] (indices into the curve).
+  const auto slopes_over = [&](std::size_t from, std::size_t to, double fallback) {
+    std::vector<double> out;
+    for (const auto& c : curves) out.push_back(fit_slope(x, c.divergence, from, to).value_or(fallback));
+    return out;
+  };
+  // The estimate from a stretch: the mean of the curves' slopes; the interval spans every curve's
+  // slope over the stretch and over each half of it (where the curve bends, the halves differ).
+  const auto estimate_over = [&](const ScalingRegion& r, EstimateStatus status, const std::string& reason) {
+    Estimate e;
+    const std::vector<double> whole = slopes_over(r.first, r.last, r.slope);
+    double sum = 0.0;
+    for (const double s : whole) sum += s;
+    const double value = sum / static_cast<double>(whole.size());
+    if (!(value > 0.0)) {
+      e.reason = "the straightest rising stretch (steps " + std::to_string(curve.step[r.first]) + ".." +
+                 std::to_string(curve.step[r.last]) + ") has a least-squares slope <= 0: no exponential divergence";
+      return e;
+    }
+    e.value = value;
+    for (const double s : whole) e.include(s);
+    const std::size_t mid = r.first + (r.last - r.first) / 2;
+    if (mid - r.first >= 2 && r.last - mid >= 2)
+      for (const auto& part : {std::pair{r.first, mid}, std::pair{mid, r.last}})
+        for (const double s : slopes_over(part.first, part.second, value)) e.include(s);
+    e.status = status;
+    e.reason = reason;
+    if (status == EstimateStatus::confident && e.relative_half_width() > 0.1) {
+      e.status = EstimateStatus::rough;
+      e.reason += "; the slopes over the stretch, its halves and the embedding dimensions spread by more than 10%";
+    }
+    return e;
+  };
+  // Where the strict rule finds no linear region, the answer comes from the loosest rung that has one.
+  const double loose_rise = std::min(1.0, options.min_rise);
+  const auto loose_estimate = [&](const std::string& strict_verdict) {
+    const struct {
+      double tolerance;
+      EstimateStatus status;
+    } rungs[] = {{options.tolerance, EstimateStatus::confident},
+                 {2 * options.tolerance, EstimateStatus::rough},
+                 {3 * options.tolerance, EstimateStatus::rough}};
+    for (const auto& rung : rungs)
+      if (const auto r = search(rung.tolerance, loose_rise)) {
+        std::ostringstream s;
+        s << "local slopes within " << rung.tolerance * 100 << "% over steps " << curve.step[r->first] << ".."
+          << curve.step[r->last] << ", rising by " << loose_rise << " e-fold or more (" << strict_verdict << ")";
+        fit.estimate = estimate_over(*r, rung.status, s.str());
+        if (fit.estimate.value) return;
+      }
+    fit.estimate = Estimate{};
+    fit.estimate.reason = strict_verdict + "; no stretch rising by " + format_number(loose_rise, Precision::title) +
+                          " e-fold has local slopes within " + format_number(300 * options.tolerance, Precision::title) +
+                          "% of their mean either";
+  };
+  const auto region = search(options.tolerance, options.min_rise);
   if (!region) {
     fit.status = LyapunovStatus::no_linear_region;
     why << "no stretch of at least " << fit.min_steps << " steps rising by " << options.min_rise
@@ -454,13 +515,13 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
     why << ": the divergence curve has no linear region";
     if (curves.size() > 1) why << " that does not depend on m";
     fit.explanation = why.str();
+    loose_estimate(std::string("strictly, ") + to_string(fit.status));
     return fit;
   }
   fit.first_step = curve.step[region->first];
   fit.last_step = curve.step[region->last];
   double sum = 0.0, lo = region->slope_min, hi = region->slope_max, low_fit = INFINITY, high_fit = -INFINITY;
-  for (const auto& c : curves) {
-    const double slope = fit_slope(x, c.divergence, region->first, region->last).value_or(region->slope);
+  for (const double slope : slopes_over(region->first, region->last, region->slope)) {
     fit.lambda_by_curve.push_back(slope);
     sum += slope;
     low_fit = std::min(low_fit, slope);
@@ -473,7 +534,9 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
         << low_fit << " <= 0: no exponential divergence";
     fit.first_step.reset();
     fit.last_step.reset();
+    fit.lambda_by_curve.clear();
     fit.explanation = why.str();
+    fit.estimate.reason = fit.explanation;
     return fit;
   }
   if (high_fit - low_fit > options.tolerance * slope) {  // the dimensions disagree on the slope itself
@@ -483,7 +546,9 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
         << "% apart)";
     fit.first_step.reset();
     fit.last_step.reset();
+    fit.lambda_by_curve.clear();
     fit.explanation = why.str();
+    fit.estimate = estimate_over(*region, EstimateStatus::rough, "strictly, no_linear_region: " + fit.explanation);
     return fit;
   }
   const double rise = slope * (x[region->last] - x[region->first]);
@@ -495,7 +560,9 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
         << "a piece of the initial transient)";
     fit.first_step.reset();
     fit.last_step.reset();
+    fit.lambda_by_curve.clear();
     fit.explanation = why.str();
+    loose_estimate(std::string("strictly, ") + to_string(fit.status));
     return fit;
   }
   fit.status = LyapunovStatus::linear_region;
@@ -506,6 +573,7 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
   if (curves.size() > 1) why << " in " << curves.size() << " embedding dimensions";
   if (options.period > 1) why << " (local slopes over " << 2 * fit.half_width + 1 << " steps: a whole oscillation period)";
   fit.explanation = why.str();
+  fit.estimate = estimate_over(*region, EstimateStatus::confident, fit.explanation);
   return fit;
 }
 
@@ -581,6 +649,63 @@ void require_cross_check_tolerance(double tolerance) {
 // Two exponents agree when they differ by at most `tolerance` times their mean.
 bool agree(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance * 0.5 * (a + b); }
 
+// The answers of two estimators of one series checked against each other: an answer the other does
+// not share (no value, or more than the tolerance apart) is rough. The intervals stay each
+// estimator's own; combine_lyapunov spans both.
+void check_estimates(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
+  Estimate& a = rosenstein.estimate;
+  Estimate& b = kantz.estimate;
+  if (!a.value && !b.value) return;
+  if (a.value && b.value) {
+    const double va = *a.value, vb = *b.value;
+    if (agree(va, vb, tolerance)) return;
+    const std::string why = "Rosenstein gives " + format_number(va, Precision::title) + " and Kantz " +
+                            format_number(vb, Precision::title) + " per sample, more than " +
+                            format_number(tolerance * 100, Precision::title) + "% apart";
+    a.downgrade(why);
+    b.downgrade(why);
+    return;
+  }
+  (a.value ? a : b).downgrade(std::string(a.value ? "Kantz" : "Rosenstein") + " finds no value (" +
+                              to_string((a.value ? kantz : rosenstein).status) + ")");
+}
+
+// An answer checked against the local-map exponent, the independent estimate: rough beside maps
+// that find the data not deterministic or not diverging, that give another value (consistent and
+// more than the tolerance away), or whose variants all lie on one side of it (inconsistent: the
+// variants spread, but none supports this value).
+void check_estimate(Estimate& e, const LocalMapResult& maps, double tolerance) {
+  if (!e.value) return;
+  const std::string name = "the local linear maps ";
+  switch (maps.status) {
+    case LocalMapStatus::not_deterministic:
+      e.downgrade(name + "leave " + format_number(maps.base.median_residual * 100, Precision::title) +
+                  "% of the neighbourhoods' image spread unexplained: not deterministic at the neighbours' scale, "
+                  "where noise slows the divergence");
+      return;
+    case LocalMapStatus::not_positive:
+      e.downgrade(name + "find no exponential divergence at the neighbourhoods' scale");
+      return;
+    case LocalMapStatus::consistent:
+      if (maps.lambda && !agree(*e.value, *maps.lambda, tolerance))
+        e.downgrade(name + "give " + format_number(*maps.lambda, Precision::title) + " per sample, more than " +
+                    format_number(tolerance * 100, Precision::title) + "% away");
+      return;
+    case LocalMapStatus::inconsistent: {
+      double lo = INFINITY, hi = -INFINITY;
+      for (const auto& v : maps.variants) {
+        lo = std::min(lo, v.lambda);
+        hi = std::max(hi, v.lambda);
+      }
+      if (!(*e.value >= lo * (1 - tolerance) && *e.value <= hi * (1 + tolerance)))
+        e.downgrade("the local linear maps' variants span " + format_number(lo, Precision::title) + ".." +
+                    format_number(hi, Precision::title) + " per sample, none within " +
+                    format_number(tolerance * 100, Precision::title) + "% of this value");
+      return;
+    }
+  }
+}
+
 // A result whose fit was withdrawn loses its per-time values too.
 void withdraw_per_time(LyapunovResult& r) {
   if (r.fit.lambda) return;
@@ -593,6 +718,7 @@ void withdraw_per_time(LyapunovResult& r) {
 
 void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
   require_cross_check_tolerance(tolerance);
+  check_estimates(rosenstein, kantz, tolerance);
   const bool r = rosenstein.status == LyapunovStatus::linear_region, k = kantz.status == LyapunovStatus::linear_region;
   if (!r && !k) return;
   if (r && k) {
@@ -614,6 +740,7 @@ void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double toler
 
 void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance) {
   require_cross_check_tolerance(tolerance);
+  check_estimate(fit.estimate, local_maps, tolerance);
   if (fit.status != LyapunovStatus::linear_region) return;
   const std::string name = method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz";
   std::ostringstream why;
@@ -654,6 +781,7 @@ void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, doubl
 }
 
 void cross_check_without_local_maps(LyapunovFit& fit, LyapunovMethod method, const std::string& refusal) {
+  if (fit.estimate.value) fit.estimate.downgrade("the local linear maps could not confirm it: " + refusal);
   if (fit.status != LyapunovStatus::linear_region) return;
   withdraw(fit, std::string("no local-map exponent to confirm this slope (") +
                     (method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz") +
@@ -669,6 +797,23 @@ void cross_check_without_local_maps(LyapunovResult& result, const std::string& r
 void require_reproduced_by_halves(LyapunovFit& full, const LyapunovFit& first, const LyapunovFit& second,
                                   double tolerance) {
   require_cross_check_tolerance(tolerance);
+  if (full.estimate.value) {
+    // An answer that neither half gives, or that a half puts more than twice the tolerance away, is
+    // rough. A half is a record of half the length, whose value scatters more than the whole's: it
+    // checks the answer, and does not widen its interval.
+    const double value = *full.estimate.value;
+    bool some = false, apart = false;
+    for (const LyapunovFit* half : {&first, &second})
+      if (half->estimate.value) {
+        some = true;
+        apart = apart || !agree(value, *half->estimate.value, 2 * tolerance);
+      }
+    if (!some)
+      full.estimate.downgrade("neither half of the record gives a value");
+    else if (apart)
+      full.estimate.downgrade("a half of the record gives a value more than " +
+                              format_number(200 * tolerance, Precision::title) + "% away");
+  }
   if (full.status != LyapunovStatus::linear_region) return;
   const bool a = first.status == LyapunovStatus::linear_region, b = second.status == LyapunovStatus::linear_region;
   const bool contradicted = (a && !agree(*full.lambda, *first.lambda, tolerance)) ||

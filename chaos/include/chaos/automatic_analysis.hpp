@@ -34,6 +34,7 @@
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
+#include "chaos/lyapunov_answer.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/time_scales.hpp"
 
@@ -82,6 +83,9 @@ struct AutomaticAnalysis {
   std::optional<LocalMapResult> local_maps;
   std::optional<LocalMapResult> local_maps_at_m;
   std::string local_maps_refusal;
+  // lambda_1 from the three together, with one interval and status (lyapunov_answer.hpp); empty
+  // where the Lyapunov step did not run.
+  std::optional<LyapunovAnswer> lyapunov;
   std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
 };
 

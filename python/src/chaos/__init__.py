@@ -291,6 +291,13 @@ def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None
     when ``dt`` is given (then ``lambda`` is per time unit). M. T. Rosenstein, J. J. Collins,
     C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/lyapunov.md.
 
+    The answer is ``r["estimate"]`` (this method) and ``r["lambda_1"]`` (Rosenstein, Kantz and the
+    local maps combined, as ``analyze`` gives it; None with the checks off): ``value``, ``interval``
+    (the spread over fit range, dimensions and estimators), ``status`` (``confident``: narrow and
+    every check passed; ``rough``: a value, wider or with a check that disagrees; ``none``: no fit)
+    and ``reason``. ``lambda`` and ``status`` below are the strict linear-region fit and its checks,
+    the detailed evidence behind the answer.
+
     ``cross_check`` (default) also runs the other method with the same settings: a linear region it
     does not confirm within ``tolerance`` gives status ``unconfirmed`` and no value (the other
     method's verdict is under ``cross_check``). It also runs ``lyapunov_maps`` at the same m, delay,
@@ -362,8 +369,10 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     (else the autocorrelation's first zero crossing; where neither lies within ``max_delay``, both
     rules once more up to twice the Theiler window, so a finely sampled flow still gets one); embedding
     dimension where Cao's E1 saturates (unless E2 says stochastic), corroborated by false nearest
-    neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2; a
-    one-sided rank-order test against IAAFT surrogates (prediction error). ``delay_check=True``
+    neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2 and by
+    local maps, combined into one answer ``r["lambda_1"]`` with ``value``, ``interval``, ``status``
+    (``confident`` / ``rough`` / ``none``) and ``reason`` (each method's own answer under
+    ``lambda_estimate``, ``lambda_kantz_estimate``); a one-sided rank-order test against IAAFT surrogates (prediction error). ``delay_check=True``
     (``--delay-check``) also requires a saturated D2 to be reproduced at twice the delay within 0.05
     (the result's d2_delay_variant gives that D2). With ``x=None`` it analyses
     the built-in Lorenz x series (``builtin_length`` samples, dt = 0.01), as ``chaos analyze`` with no

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""lambda_1 answers of `chaos analyze` on every chaotic zoo system, against lambda_1 from the equations.
+
+For each system: the zoo's series (`chaos zoo --series`), its first N samples for each N asked,
+`chaos analyze --json`, and its `lambda_1` answer (value, interval, status). Prints one row per system
+and N, then, per N:
+  coverage     confident and within 10% of lambda_1 from the equations (the zoo's band);
+  calibration  the reference inside the stated interval, over confident and rough answers;
+  worst        confident answers farther from the reference than twice their half-width.
+The references are the "lambda_1 eq." column of docs/zoo.md (chaos spectrum, from the equations).
+
+Usage: scripts/measure/lyapunov_answers.py CHAOS_BINARY [N ...] [--jobs J] [--only a,b]
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def references():
+    """System -> lambda_1 from the equations, read from docs/zoo.md's table."""
+    out = {}
+    for path in ("docs/zoo.md", "docs/validation/zoo.md"):
+        full = os.path.join(ROOT, path)
+        if not os.path.exists(full):
+            continue
+        for line in open(full):
+            cells = [c.strip() for c in line.split("|")]
+            if len(cells) > 12 and re.fullmatch(r"[0-9]+", cells[2] or "") and cells[1] not in out:
+                try:
+                    out[cells[1]] = float(cells[11])
+                except ValueError:
+                    pass
+        break
+    return out
+
+
+def run(chaos, name, n, workdir):
+    series = os.path.join(workdir, name + ".json")
+    if not os.path.exists(series):
+        with open(series, "w") as f:
+            subprocess.run([chaos, "zoo", "--series", name, "--json"], stdout=f, check=True)
+    data = json.load(open(series))
+    dt = data["parameters"].get("dt")
+    values = data.get("x") or next(v for k, v in data.items() if isinstance(v, list))
+    path = os.path.join(workdir, f"{name}-{n}.txt")
+    with open(path, "w") as f:
+        f.write("\n".join(repr(v) for v in values[:n]) + "\n")
+    cmd = [chaos, "analyze", path, "-q", "--json"] + (["--dt", str(dt)] if dt else [])
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0:
+        return {"status": "error", "reason": done.stderr.strip()[:200]}
+    return json.loads(done.stdout)["lambda_1"]
+
+
+def main():
+    args = sys.argv[1:]
+    jobs, only = 2, None
+    if "--jobs" in args:
+        i = args.index("--jobs")
+        jobs = int(args[i + 1])
+        del args[i:i + 2]
+    if "--only" in args:
+        i = args.index("--only")
+        only = set(args[i + 1].split(","))
+        del args[i:i + 2]
+    chaos = args[0]
+    lengths = [int(a) for a in args[1:]] or [20000, 100000]
+    refs = references()
+    names = [n for n in refs if only is None or n in only]
+    workdir = tempfile.mkdtemp(prefix="lyapunov-answers-")
+    # One series file per system first (sequentially: the cheap part), then the analyses in parallel.
+    for name in names:
+        run_series = os.path.join(workdir, name + ".json")
+        with open(run_series, "w") as f:
+            subprocess.run([chaos, "zoo", "--series", name, "--json"], stdout=f, check=True)
+    tasks = [(name, n) for n in lengths for name in names]
+    with ThreadPoolExecutor(jobs) as pool:
+        answers = list(pool.map(lambda t: run(chaos, t[0], t[1], workdir), tasks))
+    print("system\tN\tlambda_eq\tvalue\tlow\thigh\tstatus\tinside\treason")
+    summary = {n: {"confident": 0, "good": 0, "stated": 0, "held": 0, "worst": 0, "systems": 0} for n in lengths}
+    for (name, n), a in zip(tasks, answers):
+        ref = refs[name]
+        s = summary[n]
+        s["systems"] += 1
+        v, iv, st = a.get("value"), a.get("interval"), a.get("status")
+        inside = iv is not None and iv[0] <= ref <= iv[1]
+        if st in ("confident", "rough") and v is not None:
+            s["stated"] += 1
+            s["held"] += inside
+        if st == "confident":
+            s["confident"] += 1
+            s["good"] += abs(v - ref) <= 0.1 * abs(ref)
+            half = 0.5 * (iv[1] - iv[0]) if iv else 0.0
+            s["worst"] += abs(v - ref) > 2 * half and abs(v - ref) > 0.1 * abs(ref)
+        fmt = lambda x: "-" if x is None else f"{x:.4g}"
+        print(f"{name}\t{n}\t{ref:.4g}\t{fmt(v)}\t{fmt(iv[0] if iv else None)}\t{fmt(iv[1] if iv else None)}\t{st}\t"
+              f"{'yes' if inside else 'no'}\t{a.get('reason', '')[:160]}")
+    for n, s in summary.items():
+        print(f"# N = {n}: {s['systems']} systems; confident {s['confident']}, of which within 10% of lambda_1 eq. "
+              f"{s['good']} (coverage {100 * s['good'] / max(1, s['systems']):.1f}%); reference inside the interval "
+              f"in {s['held']} of {s['stated']} confident or rough answers "
+              f"({100 * s['held'] / max(1, s['stated']):.1f}%); confident and farther than twice the half-width "
+              f"(and 10%): {s['worst']}")
+
+
+if __name__ == "__main__":
+    main()
