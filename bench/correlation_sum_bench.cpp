@@ -1,5 +1,5 @@
 // Correlation sums: brute force, kd-tree and box-assisted search on the same job, and the two
-// target jobs of docs/reference/correlation_sum.md. Inputs (series, radii) are built before the timed loop.
+// target jobs of docs/validation/performance-correlation-sum.md. Inputs (series, radii) are built before the timed loop.
 //
 // Search comparison: Lorenz x (sigma 10, rho 28, beta 8/3, dt = 0.01, RK4 step 0.001), tau = 17,
 // Theiler window w = 200, 40 log-spaced radii from 0.25 to 5, C(eps, m) for m = 1 .. M in one call
@@ -20,7 +20,7 @@
 // BM_TheilerWindowsLorenz: the Lorenz job at three Theiler windows, one call each against one call
 // for all three.
 // BM_Floor*: what two parts of a target job cost at the least, for judging how far the exact
-// one-thread times can fall (docs/reference/correlation_sum.md, "How far the one-thread time can fall").
+// one-thread times can fall (docs/validation/performance-correlation-sum.md, "How far the one-thread time can fall").
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

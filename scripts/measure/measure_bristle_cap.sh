@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What the LuGre bristle-rate cap (joint.slider.friction.bristle_time_floor, 1 us) and the exact
-# bristle update (integrator.bristles = "exponential") change (docs/reference/mechanism/contact-and-friction.md,
-# "The bristle-rate cap, measured" and "The exact bristle update"). The audited scene at 0.5 mm: runs
+# bristle update (integrator.bristles = "exponential") change (docs/validation/mechanism/friction-measured.md,
+# "The bristle-rate cap, measured", and docs/reference/mechanism/contact-and-friction.md, "The exact bristle update"). The audited scene at 0.5 mm: runs
 # with the cap at 1 us and with a floor of 10 ns, which the normalised form never reaches (its rate
 # sigma0 |v| / mu(v) stays below 1e8 1/s up to 110 m/s), so the cap is off; then the exponential
 # update, which has no cap, on dopri5 and on RK4. Each run is one draw of the chaotic trajectory

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Friction against its bound mu * F_N (docs/reference/mechanism/contact-and-friction.md, "Friction against
+# Friction against its bound mu * F_N (docs/validation/mechanism/friction-measured.md, "Friction against
 # mu F_N"). The seed scene with each LuGre reading and Coulomb's law as a reference: 5 crank periods
 # of transient, then 10 written at every RK4 step (1e-6 s). At every sample where the slider's faces
 # carry a normal force, r = |slider_friction| / (mu_max (slider_normal_upper + slider_normal_lower)),

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The study's speed goals, measured (docs/reference/study.md, "Speed"): the seed's 120-clearance bifurcation
+# The study's speed goals, measured (docs/validation/performance-study.md): the seed's 120-clearance bifurcation
 # diagram (0.01 .. 0.6 mm at 5000 rpm, 1000 periods each, the last 50 kept) and a 10 000-point
 # Poincare portrait (c_t = 0.5 mm, 100 periods of transient), for these settings:
 #   built_in            the built-in scene (the audited reading), dopri5 rtol 1e-4, max_step 1e-5

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The integrator knobs of a sweep against the long-run statistics they must keep (docs/reference/study.md,
+# The integrator knobs of a sweep against the long-run statistics they must keep (docs/validation/performance-study.md,
 # "Speed against accuracy"). For each clearance and setting: wall time per simulated second, and
 # the Kolmogorov-Smirnov distances of the stroboscopic slider_y and slider_vy over 1000 periods
 # (after 10) against RK4 at h = 2.5e-7 s. The 5% critical value for two samples of 1000 is 0.061.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The Python package's cost over the library (docs/guide/python.md).
+"""The Python package's cost over the library (docs/validation/performance-python.md).
 
 1. Call overhead on a small series: a call's wall time minus the library's own time for the same
    work (the shared command code run in C++ by chaos._core._compute_seconds, no Python in the loop);

@@ -73,7 +73,7 @@ enum class SliderContactModel { face, corners, line };
 //   free:   the seed's model (Eq. 19 and 27): the slider's angle is a coordinate;
 //   locked: an ideal anti-rotation constraint keeps it level. It is modelled as what it is, one
 //           coordinate fewer, not as a huge inertia; the constraint's moment does no work. The
-//           contacts are those of a level slider (docs/reference/mechanism/lyapunov.md uses this to ask how
+//           contacts are those of a level slider (docs/notes/mechanism/scene-lyapunov.md uses this to ask how
 //           much of the dynamics the slider's rotation makes).
 enum class SliderRotation { free, locked };
 
