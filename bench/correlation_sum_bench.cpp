@@ -1,5 +1,5 @@
 // Correlation sums: brute force, kd-tree and box-assisted search on the same job, and the two
-// target jobs of docs/correlation_sum.md. Inputs (series, radii) are built before the timed loop.
+// target jobs of docs/validation/performance-correlation-sum.md. Inputs (series, radii) are built before the timed loop.
 //
 // Search comparison: Lorenz x (sigma 10, rho 28, beta 8/3, dt = 0.01, RK4 step 0.001), tau = 17,
 // Theiler window w = 200, 40 log-spaced radii from 0.25 to 5, C(eps, m) for m = 1 .. M in one call
@@ -7,7 +7,7 @@
 //   brute force: N <= 10^5 only (O(N^2) pairs: about a minute at 10^5, so well over an hour at
 //                10^6);
 //   kd-tree:     N <= 10^5 (one traversal per point for all radii and dimensions, 1-2 times the
-//                box-assisted time: scripts/measure_kd_tree.sh compares the two case by case);
+//                box-assisted time: scripts/measure/measure_kd_tree.sh compares the two case by case);
 //   box-assisted: every N (at 10^6 one call takes about 3 minutes for M = 2 and more for larger
 //                M: the pairs closer than 5 grow as N^2).
 // Each benchmark runs one iteration per repetition for N >= 10^5, so the whole file is long; pick
@@ -20,7 +20,7 @@
 // BM_TheilerWindowsLorenz: the Lorenz job at three Theiler windows, one call each against one call
 // for all three.
 // BM_Floor*: what two parts of a target job cost at the least, for judging how far the exact
-// one-thread times can fall (docs/correlation_sum.md, "How far the one-thread time can fall").
+// one-thread times can fall (docs/validation/performance-correlation-sum.md, "How far the one-thread time can fall").
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -134,7 +134,7 @@ BENCHMARK(BM_TargetLorenz)->Apply(targets);
 
 // The Lorenz target job at three Theiler windows (200, 400, 600: the zoo grid's 1, 2 and 3 times
 // w), one correlation_sum per window (range(0) = 0) against correlation_sums_over_theiler_windows
-// (range(0) = 1); one thread. docs/correlation_sum.md, "Several Theiler windows".
+// (range(0) = 1); one thread. docs/reference/correlation_sum.md, "Several Theiler windows".
 void BM_TheilerWindowsLorenz(benchmark::State& state) {
   const std::vector<double>& x = lorenz_x(100'000);
   chaos::CorrelationSumOptions o;
@@ -171,7 +171,7 @@ BENCHMARK(BM_TheilerWindowsLorenz)->Arg(0)->Arg(1)->ArgName("together")->Unit(be
 // of any method that bins each close pair once per m.
 //
 // BM_FloorPlane: the job restricted to m = 2 (min = max = 2), which the library counts with the
-// plane sweeps of docs/correlation_sum.md (step 4) and the window subtraction, without the grid.
+// plane sweeps of docs/reference/correlation_sum.md (step 4) and the window subtraction, without the grid.
 //
 // The job itself (BM_TargetHenon, BM_TargetLorenz) also filters the candidates of the grid; the two
 // floors together leave what that filter may cost within a target time.

@@ -6,11 +6,11 @@
 # periods. About two minutes on 2 cores once built (the sweep takes about 95 s).
 #
 # The built-in scene reads the seed's slider joint as the physics audit decided (line
-# contact, Eq. 11 with exponent 1, the normalised LuGre with sigma1 fading: docs/mechanism/scene.md).
-# One setting differs from it, measured (docs/mechanism/performance.md): Dormand-Prince at rtol 1e-3
+# contact, Eq. 11 with exponent 1, the normalised LuGre with sigma1 fading: docs/reference/mechanism/scene.md).
+# One setting differs from it, measured (docs/validation/mechanism/performance.md): Dormand-Prince at rtol 1e-3
 # with steps up to 1e-4 s instead of RK4 at 1e-6 s, a setting that keeps the distribution of the
 # stroboscopic samples. Extra arguments go to `study sweep`.
-# Writes build/demo/ (the result directory, docs/study.md) with four figures, then prints the
+# Writes build/demo/ (the result directory, docs/reference/study.md) with four figures, then prints the
 # analysis of every tenth clearance.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""The figures of docs/python.md, made by the package: a real-looking series (Lorenz x observed with
+"""The figures of docs/guide/python.md, made by the package: a real-looking series (Lorenz x observed with
 2% noise, N = 20 000), chaos.analyze, then the correlation sums and local slopes of chaos.d2 in the
 embedding analyze chose, and a small clearance sweep of the simulator (chaos.study.sweep). Writes
-docs/python/*.png and prints the numbers the page quotes.
+docs/guide/python/*.png and prints the numbers the page quotes.
 
 Usage (the venv's python, from outside the checkout's root): python scripts/python_figures.py
 """
@@ -16,7 +16,7 @@ import numpy as np  # noqa: E402
 
 import chaos  # noqa: E402
 
-out = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs", "python")
+out = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs", "guide", "python")
 os.makedirs(out, exist_ok=True)
 
 x, dt = chaos.builtin_lorenz(20000)

@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
-# Reproduces the seed paper's figures 3-13 with `study` and `mechanism` (docs/reproduction.md).
+# Reproduces the seed paper's figures 3-13 with `study` and `mechanism` (docs/validation/reproduction.md).
 #   scripts/reproduce_seed.sh [figure...]      figures: fig3 fig4 fig5 fig6 fig7 fig9 fig12 fig13
 # (fig8 comes out of fig4's sweep.) With no figure, all of them. Sweep results go to
-# $RUNS (default build/reproduction-runs), figures to $FIGURES (default docs/reproduction), and
+# $RUNS (default build/reproduction-runs), figures to $FIGURES (default docs/validation/reproduction), and
 # the wall time of every command is appended to $FIGURES/timing.tsv.
 #
 # Sizes: the seed's where this 2-core machine can afford them, else reduced (the variables below,
 # each overridable from the environment; SIZE=seed sets every one to the seed's value).
-# The integrator is the one docs/mechanism/performance.md shows to keep the long-run statistics:
+# The integrator is the one docs/validation/mechanism/performance.md shows to keep the long-run statistics:
 # dopri5 at relative tolerance RTOL (1e-4), or INTEGRATOR=rk4 at STEP (1e-6 s, the seed's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 STUDY=${STUDY:-build/study/study}
 MECHANISM=${MECHANISM:-build/mechanism/mechanism}
 RUNS=${RUNS:-build/reproduction-runs}
-FIGURES=${FIGURES:-docs/reproduction}
+FIGURES=${FIGURES:-docs/validation/reproduction}
 THREADS=${THREADS:-$(nproc 2>/dev/null || echo 2)}
 RTOL=${RTOL:-1e-4}
 SCENE_SETS=(${SCENE_SETS:-})  # extra --set arguments for every run, e.g. "--set joint.slider.rotation=locked"
@@ -58,7 +58,7 @@ timed() {
   local t0 t1
   t0=$(date +%s.%N)
   # Exit 5: finished, but some points' simulations did not complete; their rows say why and the
-  # figures leave them out, so the script goes on (docs/reproduction.md counts them).
+  # figures leave them out, so the script goes on (docs/validation/reproduction.md counts them).
   "$@" || { local code=$?; [[ $code == 5 ]] || exit "$code"; echo "$name: some points did not complete (exit 5)" >&2; }
   t1=$(date +%s.%N)
   printf '%s\t%.1f\t%s\n' "$name" "$(echo "$t1 - $t0" | bc)" "$*" >> "$FIGURES/timing.tsv"
@@ -136,7 +136,7 @@ fig9() {  # D2 over clearance and speed
 
 fig12() {  # D2 over c_t with a revolute clearance at the conrod-slider pin, friction 0 and 0.05
   # (LuGre in the journal with sigma1 fading: with a constant sigma1 = 400 N s/m there, dopri5 stalls
-  # in step_underflow within the first second; docs/reproduction.md)
+  # in step_underflow within the first second; docs/validation/reproduction.md)
   local revolute=(--set 'joint.conrod_slider.type="clearance"')
   sweep fig12_mu0 "${revolute[@]}" --axis "joint.slider.clearance=1e-5:6e-4:$FIG12_CLEARANCES" \
     --axis joint.conrod_slider.clearance=1e-4,5e-4 --periods "$FIG12_PERIODS" --keep 10 --analysis

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Every path the project names must exist: repository paths named in source comments, --help texts
-and docstrings, and relative links and images in README.md and docs/.
+and docstrings, the same paths named in the text of README.md and docs/ (from the repository root or
+the page's folder), and relative links and images in README.md and docs/.
 
-A named path is a token such as docs/lyapunov.md, scripts/test.sh or chaos/choose.hpp (an include
+A named path is a token such as docs/reference/lyapunov.md, scripts/test.sh or chaos/choose.hpp (an include
 path, looked up under the include directories too). Exits 1 listing each missing path with the file
 and line that names it.
 """
@@ -49,6 +50,12 @@ def main():
     pages = [ROOT / "README.md"] + sorted((ROOT / "docs").rglob("*.md"))
     for page in pages:
         for number, line in enumerate(page.read_text(errors="replace").splitlines(), 1):
+            for name in NAMED.findall(line):
+                name = name.rstrip(".")
+                if "*" in name or "$" in name or "<" in name:
+                    continue
+                if not exists(name) and not (page.parent / name).exists():
+                    missing.append(f"{page.relative_to(ROOT)}:{number}: names {name}, which does not exist")
             for target in LINK.findall(line):
                 if re.match(r"^[a-z]+:", target) or target.startswith("#"):
                     continue  # a web address or an anchor on the same page

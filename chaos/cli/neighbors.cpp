@@ -1,6 +1,6 @@
 // chaos neighbors: a benchmark of the neighbour searches on the user's own series and embedding:
 // brute force, our kd-tree, our box-assisted grid and nanoflann (Euclidean norm only), each with its
-// build time, query time, memory and whether its answers equal brute force's (docs/neighbors.md).
+// build time, query time, memory and whether its answers equal brute force's (docs/reference/neighbors.md).
 
 #include <cstdio>
 #include <map>

@@ -1,6 +1,6 @@
 // chaos zoo: the out-of-sample regression suite (zoo_suite.hpp) over the zoo's chaotic systems and
 // the controls, in parallel on threads (run_zoo, commands.hpp), written as a Markdown report
-// (docs/zoo.md is made by `chaos zoo --threads 2 -o docs/zoo.md`, resumable with --checkpoint,
+// (docs/validation/zoo.md is made by `chaos zoo --threads 2 -o docs/validation/zoo.md`, resumable with --checkpoint,
 // zoo_checkpoint.hpp). Exits with the validation-failure code when any estimate is confident and
 // outside its band.
 
@@ -37,7 +37,7 @@ std::string seconds(double v, int digits) {
 }
 
 // The exact series a case is analysed with (the N = 10^4 rows use its first 10^4 samples), so that
-// any row of docs/zoo.md can be reproduced with chaos d2, lyapunov or analyze.
+// any row of docs/validation/zoo.md can be reproduced with chaos d2, lyapunov or analyze.
 void write_case_series(const ZooArgs& args) {
   OutputOptions output;
   output.json = args.json;

@@ -379,7 +379,7 @@ ValidateTally run_validate(const ValidateParams& params, Report& report,
 
 // chaos zoo --series NAME: the exact series a zoo case is analysed with
 struct ZooSeriesParams {
-  std::string name;          // the case (the first column of docs/zoo.md)
+  std::string name;          // the case (the first column of docs/validation/zoo.md)
   bool fast = false;         // the CI subset's cases (N = 10^4)
   std::size_t threads = 1;   // the spectra behind the cases' bands
 };
@@ -404,7 +404,7 @@ struct ZooRun {
   std::size_t resumed = 0;             // cases read from the checkpoint, not run
   std::size_t wrong = 0;               // confident estimates outside their band, over every row
   std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;  // coverage at the automatic choices
-  std::string markdown;                // the report `chaos zoo` writes (docs/zoo.md)
+  std::string markdown;                // the report `chaos zoo` writes (docs/validation/zoo.md)
   nlohmann::ordered_json json;         // the same as data: parameters, counts, one entry per row
 };
 // `each` is called after every case run (serialised, from the worker threads) with the number of

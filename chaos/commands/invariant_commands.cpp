@@ -221,7 +221,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   }
   // The pipeline's third estimator, at the same m, delay, window and norm (and at m + 1 where m is
   // inconsistent): noise at the neighbours' scale biases both curves low alike, which their mutual
-  // check cannot see (docs/zoo-noise.md).
+  // check cannot see (docs/notes/zoo-noise.md).
   std::optional<LocalMapResult> maps;
   std::string maps_refusal;
   if (params.cross_check) {

@@ -1,5 +1,5 @@
 // neighbors: the neighbour-search benchmark, its checks against brute force and the JSON
-// (commands.hpp; conventions in docs/neighbors.md).
+// (commands.hpp; conventions in docs/reference/neighbors.md).
 
 #include <algorithm>
 #include <chrono>

@@ -179,7 +179,7 @@ ZooRun run_zoo(const ZooParams& params,
      << "D2 equal to the torus dimension +-0.1 and no confident lambda_1. A confident value is a D2 with status "
      << "`saturated` or a lambda_1 with status `linear_region` (Rosenstein, Kantz) or `consistent` (local maps); every other "
      << "status is *unsure*. "
-     << "What the remaining wrong rows have in common, and what was measured about them, is in docs/zoo-notes.md.\n\n"
+     << "What the remaining wrong rows have in common, and what was measured about them, is in docs/notes/zoo-notes.md.\n\n"
      << "## Summary\n\n"
      << "- Confident and wrong: **" << wrong << "** over every row ("
      << (params.grid && !params.fast ? "automatic choices and grid" : "automatic choices only: no grid in this run") << ").\n";
@@ -293,7 +293,7 @@ ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& 
   const std::vector<ZooCase> cases = zoo_cases(options);
   if (cases.empty())
     throw InvalidInput(ErrorCode::invalid_parameter,
-                       "zoo: no case is named '" + params.name + "' (the names are the first column of docs/zoo.md)");
+                       "zoo: no case is named '" + params.name + "' (the names are the first column of docs/validation/zoo.md)");
   const ZooCase& c = cases.front();
   std::vector<double> x = c.series(c.length);
   Report report("zoo", output);

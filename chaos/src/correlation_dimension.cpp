@@ -224,7 +224,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     for (const auto d : top) curves.push_back(searchable(usable[d]));
     // The highest dimension has the fewest pairs: its count is the shared region's support. The
     // plateau must also span min_plateau_ratio in eps: a shorter flat stretch may be the crest of
-    // a hump (docs/correlation_dimension.md, step 3).
+    // a hump (docs/reference/correlation_dimension.md, step 3).
     ScalingRegionOptions plateau_options = options.region;
     plateau_options.min_width = std::log(options.min_plateau_ratio);
     const auto shared = find_scaling_region(log_r, curves, plateau_options, support[top.back()]);
@@ -253,7 +253,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     // Other readings of a saturated D2, reported, not judged: the plateau below that step 4 took for
     // the same scaling (within the allowances), and the best one above the region, before the slopes
     // fall towards 0 at the attractor's size. Henon, N = 10^5: 1.23 is chosen, 1.13 lies below and
-    // 1.19 above; which one wins is a near-tie in support (docs/correlation_dimension.md, step 7).
+    // 1.19 above; which one wins is a near-tie in support (docs/reference/correlation_dimension.md, step 7).
     if (shared && !below) {
       if (lacunar_below) out.other_plateaus.push_back(plateau(*lacunar_below));
       const std::size_t begin = shared->last + 1;

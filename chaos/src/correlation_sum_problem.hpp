@@ -2,7 +2,7 @@
 // The exact correlation-sum counting problem shared by its walks: the norms as policies, the radii
 // as accumulator thresholds and their O(1) binning, the problem in the units the loops compute in,
 // the histograms the workers fill, and the entry points of the exact and the reference walks.
-// docs/correlation_sum.md has the conventions and the proofs of exactness.
+// docs/reference/correlation_sum.md has the conventions and the proofs of exactness.
 //
 // Every pair distance is accumulated coordinate by coordinate exactly as DelayEmbedding::distance
 // does it (max(acc, |a - b|), or acc + d*d then sqrt), so every mode sees the same doubles and the

@@ -757,7 +757,7 @@ void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& 
   if (local_maps.status != LocalMapStatus::consistent || !local_maps.lambda) {
     // Rosenstein and Kantz can agree with each other and both be wrong (both start from the same
     // nearest neighbours): Sprott F x with 1% noise, m = 6, reads 15% low by both, halves agreeing,
-    // beside maps whose variants disagree (docs/zoo-notes.md, section 4). So a slope needs the
+    // beside maps whose variants disagree (docs/notes/zoo-notes.md, section 4). So a slope needs the
     // independent estimate's positive confirmation, not only the absence of a contradiction.
     why << "the local linear maps do not confirm this slope: they are " << to_string(local_maps.status)
         << (local_maps.status == LocalMapStatus::not_positive ? " (no exponential divergence at the neighbourhoods' scale)"

@@ -347,7 +347,7 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
     // on it. At tau = 2, the generalised Henon map's delay vectors need x_{j+1} = (a - x_{j+2}^2 -
     // x_{j+4}) / b with b = 0.1 for their one-step map, and every other variant agreed on 8 times
     // lambda_1; Rucklidge at twice its mutual-information delay read 22% high with all of them within
-    // 4% (docs/lyapunov-maps.md). At tau = 1 (maps, where it is the natural delay) there is no smaller
+    // 4% (docs/reference/lyapunov-maps.md). At tau = 1 (maps, where it is the natural delay) there is no smaller
     // one, and no delay variant is run.
     if (tau >= 2) {
       const std::size_t shift = std::max<std::size_t>(1, (tau + 2) / 4);  // round(tau / 4), at least 1

@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
       bar.update(1.0, "done");
       std::ostream* out = file ? file.get() : (lyap_json ? nullptr : &std::cout);
       if (out) {
-        *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/mechanism/lyapunov.md)\n"
+        *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
              << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
              << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
              << number(r.perturbation) << ", largest separation " << number(r.largest_separation) << "\n";

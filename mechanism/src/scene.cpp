@@ -549,7 +549,7 @@ void check_run_size(const Scene& s) {
 std::string_view default_scene_toml() {
   static const std::string text =
       "# The seed paper's slider-crank (Tables 1 and 2) with a translational clearance joint.\n"
-      "# Keys the paper leaves open carry our choice; docs/mechanism/scene.md says why. The slider joint\n"
+      "# Keys the paper leaves open carry our choice; docs/reference/mechanism/scene.md says why. The slider joint\n"
       "# uses the reading that passes the physics audit (line contact, exponent 1, normalised LuGre with\n"
       "# sigma1 fading); the printed reading is model = \"face\", exponent = 1.5, law = \"lugre_absolute\",\n"
       "# sigma1_velocity = 0.\n\n" +
@@ -730,13 +730,13 @@ std::vector<std::string> scene_warnings(const Scene& s) {
         f.sigma1 > 0 && f.sigma1_velocity == 0.0) {
       w.push_back(name + ".friction: integrator.bristles = \"exponential\" with a constant sigma1: its sigma1 dz/dt "
                   "term makes the update first order in the step (the energy-balance error only halves as the "
-                  "step halves; docs/mechanism/contact-and-friction.md, \"The exact bristle update\")");
+                  "step halves; docs/reference/mechanism/contact-and-friction.md, \"The exact bristle update\")");
     }
   };
   if (s.slider_guide.kind == JointKind::clearance && s.slider_guide.friction.has_state() &&
       s.slider_guide.friction.sigma1 > 0 && s.slider_guide.friction.sigma1_velocity == 0.0) {
     w.push_back("joint.slider.friction: LuGre with a constant sigma1 = " + format_number(s.slider_guide.friction.sigma1) +
-                ": its damping term kicks the slider where the normal force changes fast (docs/mechanism/model.md);"
+                ": its damping term kicks the slider where the normal force changes fast (docs/reference/mechanism/model.md);"
                 " joint.slider.friction.sigma1_velocity = 1e-3 fades it with speed (Canudas de Wit 2003)");
   }
   check("joint.slider", s.slider_guide.kind, s.slider_guide.friction);

@@ -41,7 +41,7 @@ class SceneTrajectory {
       // lambda_1 reads 889 or 1087 1/s; without, delta = 1e-10 stays linear (largest separation
       // 1.3e-6) and lambda_1 = 830 (815 at 1e-8). Without the stiff mode (integrator.bristles =
       // "exponential") located switches still jump (0.0146 of scale at delta = 1e-8). So the map is
-      // integrated on the scene's fixed grid (docs/mechanism/lyapunov.md, "Steps and contact switches").
+      // integrated on the scene's fixed grid (docs/notes/mechanism/scene-lyapunov.md, "Steps and contact switches").
       part.integrator.locate_switches = false;
       systems_->emplace_back(part);
     }

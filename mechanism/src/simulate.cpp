@@ -266,7 +266,7 @@ void check_energy_balance(SimulationSummary& sum, double period) {
     os << "one step changed the energy balance by " << sum.energy_jump_relative
        << " of the largest kinetic energy before it (above the limit " << max_energy_defect_per_revolution
        << ", a whole revolution's allowance): the integration does not resolve this run "
-          "(docs/mechanism/model.md, \"The energy balance\")";
+          "(docs/reference/mechanism/model.md, \"The energy balance\")";
     sum.status = SimulationStatus::energy_defect;
     sum.message = os.str();
     return;
@@ -279,7 +279,7 @@ void check_energy_balance(SimulationSummary& sum, double period) {
   os << "the energy balance is off by " << sum.energy_balance_relative << " of the largest kinetic energy over "
      << revolutions << " crank revolutions (" << rate << " per revolution, above the limit "
      << max_energy_defect_per_revolution
-     << "): the integration does not resolve this run (docs/mechanism/model.md, \"The energy balance\")";
+     << "): the integration does not resolve this run (docs/reference/mechanism/model.md, \"The energy balance\")";
   sum.status = SimulationStatus::energy_defect;
   sum.message = os.str();
 }

@@ -796,7 +796,7 @@ py::dict study_sweep(const std::string& toml, const std::string& source, const s
 }
 
 // The time of the library's own work for one command, without the Python layer: the shared
-// computation and its JSON, `repeats` times (scripts/python_timing.py subtracts it from a call's time
+// computation and its JSON, `repeats` times (scripts/measure/python_timing.py subtracts it from a call's time
 // to get the call overhead).
 double compute_seconds(const std::string& command, const Array& x, const py::dict& p, std::size_t repeats) {
   const SeriesInput in = series(x, ARRAY, 1, std::nullopt);

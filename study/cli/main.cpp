@@ -1,5 +1,5 @@
 // The `study` command: the seed paper's parameter studies over the simulator, with the chaos
-// analysis of each point (docs/study.md).
+// analysis of each point (docs/reference/study.md).
 //   study sweep [scene.toml] [--set k=v]... [--axis key=from:to:count]... -o DIR [--resume] ...
 //   study pipeline [scene.toml] [--set k=v]... [--plot FILE]   (seed Fig. 7 for one scene)
 //   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
                     "separation relative to each coordinate's scale");
   sweep->add_option("--lyapunov-intervals", spec.lyapunov_options.intervals_per_period, "renormalisations per crank period");
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
-  sweep->add_option("-o,--output", out_dir, "result directory (docs/study.md lists its files)")->required();
+  sweep->add_option("-o,--output", out_dir, "result directory (docs/reference/study.md lists its files)")->required();
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
   sweep->add_flag("-q,--quiet", quiet, "no progress bar and no warnings about the scene");
 

@@ -1,7 +1,7 @@
 #pragma once
 // The files `study pipeline` and `study plot` write (--plot, --series, -o), refused while the
 // command line is read (cli_support's output_path.hpp; an unwritable one failed only
-// after the work): a file-system reason is a StudyIoError (exit 4, docs/study.md), a plot's
+// after the work): a file-system reason is a StudyIoError (exit 4, docs/reference/study.md), a plot's
 // extension a StudyError (exit 3).
 
 #include <CLI/CLI.hpp>

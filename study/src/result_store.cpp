@@ -331,7 +331,7 @@ void ResultStore::assemble() const {
   const Grid& grid = spec_.grid;
   std::string axes_header;
   for (const Axis& a : grid.axes()) axes_header += "\t" + a.key;
-  const std::string head = "# study sweep (docs/study.md)\n" + commented(header_);
+  const std::string head = "# study sweep (docs/reference/study.md)\n" + commented(header_);
   std::string samples = head + "# point" + axes_header + "\trevolution\tt";
   for (const auto& s : spec_.signals) samples += "\t" + s;
   samples += "\n";
@@ -349,7 +349,7 @@ void ResultStore::assemble() const {
       analysis += std::to_string(k);
     }
   analysis += "\tnonlinearity\tnonlinearity_rank\tsurrogates\n";
-  std::string lyapunov = head + "# Lyapunov exponents from the equations (docs/mechanism/lyapunov.md), 1/s; '-': none\n# point" +
+  std::string lyapunov = head + "# Lyapunov exponents from the equations (docs/reference/mechanism/lyapunov.md), 1/s; '-': none\n# point" +
                          axes_header + "\tstatus\tperiods";
   for (const char* name : {"lambda_", "se_"})
     for (int k = 1; k <= spec_.lyapunov_options.exponents; ++k) {

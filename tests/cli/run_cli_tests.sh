@@ -175,7 +175,7 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --no-cross-check --json |
 # the equations), and agree with the fit, so the value stands.
 l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.status, .local_maps.status, .local_maps.dimension, (.local_maps.lambda > 0.3776 and .local_maps.lambda < 0.4615)]')
 [[ $l == '["linear_region","consistent",3,true]' ]] && pass || fail "lyapunov's local-map check on henon gave $l"
-# With 1% measurement noise both divergence curves read low alike (docs/zoo-noise.md): at m = 3 Rosenstein
+# With 1% measurement noise both divergence curves read low alike (docs/notes/zoo-noise.md): at m = 3 Rosenstein
 # 0.362 and Kantz 0.382 agree within 10%, so their mutual check alone would pass and answer 0.362 with
 # confidence (lambda_1 = 0.4195). The local maps find no deterministic structure at the
 # neighbours' scale (not_deterministic), which leaves both unconfirmed; --no-cross-check gives the plain fit.
@@ -194,7 +194,7 @@ l=$("$CHAOS" lyapunov "$work/noise.dat" --json | jq -c '[.lambda, .lambda_interv
 l=$("$CHAOS" lyapunov "$work/henon.dat" --halves --json | jq -c '[.status, .cross_check.status, .parameters.halves]')
 [[ $l == '["linear_region","linear_region",true]' ]] && pass || fail "lyapunov --halves on henon gave $l"
 # The zoo's Genesio-Tesi x, its first 10^4 samples, at m = 6, tau = 31, w = 63: a confident-wrong grid row of
-# docs/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
+# docs/validation/zoo.md before the halves rule (Rosenstein 0.0858 per time unit, Kantz agreeing within 10%, lambda_1 = 0.1019
 # from the equations). Neither half of 5000 samples has a linear region, so with the halves check (the default)
 # both are not_reproduced. Without the halves, the local maps at m = 6 and
 # 7 are inconsistent, so they confirm neither slope, and only
@@ -481,7 +481,7 @@ l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.lambda_local_maps, .lamb
 
 # Negative whole numbers: CLI11 read "-1" into a count as 2^64-1 (segfaults in mutual and
 # autocorrelation, "internal error: vector::..." in d2, surrogates and analyze, 6.7 GB in density).
-# A value the option's type cannot hold is a usage error, exit 2 (docs/input.md), naming the option.
+# A value the option's type cannot hold is a usage error, exit 2 (docs/reference/input.md), naming the option.
 expect_error 2 "^--max-delay: '-1' is negative" -- mutual -D -1 "$work/henon.dat"
 expect_error 2 "^--max-lag: '-1' is negative" -- autocorrelation -D -1 "$work/henon.dat"
 expect_error 2 "^--max-delay: '-2' is negative" -- mutual -D -2 "$work/henon.dat"
@@ -509,7 +509,7 @@ expect_error 3 "highest of the 9223372036854775808 dimensions" -- lyapunov --dim
 # the scale: times a power of two (exact) the autocorrelation, the Theiler windows and lyapunov
 # are identical and d2 agrees to rounding (its log-spaced radii are not scaled exactly), as it does
 # times 1e+-100; beyond |x| = 1e120 or a spread below 1e-120 (series.hpp) the series is refused
-# with exit 3 (docs/input.md) and the numbers, never answered with NaN.
+# with exit 3 (docs/reference/input.md) and the numbers, never answered with NaN.
 scaled() { awk -v f="$1" '!/^#/ { printf "%.17g\n", $1 * f }' "$work/lorenz.dat" > "$work/scaled.dat"; }
 invariants() {
   {
@@ -539,7 +539,7 @@ for f in 1e121 1e150 1e306 1e-170 1e-300 4.9e-324; do
 done
 
 # A spreadsheet's CSV with a UTF-8 byte-order mark and a "time,value" header
-# failed with "'time' is not a number". It is read (docs/input.md), the column chosen by number or
+# failed with "'time' is not a number". It is read (docs/reference/input.md), the column chosen by number or
 # by name; a name not in the header is refused with the names; a huge bad token is cut.
 { printf '\xEF\xBB\xBFtime,value\n'; awk '!/^#/ { printf "%d,%s\n", NR, $1 }' "$work/henon.dat"; } > "$work/henon.csv"
 by_number=$("$CHAOS" mutual "$work/henon.dat" | grep -v '^#')
@@ -596,7 +596,7 @@ a=$("$CHAOS" section -c 1,2 "$work/xyz.dat" --stroboscopic 10 | grep -vc '^#')
 # "chaos foo" said only "A subcommand is required", and "chaos foo --help" printed
 # the main help with exit 0; -o naming the input file overwrote the data; an unwritable -o failed
 # only after the work. An unknown command is a usage error (2) naming it; a bad -o is refused
-# before any work with exit 3 (docs/input.md: invalid input), the data untouched.
+# before any work with exit 3 (docs/reference/input.md: invalid input), the data untouched.
 expect_error 2 "^chaos: unknown command 'foo'; the commands are: generate, mutual" -- foo
 expect_error 2 "^chaos: unknown command 'foo'" -- foo --help
 cp "$work/henon.dat" "$work/data.dat"

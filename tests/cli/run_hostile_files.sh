@@ -3,7 +3,7 @@
 # `mechanism simulate` and `scene`, `study sweep` and `study pipeline`, and result files (a point file,
 # spec.txt and the lock of a `study sweep` directory, then --resume; the assembled tables, then
 # `study plot`). Each run must end within its time limit with an exit code below 128 that is not 1
-# (README.md and docs/study.md: 1 is an internal error, >= 128 a crash), a message on stderr that
+# (README.md and docs/reference/study.md: 1 is an internal error, >= 128 a crash), a message on stderr that
 # names the file (and the line or the key where there is one) when it refuses, and no NaN or
 # infinity in what it writes. A line-end or byte-order-mark variant of a good file must give the
 # good file's output. The cases come from a fixed seed (HOSTILE_SEED, default 16); the scene
@@ -205,7 +205,7 @@ done
 mkdir -p "$work/scene_dir.toml"
 check mechanism "3" "scene_dir.toml" -- simulate -q "$work/scene_dir.toml"
 # study: scenes/8 more cases through a two-point sweep, one in three of them through the pipeline
-# (docs/study.md: 0 done, 3 refused, 5 some points failed).
+# (docs/reference/study.md: 0 done, 3 refused, 5 some points failed).
 for ((n = 0; n < scenes; n += 8)); do
   f="$work/study_scene$n.toml"
   scene_case "$f"

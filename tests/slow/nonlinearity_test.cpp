@@ -12,7 +12,7 @@
 //     Sec. 4.3; end_match with any length). Measured on 1000 other seeds: 5.0%. Untrimmed it
 //     rejects in 7.1% (the wrap-around jump adds high-frequency power that the surrogates spread
 //     over their whole length, making the data look more predictable), trimmed to lengths 2^a 3^b
-//     5^c in 6.0% (docs/nonlinearity_test.md);
+//     5^c in 6.0% (docs/reference/nonlinearity_test.md);
 //   - time-reversal asymmetry with FT surrogates, which realise the null of a Gaussian linear
 //     process exactly (Theiler et al. 1992). Measured on 2000 other seeds: 5.1%. With IAAFT (AAFT)
 //     surrogates the same statistic is conservative: 3.75% (3.3%): over 400 other seeds the RMS of

@@ -3,7 +3,7 @@
 // 2N iterations likewise; the sum of the exponents obeys the exact identities (the trace of the
 // Jacobian, constant or averaged along the same orbit; ln|det J| for maps). Delay systems: the
 // leading exponents at (T, h), (2T, h), (T, h/2) where h = tau / steps_per_delay. Takes a few
-// minutes (docs/zoo-spectra.md gives the table and the timing).
+// minutes (docs/validation/zoo-spectra.md gives the table and the timing).
 
 #include <gtest/gtest.h>
 
@@ -20,12 +20,12 @@ using chaos::ZooKind;
 
 // The agreement asked for was 1e-3 absolute per exponent. At the default lengths (T = 1e4 to 1e5,
 // a few seconds per system) the finite-time statistical error, which falls only as T^(-1/2), is
-// 1e-3 to 9e-3 for the faster-mixing flows (docs/zoo-spectra.md lists every difference), so the
+// 1e-3 to 9e-3 for the faster-mixing flows (docs/validation/zoo-spectra.md lists every difference), so the
 // test asserts what these lengths achieve: 1e-2 + 1e-3 |lambda_i|. Lengths that reach 1e-3 for
 // all would cost about 30 times more.
 // The relative part was 1e-3 until rossler_hyperchaos failed it: its lambda_4 = -24.8 is set by the
 // rare z-spikes (trace J = a + x + d with x far negative only there) and moves by 0.19 (0.75%)
-// between T and 2T; 1e-2 relative keeps every exponent of the sample to 1% (docs/lyapunov_spectrum.md).
+// between T and 2T; 1e-2 relative keeps every exponent of the sample to 1% (docs/reference/lyapunov_spectrum.md).
 constexpr double kAgreement = 1e-2;
 constexpr double kRelative = 1e-2;
 
@@ -80,7 +80,7 @@ TEST_P(ZooSpectra, ConvergedInLengthAndStepWithExactSum) {
 
 // Every system takes about 9 minutes on 2 cores, too long for CI: by default a fixed sample, every
 // fifth entry of the stable order (flows and maps, the delay system among them); CHAOS_ZOO_SPECTRA=all
-// runs them all (scripts/zoo_spectra.sh does, and writes the table of docs/zoo-spectra.md).
+// runs them all (scripts/measure/zoo_spectra.sh does, and writes the table of docs/validation/zoo-spectra.md).
 std::vector<std::string> names() {
   const char* all = std::getenv("CHAOS_ZOO_SPECTRA");
   const bool every = all != nullptr && std::string(all) == "all";
@@ -98,7 +98,7 @@ TEST(ZooSpectraLiterature, AgreeWithPublishedValuesWhereTheSameParametersAreUsed
   // lambda1 against the published values of references/zoo.tsv (Sprott's tables and the other
   // sources named there). 3 % covers the last quoted digit and the sources' own integration
   // lengths; rucklidge is excluded: the quoted 0.0643 disagrees with our 0.193 and with dysts'
-  // 0.183 at the same parameters (see docs/zoo-spectra.md).
+  // 0.183 at the same parameters (see docs/validation/zoo-spectra.md).
   for (const auto& e : chaos::zoo_systems()) {
     if (e.literature.exponents.empty() || e.name == "rucklidge") continue;
     SCOPED_TRACE(e.name);

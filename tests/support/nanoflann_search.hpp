@@ -9,7 +9,7 @@
 // nanoflann offers a candidate only when its squared distance is strictly below the current worst,
 // so among points tied at the k-th distance it keeps the first one it meets, which need not be the
 // smallest index: its k nearest equal brute force's as distances, and as indices only up to ties
-// (docs/neighbors.md). Its squared distances are accumulated in DelayEmbedding::distance's order, so
+// (docs/reference/neighbors.md). Its squared distances are accumulated in DelayEmbedding::distance's order, so
 // the distances (after the square root) are bit-identical to ours.
 
 #include <cstddef>

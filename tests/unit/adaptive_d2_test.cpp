@@ -18,7 +18,7 @@
 namespace {
 
 chaos::CorrelationSumOptions lorenz_options() {
-  chaos::CorrelationSumOptions o;  // the issue-15 Lorenz job (docs/performance-d2.md) at N = 2*10^4
+  chaos::CorrelationSumOptions o;  // the issue-15 Lorenz job (docs/validation/performance-d2.md) at N = 2*10^4
   o.delay = 17;
   o.min_dimension = 1;
   o.max_dimension = 6;
@@ -68,7 +68,7 @@ void expect_promise_kept(const std::vector<double>& x, chaos::CorrelationSumOpti
   }
 }
 
-// The zoo's delay, window and dimensions (docs/zoo.md, N = 10^5 rows) and the automatic radii.
+// The zoo's delay, window and dimensions (docs/validation/zoo.md, N = 10^5 rows) and the automatic radii.
 chaos::CorrelationSumOptions zoo_options(const std::vector<double>& x, std::size_t delay, std::size_t theiler,
                                          std::size_t max_dimension) {
   chaos::CorrelationSumOptions o;
@@ -87,7 +87,7 @@ TEST(AdaptiveD2, AcceptedBudgetsLandWithinTheTargetOfTheExactD2) {
 
 // Two systems --fast was not built on, with the zoo's choices. Without the region and precision
 // tests (region_slack and confidence so loose they never refuse) seed 1 broke the promise on both:
-// Chen 2.241 against the exact 2.175, Rössler 1.874 against 1.896 (docs/fast-d2-zoo.md has the same
+// Chen 2.241 against the exact 2.175, Rössler 1.874 against 1.896 (docs/validation/fast-d2-zoo.md has the same
 // failure at N = 10^5 on seven runs of 135).
 TEST(AdaptiveD2, PromiseHoldsOutOfSample) {
   const auto chen = chaos::zoo_trajectory(chaos::zoo_system("chen"), 20'000).components[0];

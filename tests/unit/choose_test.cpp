@@ -6,7 +6,7 @@
 //   - a property of the mutual information of a sampled flow: it depends on the delay in time, not
 //     in samples, so Lorenz x sampled ten times finer has its first minimum at about ten times as
 //     many samples. The band, 15% of the coarse delay, is the spread of the minimum's position
-//     allowed by one sample at dt = 0.01 (tau 17-19 there, docs/zoo.md) plus the binning's noise.
+//     allowed by one sample at dt = 0.01 (tau 17-19 there, docs/validation/zoo.md) plus the binning's noise.
 // The fine series (Lorenz x at dt = 0.001, N = 40000) was chosen for the branch it reaches, measured
 // before the test was written: no minimum and no zero crossing within 100 samples. The test asserts
 // that precondition, so a change that moves it to another branch fails loudly.

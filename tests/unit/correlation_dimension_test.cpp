@@ -318,7 +318,7 @@ TEST(CorrelationDimension, APlateauShorterThanAnOctaveIsNotSaturation) {
   // A crest 0.4 e-folds wide (a factor 1.49 in eps): every local slope of m = 4..6 there is within
   // 5% of 3, with enough radii and pairs for a region, but it spans less than the octave a plateau
   // needs (min_plateau_ratio = 2). Found on a slider-crank series: 3.13 over a factor 1.76,
-  // against D_KY = 2.00 (docs/correlation_dimension.md, step 3).
+  // against D_KY = 2.00 (docs/reference/correlation_dimension.md, step 3).
   const auto narrow = crest_of_a_hump(0.4);
   const auto r = chaos::correlation_dimension(narrow);
   EXPECT_EQ(r.status, chaos::D2Status::not_saturated) << r.explanation;
@@ -367,7 +367,7 @@ chaos::CorrelationSumResult steeper_projection(double lower) {
 TEST(CorrelationDimension, APlateauBelowALowerDimensionsSlopeIsNotSaturation) {
   // A projection cannot have a larger correlation dimension than the set it projects. Found on a
   // slider-crank series: m = 8..10 agreed on 0.85 where m = 3 read 0.97, against D_KY = 2.00 from
-  // the equations of motion (docs/correlation_dimension.md, step 3).
+  // the equations of motion (docs/reference/correlation_dimension.md, step 3).
   const auto sums = steeper_projection(1.2);
   const auto r = chaos::correlation_dimension(sums);
   EXPECT_EQ(r.status, chaos::D2Status::not_saturated) << r.explanation;

@@ -1,7 +1,7 @@
 // Correlation sums: cases worked out by hand, every search mode against an independent brute force
 // written here from the definition in correlation_sum.hpp (pairs i < j < P = N - (max-1) tau,
 // j - i > w, distance in the chosen norm strictly below the radius), thread counts, the seeded
-// reference subset and pair cap (reproduced here step by step from docs/correlation_sum.md),
+// reference subset and pair cap (reproduced here step by step from docs/reference/correlation_sum.md),
 // log_radii, and every refusal with its ErrorCode and numbers.
 #include "chaos/correlation_sum.hpp"
 
@@ -326,7 +326,7 @@ TEST(CorrelationSum, InclusiveCountsTiesAtTheRadii) {
   // The radii are reported as given, not as the next double used inside.
   EXPECT_EQ(chaos::correlation_sum(x, o).radius, std::vector<double>{1.0});
   // A reference subset and a pair cap count the same way: with all P points as reference points
-  // and no cap reached, every pair is seen from both ends (docs/correlation_sum.md).
+  // and no cap reached, every pair is seen from both ends (docs/reference/correlation_sum.md).
   o = options(1, 1, 3, 2, radii, Norm::max);
   o.inclusive = true;
   const Expected e = brute_force(x, o);
@@ -361,7 +361,7 @@ TEST(CorrelationSum, ThreadCountDoesNotChangeAnything) {
   }
 }
 
-// The reference order of docs/correlation_sum.md: a partial Fisher-Yates shuffle of 0 .. P-1 with
+// The reference order of docs/reference/correlation_sum.md: a partial Fisher-Yates shuffle of 0 .. P-1 with
 // chaos::Random(seed), position t swapped with t + below(P - t).
 std::vector<std::size_t> reference_order(std::size_t points, std::size_t count, std::uint64_t seed) {
   std::vector<std::size_t> order(points);

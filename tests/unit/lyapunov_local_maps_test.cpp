@@ -14,7 +14,7 @@
 // Bands were fixed before the first run: 1% for the linear cat map (only neighbourhoods across the
 // wrap are not exactly linear), 2% for ln 2, and 5% for Henon (half the zoo's 10% band). The cat
 // map's band was widened to 3% after it read +1.7%: neighbourhoods with a few points across the wrap
-// fit with residuals under the 0.25 threshold and are averaged (docs/lyapunov-maps.md, "Known
+// fit with residuals under the 0.25 threshold and are averaged (docs/reference/lyapunov-maps.md, "Known
 // limits"); before poor fits were left out it read +16%, with status consistent.
 #include "chaos/lyapunov_local_maps.hpp"
 
@@ -97,7 +97,7 @@ TEST(LocalMaps, HenonMatchesTheCitedExponent) {
 // depend on the delay, but the fitted maps do. The generalised Henon map x' = a - y^2 - b z, y' = x,
 // z' = y (a = 1.76, b = 0.1) at tau = 2 needs x_{j+1} = (a - x_{j+2}^2 - x_{j+4}) / b for the one-step
 // map of its delay vectors: before the delay variants, every other variant agreed on 1.997 per
-// sample at N = 5 10^4, nine times lambda_1, with status consistent (docs/lyapunov-maps.md).
+// sample at N = 5 10^4, nine times lambda_1, with status consistent (docs/reference/lyapunov-maps.md).
 TEST(LocalMaps, EveryDelayIsRightOrUnsure) {
   const chaos::ZooEntry& entry = chaos::zoo_system("generalized_henon");
   const double expected = chaos::zoo_spectrum(entry).exponents.front();

@@ -730,7 +730,7 @@ TEST(LyapunovHalves, HenonIsReproducedAndAShortRotatingFlowIsNot) {
 
   // The zoo's Genesio-Tesi x (dt = 0.05), its first 10^4 samples, at the neighbourhood grid's
   // m = 6..8, tau = 31, w = 63: Rosenstein finds a straight stretch at 0.0858 per time unit, 16%
-  // below lambda_1 = 0.1019 from the equations (docs/zoo.md; Kantz's 0.0935 confirmed it within
+  // below lambda_1 = 0.1019 from the equations (docs/validation/zoo.md; Kantz's 0.0935 confirmed it within
   // 10%), while neither half of 5000 samples has a linear region. The check withdraws it.
   const chaos::ZooEntry* e = chaos::find_zoo_system("genesio_tesi");
   ASSERT_NE(e, nullptr);
@@ -784,7 +784,7 @@ TEST(LyapunovCrossCheck, ASlopeStandsOnlyWhereAConsistentLocalMapExponentConfirm
   EXPECT_NE(k.explanation.find("Kantz gives 0.115"), std::string::npos) << k.explanation;
   // An inconsistent or non-positive local-map result confirms nothing, so the slope is withdrawn:
   // a slope stands only on a positive confirmation (Sprott F x with 1% noise at m = 6: Rosenstein
-  // and Kantz agree 15% low beside inconsistent maps; docs/zoo-notes.md, section 4).
+  // and Kantz agree 15% low beside inconsistent maps; docs/notes/zoo-notes.md, section 4).
   for (const auto status : {LocalMapStatus::inconsistent, LocalMapStatus::not_positive}) {
     r = region_fit(0.0915);
     chaos::cross_check(r, chaos::LyapunovMethod::rosenstein, local_map_result(status, std::nullopt), 0.1);

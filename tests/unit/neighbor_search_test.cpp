@@ -7,7 +7,7 @@
 //   ours:      exact equality: the same indices in the same order and bit-identical distances, and
 //              the same counts (radii equal to an existing distance included: strictness);
 //   nanoflann: Euclidean only; the same distances rank by rank (its indices may differ where
-//              distances tie: docs/neighbors.md), every index admissible, the same counts.
+//              distances tie: docs/reference/neighbors.md), every index admissible, the same counts.
 #include "chaos/box_grid.hpp"
 #include "chaos/neighbors.hpp"
 

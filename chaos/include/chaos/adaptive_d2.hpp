@@ -30,10 +30,10 @@
 //     than `target` away. Two readings of one set of counts mean that a near-tie in support picks
 //     the answer: two disjoint subsets of 8000 Henon points (seed 2) both read 1.13 at eps
 //     0.005-0.015, where the exact counts choose 1.234 at 0.019-0.053, and only this test sees it.
-// The second and third conditions came from `scripts/measure_fast_d2.sh`: without them, on the
+// The second and third conditions came from `scripts/measure/measure_fast_d2.sh`: without them, on the
 // zoo's chaotic series at N = 10^5 (three seeds, first rounds of 250 points), 7 of 62 accepted
 // budgets lay 0.020-0.041 from the exact D2; with them, none of 32 at the default first round
-// (docs/fast-d2-zoo.md). When the next round would count more than an eighth of the points, the
+// (docs/validation/fast-d2-zoo.md). When the next round would count more than an eighth of the points, the
 // exact counts are used instead: a budget that has not settled by then saves little, and the rounds
 // already spent cost about a third of the exact job on top of it (Henon, N = 10^5: 1.3 times the
 // exact job; over the zoo, 1.28 times on average).

@@ -52,7 +52,7 @@ struct AutomaticAnalysisOptions {
   bool check_stationarity = true;
   bool check_halves = true;          // a saturated D2 and a divergence slope must be reproduced by the record's two halves
   // ... and at twice the delay. Off by default: on the zoo it withdrew more right values than wrong
-  // ones (docs/zoo-notes.md, "The delay neighbourhood").
+  // ones (docs/notes/zoo-notes.md, "The delay neighbourhood").
   bool check_delay = false;
   bool rosenstein = true, kantz = true;
   bool cross_check = true;           // a lambda_1 the other estimators do not confirm is unconfirmed

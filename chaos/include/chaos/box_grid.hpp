@@ -7,7 +7,7 @@
 // that bound passes the radius (counts) or the k-th best distance (k nearest).
 // Same conventions as neighbors.hpp (Theiler window, strict radius, ties to the smaller index),
 // and the distances are those of DelayEmbedding::distance bit for bit, so the answers equal brute
-// force exactly (docs/neighbors.md).
+// force exactly (docs/reference/neighbors.md).
 
 #include <cstddef>
 #include <memory>

@@ -16,7 +16,7 @@
 //     span at least an octave of eps (min_plateau_ratio = 2): over a shorter stretch the crest of a
 //     hump in the local slopes passes the flatness test as easily as a plateau does (a slider-crank
 //     series whose slopes of m = 8..10 still rise with m read 3.13 over a factor 1.76 against
-//     D_KY = 2.00; docs/correlation_dimension.md, step 3);
+//     D_KY = 2.00; docs/reference/correlation_dimension.md, step 3);
 //  4. D2 is the limit of small scales. If, at radii below that region, the same dimensions share a
 //     second admissible plateau (the same tolerance, support and length) whose allowance (mean +-
 //     tolerance * |mean|) does not overlap the first's, the slopes still change with scale (more than
@@ -45,7 +45,7 @@
 //     noise.) The plateau above the noise is not the attractor's D2 in general: with 3% noise (30 dB)
 //     Sprott F reads 2.46 over eps 0.15-0.61, the plateau at large scales that its clean record also
 //     shows beside the small-scale D2 of 2.05 (D_KY 2.19); Mackey-Glass at tau = 30 with 1% noise
-//     reads 2.40 where its clean record is scale_dependent (2.39 and 3.05; docs/zoo-noise.md).
+//     reads 2.40 where its clean record is scale_dependent (2.39 and 3.05; docs/notes/zoo-noise.md).
 // Scales (opt-in): max_region_fraction keeps regions at radii of at most that fraction of the
 // series' range (the max-norm diameter of the embedded set). Eckmann & Ruelle (Physica D 56, 185
 // (1992)) ask for radii small against the attractor's diameter and take a tenth of it for their
@@ -55,7 +55,7 @@
 // over eps in [0.64, 1.5]. A tenth of the range gives it 3.10 [2.98, 3.23], but it is off by
 // default: it also takes the plateau from a sine with 317 distinct points (0.96-1.05 on [0.06, 0.5]
 // of a range of 2) and from a 2-torus at N = 2*10^4, whose samples form a quasi-lattice below
-// eps = 0.3 (docs/zoo-notes.md). Local slopes above the limit are still reported.
+// eps = 0.3 (docs/notes/zoo-notes.md). Local slopes above the limit are still reported.
 // Radii where the pair counts stop changing (three or more consecutive radii with the same non-zero
 // count in the highest dimension) are reported: at those scales the data are a finite set of points.
 // Otherwise the result says "not saturated" (D2(m) keeps growing, as for noise) or "no scaling
@@ -201,7 +201,7 @@ void require_reproduced_by_halves(CorrelationDimensionResult& full, const Correl
 // and its D2 is withdrawn, as for the halves. A plateau whose height moves with the delay is shaped
 // by the embedding at the resolved scales, not by the attractor. (Thomas x, N = 10^5, m = 6..8: 1.719
 // at tau = 39, 1.846 at 78.) Not a default: on the zoo many plateaus, right ones as often as
-// wrong ones, move by more than 0.05 when the delay doubles (docs/zoo-notes.md, section 8).
+// wrong ones, move by more than 0.05 when the delay doubles (docs/notes/zoo-notes.md, section 8).
 void require_reproduced_at_delay(CorrelationDimensionResult& d2, const CorrelationDimensionResult& variant,
                                  std::size_t variant_delay, const CorrelationDimensionOptions& options = {});
 

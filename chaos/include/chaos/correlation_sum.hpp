@@ -87,7 +87,7 @@ CorrelationSumResult correlation_sum(std::span<const double> x, const Correlatio
 // with options.theiler = theilers[q], count for count (options.theiler is not used). The pairs are
 // walked once, at the smallest window; for each larger window the pairs with lags between the two
 // are enumerated and subtracted: P (w_max - w_min) pairs instead of a walk of every close pair per
-// window. For checking that D2 holds over a neighbourhood of w (docs/correlation_sum.md). Exact
+// window. For checking that D2 holds over a neighbourhood of w (docs/reference/correlation_sum.md). Exact
 // counts only: refuses a pair cap or a reference subset, and whatever correlation_sum refuses at
 // any of the windows.
 std::vector<CorrelationSumResult> correlation_sums_over_theiler_windows(std::span<const double> x,

@@ -21,7 +21,7 @@
 // no straight rising stretch, gets a status and no number: white noise has no linear region (its
 // curve jumps to saturation within m steps). Only positive exponents are estimated.
 //
-// Conventions (docs/lyapunov.md):
+// Conventions (docs/reference/lyapunov.md):
 //   - neighbours come from the kd-tree of neighbors.hpp; the Theiler window w excludes |i - j| <= w;
 //   - the pairs are followed for the same steps 0..K: reference points and neighbours are the first
 //     P = N - (m-1) tau - K embedded points, so every curve value averages the same pairs and no
@@ -181,12 +181,12 @@ LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOp
 LyapunovResult largest_lyapunov_kantz(std::span<const double> x, LyapunovOptions options = {},
                                       const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
 
-// The two estimators checked against each other on one series (docs/lyapunov.md, "Two estimators
+// The two estimators checked against each other on one series (docs/reference/lyapunov.md, "Two estimators
 // must agree"). Rosenstein's mean log distance of single nearest neighbours and Kantz's log of a
 // neighbourhood's mean distance are biased differently by the alignment transient, by noise and by
 // the approach to saturation, so a slope both show is evidence and a slope only one shows is not:
 // on rotating flows Rosenstein's curve can hold a straight stretch 10% below lambda_1 while Kantz's
-// has none (docs/zoo-notes.md). Where one fit has a linear region and the other has none, or the
+// has none (docs/notes/zoo-notes.md). Where one fit has a linear region and the other has none, or the
 // two exponents differ by more than `tolerance` times their mean, each fit that had a linear region
 // becomes `unconfirmed`: its value and region are withdrawn, and its explanation gives both
 // verdicts. Fits that agree are left as they are. The fits must come from the same series and
@@ -206,7 +206,7 @@ void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double toler
 // time unit, 16% below lambda_1 = 0.1019, and Kantz 0.0935 confirms it within 10%, while neither
 // half has a linear region.) One silent half is allowed: a half's nearest neighbours lie about
 // 2^(1/D2) times farther apart, so its curve has less room to rise before saturation, and requiring
-// both halves withdrew 63 right values on the zoo for these 3 wrong ones (docs/lyapunov.md).
+// both halves withdrew 63 right values on the zoo for these 3 wrong ones (docs/reference/lyapunov.md).
 void require_reproduced_by_halves(LyapunovFit& full, const LyapunovFit& first, const LyapunovFit& second,
                                   double tolerance = 0.1);
 // The same on full results, with the per-time values withdrawn as well.

@@ -11,7 +11,7 @@
 // maps and renormalised at every step grows on average by exp(lambda_1 s) per step (Benettin et al.
 // 1980, as in lyapunov_spectrum.hpp), so lambda_1 is the mean log growth per sample.
 //
-// Why it reaches where the divergence curves do not (docs/zoo-notes.md, section 4): a divergence
+// Why it reaches where the divergence curves do not (docs/notes/zoo-notes.md, section 4): a divergence
 // curve needs the separation to grow over about two e-folds before it saturates, and the nearest
 // neighbours of a flow at N = 10^5 start only about six e-folds below the attractor's size. The
 // local map needs only one step of s samples at the neighbourhood's scale, so rotating and slowly
@@ -29,7 +29,7 @@
 // of the estimator's own choices (fewer and more neighbours, one more embedding dimension, half and
 // twice the cutoff, twice the residual limit, the delay -+ a quarter, each half of the chain) and
 // reports a value only when all of them agree and the local maps explain the data (status `consistent`); otherwise it says why not, with no value.
-// Measured on the zoo (docs/lyapunov-maps.md, scripts/measure_lyapunov_maps.sh).
+// Measured on the zoo (docs/reference/lyapunov-maps.md, scripts/measure/measure_lyapunov_maps.sh).
 
 #include <cstddef>
 #include <optional>
@@ -50,7 +50,7 @@ struct LocalMapOptions {
   // s, samples the local maps advance. 0: max(1, round(tau / 2)). A step of one sample makes the
   // maps of a finely sampled flow nearly the identity, and the small stretching is lost in the noise
   // of the fit; half a delay keeps the neighbourhoods small (a fraction of the correlation time)
-  // while the stretching over the step dominates the fit's error (docs/lyapunov-maps.md).
+  // while the stretching over the step dominates the fit's error (docs/reference/lyapunov-maps.md).
   std::size_t step = 0;
   std::size_t neighbours = 0;  // k: 0 = 5 m. At least m + 1, so an affine map can be determined.
   // Singular values of a neighbourhood below cutoff times its largest are not fitted.
@@ -125,21 +125,21 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
                                            std::optional<double> dt = std::nullopt, double tolerance = 0.05);
 
 // A divergence-curve slope (Rosenstein's or Kantz's, lyapunov.hpp) checked against the local-map
-// exponent of the same series and sampling (docs/lyapunov.md, "Two estimators must agree"). A linear
+// exponent of the same series and sampling (docs/reference/lyapunov.md, "Two estimators must agree"). A linear
 // region stands only where the local-map result is `consistent` and its value differs from the slope
 // by at most `tolerance` times their mean; otherwise the fit becomes `unconfirmed`: its value and
 // region are withdrawn, and its explanation says why (both values where both exist). Where the maps
 // are `inconsistent` or `not_positive` they confirm nothing (with only a contradiction withdrawing
 // a slope, Sprott F x with 1% noise kept a slope 15% low that Rosenstein
-// and Kantz agreed on, beside inconsistent maps; docs/zoo-notes.md, section 4). The local-map value
+// and Kantz agreed on, beside inconsistent maps; docs/notes/zoo-notes.md, section 4). The local-map value
 // keeps its status: it has passed its own ten variants, and the disagreements found so far were the
 // divergence curves' known low bias on flows (Genesio-Tesi: Rosenstein 10% low, inside a straight
-// stretch that Kantz confirmed; docs/zoo-notes.md, section 3). Where the local-map result is
+// stretch that Kantz confirmed; docs/notes/zoo-notes.md, section 3). Where the local-map result is
 // `not_deterministic` (the maps explain less than 75% of their neighbourhoods' image spread: noise at
 // the scale of the nearest neighbours), the fit becomes `unconfirmed` too: the divergence curves
 // start from those neighbours, and above a noise floor they rise more slowly than lambda_1 before
 // saturating, by the same amount in both methods (Henon, Lozi, Ricker and Gauss maps with 1% noise:
-// Rosenstein and Kantz 11-19% low and within 7% of each other; docs/zoo-noise.md).
+// Rosenstein and Kantz 11-19% low and within 7% of each other; docs/notes/zoo-noise.md).
 void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance = 0.1);
 // The same on a full result (its method from result.options), with the per-time values withdrawn too.
 void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance = 0.1);

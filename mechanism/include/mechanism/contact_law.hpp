@@ -13,7 +13,7 @@
 //   flores               Flores et al. 2011                        chi = 8 (1 - e) / (5 e)
 //   hu_guo               Hu & Guo 2015                             chi = 3 (1 - e) / (2 e)
 //   gonthier             Gonthier et al. 2004                      chi = (1 - e^2) / e
-// Decisions (docs/mechanism/contact-and-friction.md):
+// Decisions (docs/reference/mechanism/contact-and-friction.md):
 //  - The force is clamped at 0: near release the dissipative term can exceed the elastic one
 //    (delta_rate < -delta_rate_impact / chi) and would pull the bodies together; contacts only push.
 //  - |impact_velocity| is used and raised to velocity_floor, so a grazing onset (latched speed

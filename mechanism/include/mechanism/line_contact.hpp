@@ -13,7 +13,7 @@
 // are exact generalised forces of U: with no damping and no friction the contact stores and
 // returns energy whatever the slider's tilt. The seed's Eq. 18-19 (one force sized by the deepest
 // corner, at the centroid of the penetrated region) is not a gradient and creates energy once the
-// slider tilts (docs/mechanism/model.md, "Energy from a tilted start").
+// slider tilts (docs/reference/mechanism/model.md, "Energy from a tilted start").
 //
 // The integrals are evaluated in closed form: for one penetrating corner over the penetrated part;
 // for two, about the face's mean penetration, with a series where the two are nearly equal (the

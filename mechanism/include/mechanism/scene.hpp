@@ -3,7 +3,7 @@
 // validated once. It says what to model: the bodies, the crank driver, gravity, and for each joint
 // whether it is ideal or has clearance (then with its contact and friction laws); then the
 // integrator and the run. The built-in default is the seed paper's scene (Tables 1 and 2) with our
-// documented choices for what the paper leaves open (docs/mechanism/scene.md).
+// documented choices for what the paper leaves open (docs/reference/mechanism/scene.md).
 //
 // Units are SI throughout (m, kg, kg m^2, s, N, Pa) except the crank speed, given in rpm as the
 // seed does. Angles are in radians.
@@ -66,14 +66,14 @@ enum class JointKind { ideal, clearance };
 //            two. The elastic part derives from the potential k' integral d(s)^(n+1) / (n+1) ds,
 //            so with restitution 1 and no friction it conserves energy from any tilt; the face
 //            model's one force at the centroid with the deepest corner's penetration does not
-//            (docs/mechanism/model.md, "Energy from a tilted start").
+//            (docs/reference/mechanism/model.md, "Energy from a tilted start").
 enum class SliderContactModel { face, corners, line };
 
 // Whether the slider may turn in the guide.
 //   free:   the seed's model (Eq. 19 and 27): the slider's angle is a coordinate;
 //   locked: an ideal anti-rotation constraint keeps it level. It is modelled as what it is, one
 //           coordinate fewer, not as a huge inertia; the constraint's moment does no work. The
-//           contacts are those of a level slider (docs/mechanism/lyapunov.md uses this to ask how
+//           contacts are those of a level slider (docs/notes/mechanism/scene-lyapunov.md uses this to ask how
 //           much of the dynamics the slider's rotation makes).
 enum class SliderRotation { free, locked };
 
@@ -87,7 +87,7 @@ struct TranslationalJoint {
   JointKind kind = JointKind::clearance;
   double clearance = 0.5e-3;  // gap per side: guide height = slider height + 2 clearance
   // The built-in reading of the seed's slider joint is the one that passes the physics audit
-  // (docs/mechanism/scene.md): a line contact (conserves energy from any tilt), Eq. 11
+  // (docs/reference/mechanism/scene.md): a line contact (conserves energy from any tilt), Eq. 11
   // with exponent 1 (its stiffness is in N/m), and the normalised LuGre of Eqs. 14-15 with sigma1
   // fading (bounded by mu F_N). The seed's printed reading is `model = "face"`, `exponent = 1.5`,
   // `law = "lugre_absolute"`, `sigma1_velocity = 0`.
@@ -110,7 +110,7 @@ struct TranslationalJoint {
   // LuGre only: the bristle deflection relaxes toward its steady value no faster than this (s).
   // The true rate sigma0 |v| / g(v) grows without bound as the normal force vanishes at contact
   // onset and release; an explicit integrator is stable on the bristle state only with
-  // step < 2.78 x this floor (RK4). docs/mechanism/contact-and-friction.md.
+  // step < 2.78 x this floor (RK4). docs/reference/mechanism/contact-and-friction.md.
   double bristle_time_floor = 1e-6;
 };
 
@@ -140,7 +140,7 @@ struct RevoluteJoint {
 
 enum class IntegratorMethod { rk4, dopri5 };
 
-// How the LuGre bristle deflections z advance (docs/mechanism/contact-and-friction.md, "The exact
+// How the LuGre bristle deflections z advance (docs/reference/mechanism/contact-and-friction.md, "The exact
 // bristle update").
 //   integrated:  z is part of the ODE state and the stepper integrates z' = k (z_ss - z) with the
 //                mechanics; the rate k is capped at 1 / bristle_time_floor, which explicit steps

@@ -21,7 +21,7 @@ const char* to_string(SimulationStatus status) noexcept;
 // defect, relative to the largest kinetic energy, grows by more than this per crank revolution
 // (energy_balance_relative / max(1, revolutions simulated)); the defect accumulates over a run, so
 // the rate, not the total, tells a long good run from a short bad one. Measured
-// (docs/mechanism/model.md, "The energy balance"): sigma1 fading, dopri5 rtol 1e-4, 2e-8 per
+// (docs/reference/mechanism/model.md, "The energy balance"): sigma1 fading, dopri5 rtol 1e-4, 2e-8 per
 // revolution; rtol 1e-3 with steps up to 1e-4 s (scripts/demo.sh) at most 1.2e-4; the scene as
 // printed (constant sigma1) with RK4 at 5000 rpm at most 5e-3; the same at 50 rpm and 1e-6 m
 // clearance 0.18, whose stroboscopic samples are the constant sigma1's kicks, not the
@@ -34,7 +34,7 @@ inline constexpr double max_energy_defect_per_revolution = 0.03;
 // the guide at revolution 247 of 1010, and the run's average stayed at 1.3e-3 per revolution, because
 // the largest kinetic energy it divides by grew a thousandfold with the error. Over 3.2 s of the
 // audited scene the largest change per microsecond of good runs is 4e-8 (RK4 at 1e-6 s) to 4e-4
-// (dopri5 rtol 1e-2); that blow-up's is 2.5 (docs/mechanism/model.md, "The energy balance").
+// (dopri5 rtol 1e-2); that blow-up's is 2.5 (docs/reference/mechanism/model.md, "The energy balance").
 
 struct SimulationSummary {
   SimulationStatus status = SimulationStatus::completed;

@@ -13,7 +13,7 @@ while the library computes. Invalid input raises ValueError with the library's m
 infinity, an empty, constant or too short series, an impossible parameter) or TypeError (a
 parameter or series of the wrong type).
 
-Conventions (docs/conventions.md): delays, Theiler windows and steps in samples; the max norm unless
+Conventions (docs/reference/conventions.md): delays, Theiler windows and steps in samples; the max norm unless
 said otherwise; correlation sums count pairs with distance < eps and |i - j| > theiler; mutual
 information in nats.
 
@@ -132,7 +132,7 @@ def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, col
     (``"equiprobable"``), for tau = 0..max_delay. The first minimum is Fraser and Swinney's delay
     (Phys. Rev. A 33, 1134, 1986). Without ``max_delay`` the search is the automatic one of
     ``analyze``: 100 delays (at most N/10), and where the information has no minimum there, on to
-    two Theiler windows. Where there is no minimum, ``no_minimum`` says why. docs/mutual_information.md.
+    two Theiler windows. Where there is no minimum, ``no_minimum`` says why. docs/reference/mutual_information.md.
 
     Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time, no_minimum.
     """
@@ -146,7 +146,7 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
 
     r(k) = sum_i (x_i - m)(x_{i+k} - m) / sum_i (x_i - m)^2 for k = 0..max_lag (default N/10, at most
     1000); the 1/e time is interpolated linearly where r first falls below exp(-1).
-    docs/autocorrelation.md.
+    docs/reference/autocorrelation.md.
 
     Result keys: lag, autocorrelation, first_zero_crossing, decorrelation_time, [decorrelation_time_units].
     """
@@ -166,7 +166,7 @@ def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm=
     neighbour of point i in dimension m (|i - n| > theiler), E1(m) = E(m+1)/E(m); E*(m) = mean_i
     |x_{i+m tau} - x_{n+m tau}|, E2(m) = E*(m+1)/E*(m). The dimension is the first m with E1 >= level
     that changes by <= change from there on; the series is stochastic when every |E2 - 1| is within
-    ``sigmas`` standard errors. L. Cao, Physica D 110, 43 (1997). docs/cao.md.
+    ``sigmas`` standard errors. L. Cao, Physica D 110, 43 (1997). docs/reference/cao.md.
 
     Result keys: dimension, E1, E2, E, E_star, E2_standard_error, embedding_dimension, e1_saturation,
     stochastic, max_E2_deviation, points_without_neighbor.
@@ -190,7 +190,7 @@ def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=
 
     A neighbour is false when |x_{i+m tau} - x_{n+m tau}| / R_m(i) > rtol (criterion 1) or R_{m+1}(i) /
     sigma > atol (criterion 2); the dimension is the first m whose fraction is <= threshold.
-    M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45, 3403 (1992). docs/fnn.md.
+    M. B. Kennel, R. Brown, H. D. I. Abarbanel, Phys. Rev. A 45, 3403 (1992). docs/reference/fnn.md.
 
     Result keys: dimension, false_fraction, embedding_dimension.
 
@@ -227,12 +227,12 @@ def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_ra
     the check off). Defaults: delay and theiler as ``analyze`` chooses them (the first
     mutual-information minimum; the longer of the 1/e time and half the dominant period, at least
     the delay; ``parameters`` names each rule), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
-    J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/correlation_sum.md, docs/correlation_dimension.md.
+    J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/reference/correlation_sum.md, docs/reference/correlation_dimension.md.
 
     ``fast=True`` (``--fast``) chooses the reference subset from the data: it doubles from
     ``fast_start`` points until two disjoint subsets agree on one unambiguous plateau within
     ``fast_target``, else the exact counts are used; the result's ``fast`` key gives the budget and
-    the rounds (docs/correlation_dimension.md). With a subset or a cap the result also has
+    the rounds (docs/reference/correlation_dimension.md). With a subset or a cap the result also has
     local_slope_error, d2_standard_error and slopes_too_uncertain (jackknife over groups of
     reference points).
 
@@ -289,7 +289,7 @@ def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None
     the slope of S(k) over the linear region found automatically (local slopes agreeing within
     ``tolerance`` in ``dimensions`` embedding dimensions m, m+1, ...), per sample, and per time unit
     when ``dt`` is given (then ``lambda`` is per time unit). M. T. Rosenstein, J. J. Collins,
-    C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/lyapunov.md.
+    C. J. De Luca, Physica D 65, 117 (1993); H. Kantz, Phys. Lett. A 185, 77 (1994). docs/reference/lyapunov.md.
 
     The answer is ``r["estimate"]`` (this method) and ``r["lambda_1"]`` (Rosenstein, Kantz and the
     local maps combined, as ``analyze`` gives it; None with the checks off): ``value``, ``interval``
@@ -339,7 +339,7 @@ def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighb
     its mean log growth per sample (per time unit with ``dt``). Maps leaving more than
     ``max_residual`` of their image spread unexplained are not averaged. J.-P. Eckmann & D. Ruelle,
     Rev. Mod. Phys. 57, 617 (1985); M. Sano & Y. Sawada, Phys. Rev. Lett. 55, 1082 (1985).
-    docs/lyapunov-maps.md.
+    docs/reference/lyapunov-maps.md.
 
     A value is given only with status ``consistent``: the variants of the estimator's own choices
     (k = 3m and 8m, m + 1, half and twice the cutoff, twice the residual limit, the delay -+ tau/4
@@ -410,7 +410,7 @@ def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, toler
     values; IAAFT: alternately imposes the amplitudes and the values until a fixed point or
     ``max_iterations`` (Schreiber and Schmitz, Phys. Rev. Lett. 77, 635, 1996). Surrogate k uses the
     k-th draw of the seed's stream. ``end_match`` first trims the series to the segment whose ends
-    match best (TISEAN endtoend). docs/surrogates.md.
+    match best (TISEAN endtoend). docs/reference/surrogates.md.
 
     Result keys: offset, length, status, iterations, spectral_deviation, surrogates (count x length).
 
@@ -432,7 +432,7 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
     asymmetry Q = <(x_{i+d} - x_i)^3> / <(x_{i+d} - x_i)^2>^(3/2)) of the data is ranked among
     ``count`` surrogates; the null hypothesis (a linear Gaussian process, measured through a monotonic
     function) is rejected at significance 1/(count+1) one-sided, 2/(count+1) two-sided, when the data
-    rank first or last. Schreiber and Schmitz, Physica D 142, 346 (2000). docs/nonlinearity_test.md.
+    rank first or last. Schreiber and Schmitz, Physica D 142, 346 (2000). docs/reference/nonlinearity_test.md.
 
     ``delay``, ``dimension`` and ``theiler`` left out are chosen on the data as ``analyze`` chooses
     them (the same embedding for the data and every surrogate); ``parameters`` names each rule.
@@ -459,7 +459,7 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
     white_noise, uniform_noise, ar1, or one of the 47 zoo systems (``chaos generate --list``).
     ``parameter``: a dict of system parameters and sampling settings by name (``-p name=value``:
     ``{"rho": 28, "dt": 0.01}``); ``components``: "all" or a comma-separated list ("x,z"). Flows are
-    integrated by RK4 at ``step`` and sampled every ``dt`` after ``transient``. docs/systems.md.
+    integrated by RK4 at ``step`` and sampled every ``dt`` after ``transient``. docs/reference/systems.md.
 
     Result keys: parameters (every parameter and the sampling used, defaults included), components
     (a read-only mapping name -> array).
@@ -485,7 +485,7 @@ def spectrum(system, *, parameter=None, time=None, step=None, interval=None, tra
     D_KY = k + (lambda_1 + ... + lambda_k) / |lambda_{k+1}| (Kaplan and Yorke 1979). ``parameter``:
     model parameters by name (``-p``); ``identity``: zoo systems, also what the sum must equal;
     ``exponents``: delay systems, how many leading exponents. Defaults are each system's own.
-    docs/lyapunov_spectrum.md.
+    docs/reference/lyapunov_spectrum.md.
 
     Result keys: parameters, exponents, sum, kaplan_yorke_dimension, renormalisations,
     averaging_length, initial_state (and identity).
@@ -504,7 +504,7 @@ def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwi
     (width 2 IQR n^(-1/3) on the pooled values, at most ``max_bins``), or with ``kde=True`` a Gaussian
     kernel estimate (Silverman's bandwidth 0.9 min(s, IQR/1.34) n^(-1/5), or ``bandwidth``) averaged
     over each bin. The range is ``low``..``high`` or the pooled min/max widened by ``padding`` of the
-    span on each side. docs/poincare.md.
+    span on each side. docs/reference/poincare.md.
 
     ``parameter`` and ``value``: two 1-D arrays of the same length; or ``parameter`` the path of a file
     whose ``column`` holds the parameter and ``value_column`` the value (``-c``, ``-v``, ``-x``, ``-l``).
@@ -549,7 +549,7 @@ def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, 
     cubic through the four rows around it (Lagrange interpolation, error O(dt^4) for a smooth flow;
     linear in the first and last interval), every column interpolated there, and the return times
     t_{j+1} - t_j between crossings (H. Poincare, Les methodes nouvelles de la mecanique celeste,
-    1899; the seed's Section 6). docs/poincare.md.
+    1899; the seed's Section 6). docs/reference/poincare.md.
 
     ``data``: a 2-D array of rows (a 1-D array is one column) or the path of a text file, read as
     the command reads it (``skip``, ``length``). ``columns``: the 1-based columns read (default:
@@ -635,7 +635,7 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
     literature D2, else not above D_KY + 0.1 (Kaplan and Yorke 1979, from the equations); lambda_1
     within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
     no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension
-    +-0.1 and no confident lambda_1. docs/zoo.md is its report.
+    +-0.1 and no confident lambda_1. docs/validation/zoo.md is its report.
 
     ``only``: case names (a list, or a comma-separated string; default every case); ``fast``: the CI
     subset (4 systems and 5 controls at N = 10^4, automatic choices only); ``grid=False``: automatic
@@ -666,8 +666,8 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
 
 def zoo_series(name, *, fast=False, threads=1):
     """The exact series a case of the zoo regression suite is analysed with (``chaos zoo --series
-    NAME``; ``fast=True``: the CI subset's case at N = 10^4), so that any row of docs/zoo.md can be
-    reproduced with ``d2``, ``lyapunov`` or ``analyze``. ``name``: a case of docs/zoo.md's first
+    NAME``; ``fast=True``: the CI subset's case at N = 10^4), so that any row of docs/validation/zoo.md can be
+    reproduced with ``d2``, ``lyapunov`` or ``analyze``. ``name``: a case of docs/validation/zoo.md's first
     column (a zoo system such as ``lorenz``, or a control). ``threads``: the spectra behind the
     cases' bands, computed on that many threads (the series does not depend on it).
 
@@ -682,7 +682,7 @@ def zoo_series(name, *, fast=False, threads=1):
 
 def embed(x, dimension, delay=1):
     """The delay embedding y_i = (x_i, x_{i+tau}, ..., x_{i+(m-1)tau}), i = 0..N-(m-1)tau-1, as a read-only
-    (N - (m-1) tau) x m array that views the series without copying it (docs/embedding.md)."""
+    (N - (m-1) tau) x m array that views the series without copying it (docs/reference/embedding.md)."""
     values, _, _, _ = _series(x, None)
     points = _core.embedding_points(values, dimension, delay)
     view = np.lib.stride_tricks.as_strided(values, shape=(points, dimension),

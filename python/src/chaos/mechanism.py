@@ -8,7 +8,7 @@
     run.signals["slider_y"], run.stroboscopic["slider_y"]
 
 The module is ``chaos.mechanism``, not a top-level ``mechanism``: that name belongs to an unrelated
-package on PyPI (kinematics of mechanisms and cams). docs/mechanism/ describes the model, the scene
+package on PyPI (kinematics of mechanisms and cams). docs/reference/mechanism/ describes the model, the scene
 keys and the signals.
 """
 import os

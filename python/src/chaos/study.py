@@ -9,7 +9,7 @@
 
 The sweep runs the code behind ``study sweep`` (ResultStore, run_sweep, assemble) with the GIL
 released: the result directory holds exactly the files the command writes for the same options
-(docs/study.md), and the tables come back as read-only NumPy arrays by column name.
+(docs/reference/study.md), and the tables come back as read-only NumPy arrays by column name.
 """
 import os
 import shutil
@@ -107,7 +107,7 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
           analysis=False, analysis_periods=None, analysis_interval=None, analysis_samples_per_period=None,
           max_delay=None, max_dimension=None, surrogates=None, test_length=None, seed=None, threads=None,
           output=None, resume=False, progress=None):
-    """A one- or two-dimensional sweep over scene keys (``study sweep``; the protocol of docs/study.md).
+    """A one- or two-dimensional sweep over scene keys (``study sweep``; the protocol of docs/reference/study.md).
 
     Every point's scene is ``scene`` (the seed's when None; a ``mechanism.Scene`` with its settings,
     or the path of a TOML file), then ``set`` (``--set key=value``, strings), then the point's axis

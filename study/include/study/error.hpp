@@ -1,7 +1,7 @@
 #pragma once
 // The exceptions of the study layer: a refused request, naming what was refused, the value and
 // the rule (as mechanism::InvalidParameter and chaos::InvalidInput do for their libraries), and
-// its kind for a result that could not be written (exit 4 in docs/study.md, not 3).
+// its kind for a result that could not be written (exit 4 in docs/reference/study.md, not 3).
 
 #include <stdexcept>
 #include <string>

@@ -13,7 +13,7 @@
 //   DIR/lyapunov.tsv      one row per point when the Lyapunov exponents were asked for (1/s)
 //   DIR/timing.tsv        wall seconds per point: the only file that differs between runs
 // The assembled files depend only on the point files, never on the order in which points
-// finished, so 1 thread, N threads and M MPI ranks write identical files (docs/study.md).
+// finished, so 1 thread, N threads and M MPI ranks write identical files (docs/reference/study.md).
 
 #include <cstddef>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// What a sweep computes, stated once (the protocol of docs/study.md):
+// What a sweep computes, stated once (the protocol of docs/reference/study.md):
 //   - every point's scene is the base scene (a file, or the built-in seed scene), the --set
 //     overrides, then the point's axis values;
 //   - initial conditions: `fresh` starts every point from the seed's Eq. 29 (the points are

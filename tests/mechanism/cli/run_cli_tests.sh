@@ -114,7 +114,7 @@ expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
 
-# mechanism lyapunov: the exponents from the equations (docs/mechanism/lyapunov.md). A short run of
+# mechanism lyapunov: the exponents from the equations (docs/reference/mechanism/lyapunov.md). A short run of
 # the tilted, dissipative audit scene: JSON keys, one exponent per phase coordinate (conrod and
 # slider angles and their rates), the table's rows (one per period averaged), and refusals.
 tilted=(--set joint.slider.model=line --set joint.slider.friction.law=none --set joint.slider.contact.restitution=0.5

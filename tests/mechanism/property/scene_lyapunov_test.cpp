@@ -68,7 +68,7 @@ TEST(SceneLyapunov, DissipativeContactsMakeTheSumNegative) {
 }
 
 TEST(SceneLyapunov, DoesNotDependOnThePerturbationInTheLinearRange) {
-  // Two perturbations 100x apart inside the linear range (docs/mechanism/lyapunov.md measures it:
+  // Two perturbations 100x apart inside the linear range (docs/reference/mechanism/lyapunov.md measures it:
   // 1e-6 to 1e-8; below 1e-10 round-off in the penetrations, differences of metres-sized positions,
   // takes over and the exponents grow): the reference orbit is the same, only the companions
   // differ, and their effect must stay below half the estimate's own standard error.

@@ -120,7 +120,7 @@ TEST(Simulation, ConservativeSliderModelsConserveEnergyFromTiltedSpinningStarts)
   // length, so "contact_length" and "flat_face" run the same dynamics; "given" is the other law.)
   // Measured with the seed's face model (Eq. 18-19) instead: +6.6 J (contact-length stiffness) and
   // +18 J (flat face) within the same 1.2 s, which is why it is not in this list
-  // (docs/mechanism/model.md, "Energy from a tilted start"). Bound: the 1e-3 J, against a
+  // (docs/reference/mechanism/model.md, "Energy from a tilted start"). Bound: the 1e-3 J, against a
   // kinetic energy of about 30 J.
   // With exponent 1 the force K d is continuous at onset but its slope jumps. The steps end at
   // each switch (integrator.locate_switches): on the audit case at 1e-6 s the line model reads
@@ -188,7 +188,7 @@ TEST(Simulation, NormalisedLuGreAndCoulombStayWithinMuTimesTheNormalForce) {
   //   1 m/s), the fading factor is exp(-1e6) = 0. sigma2 = 0 in the scene.
   // The absolute form (the seed's printed reading, once the built-in one) has no such
   // bound: z_ss scales with the normal force it had, and 1% of its contact samples exceed 8 mu F_N
-  // even with sigma1 = 0 (scripts/measure_friction_bound.sh).
+  // even with sigma1 = 0 (scripts/measure/measure_friction_bound.sh).
   const double mu_max = 0.11, mu_min = 0.1, sigma1 = 400, v_d = 1e-3;
   const double fading_allowance = sigma1 * v_d * (1 + mu_max / mu_min) / std::sqrt(2 * std::exp(1.0));
   const std::vector<std::pair<std::vector<std::string>, double>> laws = {

@@ -64,7 +64,7 @@ TEST(EnergyCheck, OneStepBeyondARevolutionsAllowanceIsNotCompleted) {
 
 TEST(EnergyCheck, TheBuiltInSceneOnItsOwnIntegratorHasNoLargeStep) {
   // RK4 at 1e-6 s, 0.5 mm: the largest step change measured over 1.2 s is 8e-9 of the kinetic
-  // energy (docs/mechanism/model.md); the band leaves a factor 100 above that, and the limit (0.03)
+  // energy (docs/reference/mechanism/model.md); the band leaves a factor 100 above that, and the limit (0.03)
   // is far above both.
   mechanism::SliderCrank system(mechanism::read_scene("", {"run.duration=0.12", "run.output_interval=0"}));
   const mechanism::SimulationSummary s = mechanism::simulate(system);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `study` as a user runs it: exit codes, messages naming the rule, the result directory's files,
 # resume after a kill, and (when built with MPI) two ranks writing the same files as one process.
-# Expected values come from the documented protocol (docs/study.md) and from the tool's own
+# Expected values come from the documented protocol (docs/reference/study.md) and from the tool's own
 # single-process run.
 set -uo pipefail
 STUDY=${STUDY:?set STUDY to the study binary}
@@ -52,7 +52,7 @@ expect_message "max-dimension = 34: must be 2 .. 33" "pipeline max-dimension 34"
 expect_code 3 "pipeline max-delay 0" "$STUDY" pipeline --max-delay 0
 expect_message "max-delay = 0: must be at least 1 sample" "pipeline max-delay 0"
 # ... and when the analysis fails at every point (here 2 samples per revolution over 1 revolution:
-# 3 samples, too short for any estimator) the sweep exits 5 (docs/study.md) and says so.
+# 3 samples, too short for any estimator) the sweep exits 5 (docs/reference/study.md) and says so.
 expect_code 5 "every analysis failed" "$STUDY" sweep -q "${fast[@]}" --axis joint.slider.clearance=1e-4,2e-4 --periods 4 --keep 1 \
   --analysis --analysis-periods 1 --analysis-samples-per-period 2 -o "$work/no_analysis"
 expect_message "the analysis failed at all 2 analysed points (the first: series too short: 3 samples)" "every analysis failed"
@@ -79,7 +79,7 @@ expect_message "point 0's run is too large" "periods beyond any run"
 # 1.5, absolute LuGre with a constant sigma1, no longer the built-in reading)
 # energy_balance_relative was 0.53 with status "completed" and 0 failed points. One revolution
 # measures 0.18, above the limit of 0.03 per revolution (mechanism/simulate.hpp): the point is
-# energy_defect, counted as failed, exit 5 (docs/study.md); the 5000 rpm point of the same sweep
+# energy_defect, counted as failed, exit 5 (docs/reference/study.md); the 5000 rpm point of the same sweep
 # (0.004) stays completed.
 printed=(--set joint.slider.model=face --set joint.slider.contact.exponent=1.5 --set joint.slider.friction.law=lugre_absolute --set joint.slider.friction.sigma1_velocity=0)
 expect_code 5 "energy defect" "$STUDY" sweep -q --threads 1 "${printed[@]}" --set joint.slider.clearance=1e-6 \
@@ -89,7 +89,7 @@ expect_message "1 of 2 points did not complete (the first: point 0, energy_defec
 statuses=$(grep -v '^#' "$work/energy/points.tsv" | cut -f3 | tr '\n' ' ')
 [[ $statuses == "energy_defect completed " ]] || fail "energy defect: points.tsv statuses are '$statuses'"
 
-# A small sweep: four points, the files of docs/study.md, the kept revolutions.
+# A small sweep: four points, the files of docs/reference/study.md, the kept revolutions.
 expect_code 0 "small sweep" "$STUDY" sweep "${fast[@]}" --axis joint.slider.clearance=1e-4:4e-4:4 --periods 8 --keep 3 -o "$work/a" -q --threads 2
 grep -q "warning" "$work/err" && fail "sweep -q still warns about the scene: $(head -c 300 "$work/err")"
 for f in spec.txt samples.tsv points.tsv timing.tsv points/000003.tsv; do [[ -s "$work/a/$f" ]] || fail "missing $f"; done
@@ -134,7 +134,7 @@ expect_code 0 "resume after SIGKILL" "$STUDY" sweep "${long[@]}" -o "$work/k" --
 cmp -s "$work/u/samples.tsv" "$work/k/samples.tsv" || fail "a sweep killed and resumed differs from an uninterrupted one"
 
 # A second sweep into a directory another sweep is writing is refused (exit 3,
-# docs/study.md: a refused request), naming the lock's holder; the first finishes untouched.
+# docs/reference/study.md: a refused request), naming the lock's holder; the first finishes untouched.
 "$STUDY" sweep "${long[@]}" -o "$work/l" >/dev/null 2>&1 &
 holder=$!
 for _ in $(seq 100); do [[ -s "$work/l/lock" ]] && break; sleep 0.05; done
@@ -191,7 +191,7 @@ for pair in delay_samples:delay theiler_samples:theiler cao_dimension:embedding_
     fail "pipeline ${pair%%:*} $(jq -c ".analysis.${pair%%:*}" "$work/pipeline.json") differs from chaos analyze's ${pair##*:} $(jq -c ".${pair##*:}" "$work/analyze.json")"
 done
 # An unwritable --plot, --series or plot -o failed only after the work; all are
-# refused while the command line is read, exit 4 (input/output, docs/study.md), the file named;
+# refused while the command line is read, exit 4 (input/output, docs/reference/study.md), the file named;
 # a plot that is not .png or .svg exits 3. The run of 10^12 periods would be refused too (exit 3),
 # so exit 4 shows the file was checked first.
 expect_code 4 "pipeline --plot into a missing directory" "$STUDY" pipeline --periods 1000000000000 --plot "$work/no_dir/fig7.png"
@@ -200,7 +200,7 @@ expect_code 3 "pipeline --plot not png or svg" "$STUDY" pipeline --periods 10000
 expect_message "--plot: the file must end in .png or .svg" "pipeline --plot not png or svg"
 expect_code 4 "plot -o into a missing directory" "$STUDY" plot "$work/no_such_sweep" --figure bifurcation -o "$work/no_dir/b.png"
 expect_message "-o .*/no_dir/b.png: the directory .*no_dir does not exist" "plot -o into a missing directory"
-# An output that cannot be written exited 3; docs/study.md says 4 (input/output).
+# An output that cannot be written exited 3; docs/reference/study.md says 4 (input/output).
 expect_code 4 "unwritable --series" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --series "$work/no_dir/series.tsv"
 expect_message "--series .*/no_dir/series.tsv: the directory .*no_dir does not exist" "unwritable --series"
 expect_code 0 "pipeline with a given delay" "$STUDY" pipeline "${fast[@]}" --periods 6 --analysis-periods 3 --delay 18

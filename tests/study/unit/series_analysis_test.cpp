@@ -24,7 +24,7 @@ TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   chaos::GenerateRequest request;
   request.system = chaos::SystemKind::lorenz;
   // 2*10^4 samples: the halves check needs each half to saturate on its own, and at 8000 samples
-  // (the length before the check) Lorenz's halves of 4000 do not (docs/zoo-notes.md, section 2).
+  // (the length before the check) Lorenz's halves of 4000 do not (docs/notes/zoo-notes.md, section 2).
   request.length = 20000;
   const chaos::Trajectory t = chaos::generate(request);
   study::AnalysisOptions options;

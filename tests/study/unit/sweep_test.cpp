@@ -313,7 +313,7 @@ TEST(Sweep, ResumeRecomputesADamagedPointFile) {
 }
 
 // A result that cannot be written is an input/output error (exit 4 in
-// docs/study.md), not a refused request (3), and leaves no temporary file.
+// docs/reference/study.md), not a refused request (3), and leaves no temporary file.
 TEST(Sweep, AnUnwritableResultIsAnIoError) {
   const fs::path dir = scratch("unwritable");
   EXPECT_THROW(study::write_atomically(dir / "missing" / "samples.tsv", "text"), study::StudyIoError);

@@ -4,7 +4,7 @@
 // a k-torus: D2 = k), and the corruptions real data suffer (measurement noise at a given SNR,
 // quantisation). An estimator that reports a confident low dimension or a positive Lyapunov
 // exponent on the first group, or anything but 1 or k on the second, is wrong. The page is
-// docs/control_signals.md.
+// docs/reference/control_signals.md.
 //
 // Conventions, as in systems.hpp: the output is a pure function of the arguments; random ones take
 // an explicit seed (chaos::Random) and are bit-reproducible; every argument is checked before any

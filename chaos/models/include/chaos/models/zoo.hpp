@@ -82,7 +82,7 @@ struct ZooEntry {
   std::size_t map_transient = 1000;
   std::size_t component = 0;  // the scalar analysed by default
 
-  // Default spectrum settings, chosen so that the spectrum is converged (docs/zoo-spectra.md).
+  // Default spectrum settings, chosen so that the spectrum is converged (docs/validation/zoo-spectra.md).
   FlowSpectrumOptions flow_spectrum;
   MapSpectrumOptions map_spectrum;
 
