@@ -11,7 +11,7 @@ namespace cli_support {
 
 class PlotError : public std::runtime_error {
  public:
-  enum class Kind { bad_extension, io, gnuplot_failed };
+  enum class Kind { bad_extension, gnuplot_failed };
   PlotError(Kind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
   Kind kind() const noexcept { return kind_; }
 
@@ -23,7 +23,8 @@ class PlotError : public std::runtime_error {
 // to refuse it before any work, with the message render would give.
 std::string plot_extension_refusal(const std::string& path, const std::string& option = "--plot");
 
-// Runs `script` (which must not set the terminal or output) into `path` (.png or .svg).
+// Runs `script` (which must not set the terminal or output) into `path` (.png or .svg). The image is
+// written through safe_output::write_file: a file that cannot be written throws its WriteError.
 void render(const std::string& script, const std::string& path);
 
 // Single quotes in gnuplot strings are doubled.

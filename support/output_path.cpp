@@ -1,12 +1,9 @@
 #include "output_path.hpp"
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 
-#include <unistd.h>
-
 #include "gnuplot.hpp"
+#include "safe_output.hpp"
 
 namespace cli_support {
 
@@ -18,10 +15,10 @@ std::string output_refusal(const std::string& option, const std::string& path, c
     return named + " is the input file; writing the result there would overwrite the data";
   if (fs::is_directory(path, ec)) return named + " is a directory";
   const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  const bool exists = fs::exists(path, ec);
-  if (!exists && !fs::is_directory(parent, ec)) return named + ": the directory " + parent.string() + " does not exist";
-  if (::access(exists ? path.c_str() : parent.c_str(), exists ? W_OK : W_OK | X_OK) != 0)
-    return named + ": cannot write " + (exists ? "the file" : "into " + parent.string()) + " (" + std::strerror(errno) + ")";
+  if (!fs::exists(path, ec) && !fs::is_directory(parent, ec)) return named + ": the directory " + parent.string() + " does not exist";
+  // Opened for writing as the result will be (safe_output.hpp), so that what the system refuses
+  // (a read-only or full file system, /proc) is found before the work, with its reason.
+  if (const std::string why = safe_output::refusal(path); !why.empty()) return named + ": " + why;
   return {};
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Refuses, before any work, a file a command would write its result to (-o, --plot): it is the
 // command's input file (writing there destroys the data), a directory, in a directory that does
-// not exist, or not writable. Unchecked, `-o` naming the input would overwrite it, and an unwritable -o
-// or --plot would fail only after the whole computation. Checked without creating the file.
+// not exist, or cannot be written (a temporary file is created beside it and removed again, as
+// safe_output.hpp will write it). Unchecked, `-o` naming the input would overwrite it, and an
+// unwritable -o or --plot would fail only after the whole computation.
 
 #include <CLI/CLI.hpp>
 

@@ -1,14 +1,20 @@
 // The `chaos` command: one subcommand per task, TISEAN's option letters, tab-separated output under
 // a '#' header or --json. Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid input,
-// 4 a reference case failed (`validate`).
+// 4 a reference case failed (`validate`). A result that cannot be written (standard output or -o:
+// a full disk, /dev/full) is an input/output error, exit 3, as an -o refused before the work.
 
 #include <iostream>
 
 #include "chaos/error.hpp"
 #include "common.hpp"
 #include "option_checks.hpp"
+#include "safe_output.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+void report_write_error(const std::string& why) { std::cerr << "chaos: error [io]: " << why << "\n"; }
+
+int run(int argc, char** argv) {
   using namespace chaos::cli;
   CLI::App app{"chaos: time-series analysis for chaotic data (embedding, mutual information, Cao, FNN, D2, Lyapunov exponents, surrogates, validation)"};
   app.require_subcommand(1);
@@ -38,6 +44,8 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+    // The -o files are renamed into place only now that the command has succeeded.
+    safe_output::commit_pending();
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -50,11 +58,34 @@ int main(int argc, char** argv) {
   } catch (const chaos::InvalidInput& e) {
     std::cerr << "chaos: error [" << chaos::to_string(e.code()) << "]: " << e.what() << "\n";
     return invalid_input;
+  } catch (const safe_output::WriteError& e) {
+    report_write_error(e.what());
+    return invalid_input;
   } catch (const ValidationFailed&) {
+    // The report of a failed validation is the result: it is written all the same.
+    try {
+      safe_output::commit_pending();
+    } catch (const safe_output::WriteError& e) {
+      report_write_error(e.what());
+      return invalid_input;
+    }
     return validation_failed;
   } catch (const std::exception& e) {
     std::cerr << "chaos: internal error: " << e.what() << "\n";
     return internal_error;
   }
   return ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  safe_output::StandardOutput out;
+  const int code = run(argc, argv);
+  safe_output::discard_pending();  // a failed command leaves its -o targets as they were
+  if (const std::string why = out.finish(); !why.empty()) {
+    report_write_error(why);
+    return code == chaos::cli::ok ? chaos::cli::invalid_input : code;
+  }
+  return code;
 }

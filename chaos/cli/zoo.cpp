@@ -4,13 +4,14 @@
 // zoo_checkpoint.hpp). Exits with the validation-failure code when any estimate is confident and
 // outside its band.
 
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "chaos/error.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "output_path.hpp"
+#include "safe_output.hpp"
 
 namespace chaos::cli {
 
@@ -74,9 +75,7 @@ void run(const ZooArgs& args) {
   if (args.output.empty()) {
     std::cout << run.markdown;
   } else {
-    std::ofstream out(args.output);
-    if (!out) throw InvalidInput(ErrorCode::io, "zoo: cannot write " + args.output);
-    out << run.markdown;
+    safe_output::open_pending(args.output).stream() << run.markdown;
   }
   if (!args.quiet)
     std::cerr << "zoo: " << run.wrong << " confident and wrong; D2 coverage " << run.d2_covered << "/" << run.chaotic
@@ -99,7 +98,9 @@ void register_zoo(CLI::App& app) {
       ->delimiter(',');
   command->add_option("--threads", args->threads, "cases run in parallel (the report does not depend on it)")
       ->capture_default_str();
-  command->add_option("-o,--output", args->output, "write the Markdown report here (default: standard output)");
+  cli_support::check_output_option(
+      command->add_option("-o,--output", args->output, "write the Markdown report here (default: standard output)"), "-o",
+      nullptr, false, [](const std::string& why, bool) { throw InvalidInput(ErrorCode::io, why); });
   command->add_option("--checkpoint", args->checkpoint,
                       "append each finished case to this file (JSON lines) and skip the cases it already holds, so that "
                       "a stopped run resumes; the file belongs to one build and one choice of --fast and --no-grid");

@@ -176,6 +176,38 @@ LyapunovMethod parse_method(const std::string& name) {
   throw InvalidInput(ErrorCode::invalid_parameter, "method must be rosenstein or kantz (got '" + name + "')");
 }
 
+// Refuses settings the curve of N samples cannot satisfy, as chaos d2 refuses its reference points,
+// rather than answering them with a status about the data (no exponential divergence, no linear
+// region). Only the values given are checked: the automatic ones are chosen to fit.
+void require_lyapunov_settings_fit(const LyapunovParams& params, std::size_t n, const std::string& steps_source) {
+  const std::size_t k = params.options.steps;
+  const std::string steps = "K = " + std::to_string(k) + " (" + steps_source + ", N = " + std::to_string(n) + ")";
+  const auto refuse = [](const std::string& rule) {
+    throw InvalidInput(ErrorCode::invalid_parameter, "Lyapunov exponent: " + rule);
+  };
+  if (params.period && *params.period > 1 && *params.period > k)
+    refuse("the local slopes span one whole period, so the period must not exceed the curve's steps: period <= " + steps +
+           " (got period = " + std::to_string(*params.period) + ")");
+  if (params.fit.min_steps > k + 1)
+    refuse("a linear region of min_steps steps must fit in the curve's K + 1 steps k = 0..K: min_steps <= K + 1 with " +
+           steps + " (got min_steps = " + std::to_string(params.fit.min_steps) + ")");
+  if (params.fit.half_width > k / 2)
+    refuse("a local slope spans 2 half_width + 1 steps, which must fit in the curve's K + 1 steps k = 0..K: "
+           "2 half_width <= K with " + steps + " (got half_width = " + std::to_string(params.fit.half_width) + ")");
+  // The reference points are drawn from the P points that can be followed for K steps, fewest at
+  // the largest dimension fitted; the series-length rule itself is the estimator's (lyapunov.hpp).
+  if (params.options.reference_points == 0 || params.options.dimension > n || params.fit.dimensions > n) return;
+  const std::size_t m = params.options.dimension + (params.fit.dimensions > 0 ? params.fit.dimensions - 1 : 0);
+  const std::size_t tau = params.options.delay;
+  if (m - 1 > n / std::max<std::size_t>(tau, 1) || (m - 1) * tau + k >= n) return;  // too short: the estimator says so
+  const std::size_t points = n - (m - 1) * tau - k;
+  if (params.options.reference_points > points)
+    refuse("reference_points must not exceed the " + std::to_string(points) +
+           " points that can be followed for all K steps at the largest dimension fitted, m = " + std::to_string(m) +
+           ": P = N - (m-1)*tau - K = " + std::to_string(n) + " - " + std::to_string(m - 1) + "*" + std::to_string(tau) +
+           " - " + std::to_string(k) + " (got reference_points = " + std::to_string(params.options.reference_points) + ")");
+}
+
 }  // namespace
 
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output) {
@@ -204,6 +236,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     params.options.steps = choose_lyapunov_steps(scales.theiler, params.fit.period, x.size());
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
   }
+  require_lyapunov_settings_fit(params, x.size(), steps_source);
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
   // The same estimator over each half of the record: a linear region must be reproduced.
   if (params.halves) check_record_halves(r, x, params.options, params.fit);

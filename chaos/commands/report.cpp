@@ -1,13 +1,13 @@
 #include "report.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 
 #include "chaos/error.hpp"
 #include "chaos/format.hpp"
 #include "chaos/series.hpp"
 #include "chaos/time_scales.hpp"
+#include "safe_output.hpp"
 
 namespace chaos::cli {
 
@@ -25,12 +25,7 @@ Report::Report(std::string command, const OutputOptions& output) : command_(std:
 
 void Report::open(const OutputOptions& output) {
   output_ = output;
-  file_.reset();
-  if (!output_.path.empty()) {
-    auto file = std::make_unique<std::ofstream>(output_.path);
-    if (!*file) throw InvalidInput(ErrorCode::io, output_.path + ": cannot open for writing");
-    file_ = std::move(file);
-  }
+  file_ = output_.path.empty() ? nullptr : &safe_output::open_pending(output_.path).stream();
 }
 
 Report& Report::parameter(const std::string& name, const std::optional<double>& value) {

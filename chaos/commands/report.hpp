@@ -50,8 +50,9 @@ class Report {
   }
   Report& parameter(const std::string& name, const std::optional<double>& value);
   Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
-  // Sends the output to output.path from now on (the command line opens it after drawing its plot,
-  // so a plot that fails leaves an existing -o file untouched).
+  // Sends the output to output.path from now on: a temporary file beside it, renamed over it when
+  // the command line commits its outputs after the command succeeded (safe_output.hpp's
+  // commit_pending), so a failed write or a later error (a plot refused) leaves the file untouched.
   void open(const OutputOptions& output);
   nlohmann::ordered_json& json() { return json_; }
   const nlohmann::ordered_json& json() const { return json_; }
@@ -74,7 +75,7 @@ class Report {
   OutputOptions output_;
   nlohmann::ordered_json json_;
   std::vector<std::pair<std::string, std::string>> header_;
-  std::unique_ptr<std::ostream> file_;
+  std::ostream* file_ = nullptr;  // the pending file's stream (safe_output.hpp), or standard output
 };
 
 // JSON null for an empty optional.

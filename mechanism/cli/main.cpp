@@ -2,9 +2,10 @@
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
 //   mechanism lyapunov [scene.toml] [--set key=value]... [--periods N] [--exponents K] [-o FILE] [--json] [--plot FILE]
-// Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file,
-// 5 the integration could not continue, or reached the end with its energy balance too far off to
-// trust (status energy_defect; the summary says when and why).
+// Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file
+// (refused before the run, or a write that failed: a full disk, /dev/full), 5 the integration could
+// not continue, or reached the end with its energy balance too far off to trust (status
+// energy_defect; the summary says when and why).
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@
 #include "option_checks.hpp"
 #include "output_path.hpp"
 #include "progress_bar.hpp"
+#include "safe_output.hpp"
 #include "mechanism/error.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/scene_lyapunov.hpp"
@@ -167,9 +169,7 @@ void plot_convergence(const mechanism::SceneLyapunov& r, const std::string& path
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"mechanism: planar slider-crank with translational and revolute clearance joints"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "mechanism 0.1.0");
@@ -239,14 +239,10 @@ int main(int argc, char** argv) {
       const mechanism::Scene scene = load_scene(lyap_opts);
       cli_support::ProgressBar bar(!lyap_opts.quiet && isatty(fileno(stderr)));
       lyap.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
-      std::unique_ptr<std::ofstream> file;
-      if (!lyap_out.empty()) {
-        file = std::make_unique<std::ofstream>(lyap_out);
-        if (!*file) throw mechanism::InvalidParameter("-o", lyap_out, "cannot be written");
-      }
+      std::ostream* file = lyap_out.empty() ? nullptr : &safe_output::open_pending(lyap_out).stream();
       const mechanism::SceneLyapunov r = mechanism::scene_lyapunov(scene, lyap);
       bar.update(1.0, "done");
-      std::ostream* out = file ? file.get() : (lyap_json ? nullptr : &std::cout);
+      std::ostream* out = file ? file : (lyap_json ? nullptr : &std::cout);
       if (out) {
         *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
              << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
@@ -303,12 +299,9 @@ int main(int argc, char** argv) {
         columns.push_back(static_cast<std::size_t>(it - table.names.begin()));
       }
     }
-    std::unique_ptr<std::ofstream> file;
     std::ostream* out = nullptr;
     if (!out_path.empty()) {
-      file = std::make_unique<std::ofstream>(out_path);
-      if (!*file) throw mechanism::InvalidParameter("-o", out_path, "cannot be written");
-      out = file.get();
+      out = &safe_output::open_pending(out_path).stream();
     } else if (!json) {
       out = &std::cout;
     }
@@ -389,8 +382,32 @@ int main(int argc, char** argv) {
   } catch (const OutputRefused& e) {
     std::cerr << "mechanism: " << e.what() << "\n";
     return invalid_scene;
+  } catch (const safe_output::WriteError& e) {
+    std::cerr << "mechanism: " << e.what() << "\n";
+    return invalid_scene;
   } catch (const std::exception& e) {
     std::cerr << "mechanism: internal error: " << e.what() << "\n";
     return internal_error;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  safe_output::StandardOutput out;
+  int code = run(argc, argv);
+  // The -o file is renamed into place once the run has ended, also one that stopped (exit 5: the
+  // table holds the samples up to the stop, as the summary says).
+  try {
+    if (code == ok || code == integration_failed) safe_output::commit_pending();
+  } catch (const safe_output::WriteError& e) {
+    std::cerr << "mechanism: " << e.what() << "\n";
+    code = invalid_scene;
+  }
+  safe_output::discard_pending();
+  if (const std::string why = out.finish(); !why.empty()) {
+    std::cerr << "mechanism: " << why << "\n";
+    if (code == ok) code = invalid_scene;
+  }
+  return code;
 }

@@ -235,3 +235,15 @@ def test_a_masked_array_is_refused_naming_the_choices():
     with pytest.raises(ValueError, match=r"masked array with 1 masked value\(s\) of 500.*compressed"):
         chaos.autocorrelation(x)
     assert chaos.autocorrelation(x.compressed()).parameters["N"] == 499
+
+
+@pytest.mark.parametrize("kwargs, rule", [
+    (dict(period=100000), r"period must not exceed the curve's steps: period <= K = \d+ .*N = 4000\) \(got period = 100000\)"),
+    (dict(min_steps=1000, steps=50), r"min_steps <= K \+ 1 with K = 50 .*\(got min_steps = 1000\)"),
+    (dict(reference_points=6000), r"reference_points must not exceed the \d+ points .*\(got reference_points = 6000\)"),
+])
+def test_lyapunov_refuses_settings_the_series_cannot_satisfy(lorenz, kwargs, rule):
+    """As the command: a period, minimum steps or reference points the N = 4000 curve cannot hold
+    are refused with the rule and the numbers, not answered as a property of the data."""
+    with pytest.raises(ValueError, match=rule):
+        chaos.lyapunov(lorenz, **kwargs)

@@ -134,3 +134,27 @@ def test_ctrl_c_stops_a_sweep_after_the_point_being_computed(tmp_path):
     assert elapsed < 0.3 + 1.0
     finished = len(list((tmp_path / "k" / "points").glob("*.tsv")))
     assert 0 < finished < 40 and not (tmp_path / "k" / "samples.tsv").exists()
+
+
+def test_a_sweep_into_a_full_file_system_raises_with_the_path_and_reason(tmp_path):
+    """The sweep's files go through the commands' one safe writer (support/safe_output.hpp): a full
+    file system (simulated by a 1 KiB file size limit, SIGXFSZ ignored, in a child process so
+    that pytest's own files are not limited) raises ValueError naming the file and the system's
+    reason, and leaves neither the file nor a temporary one."""
+    import sys
+    script = (
+        "import resource, signal, sys\n"
+        "from chaos import study\n"
+        "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+        "resource.setrlimit(resource.RLIMIT_FSIZE, (1024, resource.RLIM_INFINITY))\n"
+        "try:\n"
+        f"    study.sweep(set={FAST!r}, periods=4, keep=2, threads=1, output=sys.argv[1])\n"
+        "except ValueError as e:\n"
+        "    print(e)\n"
+        "    sys.exit(7)\n")
+    out = tmp_path / "full"
+    p = subprocess.run([sys.executable, "-c", script, str(out)], capture_output=True, text=True)
+    assert p.returncode == 7, p.stdout + p.stderr
+    assert "spec.txt" in p.stdout and "File too large" in p.stdout, p.stdout
+    left = [f.name for f in out.rglob("*")] if out.exists() else []
+    assert "spec.txt" not in left and not any(".tmp." in f for f in left), left

@@ -7,7 +7,7 @@ and N, then, per N:
   coverage     confident and within 10% of lambda_1 from the equations (the zoo's band);
   calibration  the reference inside the stated interval, over confident and rough answers;
   worst        confident answers farther from the reference than twice their half-width.
-The references are the "lambda_1 eq." column of docs/zoo.md (chaos spectrum, from the equations).
+The references are the "lambda_1 eq." column of docs/validation/zoo.md (chaos spectrum, from the equations).
 
 Usage: scripts/measure/lyapunov_answers.py CHAOS_BINARY [N ...] [--jobs J] [--only a,b]
 """
@@ -23,20 +23,15 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 
 def references():
-    """System -> lambda_1 from the equations, read from docs/zoo.md's table."""
+    """System -> lambda_1 from the equations, read from docs/validation/zoo.md's table."""
     out = {}
-    for path in ("docs/zoo.md", "docs/validation/zoo.md"):
-        full = os.path.join(ROOT, path)
-        if not os.path.exists(full):
-            continue
-        for line in open(full):
-            cells = [c.strip() for c in line.split("|")]
-            if len(cells) > 12 and re.fullmatch(r"[0-9]+", cells[2] or "") and cells[1] not in out:
-                try:
-                    out[cells[1]] = float(cells[11])
-                except ValueError:
-                    pass
-        break
+    for line in open(os.path.join(ROOT, "docs/validation/zoo.md")):
+        cells = [c.strip() for c in line.split("|")]
+        if len(cells) > 12 and re.fullmatch(r"[0-9]+", cells[2] or "") and cells[1] not in out:
+            try:
+                out[cells[1]] = float(cells[11])
+            except ValueError:
+                pass
     return out
 
 

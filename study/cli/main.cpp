@@ -3,7 +3,8 @@
 //   study sweep [scene.toml] [--set k=v]... [--axis key=from:to:count]... -o DIR [--resume] ...
 //   study pipeline [scene.toml] [--set k=v]... [--plot FILE]   (seed Fig. 7 for one scene)
 //   study plot DIR --figure bifurcation|density|portrait|d2|e2|d2map -o FILE.png|svg
-// Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output,
+// Exit codes: 0 ok, 1 internal error, 2 usage, 3 invalid scene or sweep, 4 input/output (an output
+// refused before the work, or a write that failed: standard output, a table, a plot, a point file),
 // 5 the sweep finished but some points' simulations did not complete or ended energy_defect (their
 // status says why), or the analysis failed at every analysed point, or the pipeline's simulation
 // did not complete.
@@ -29,6 +30,7 @@
 #include "pipeline.hpp"
 #include "progress_bar.hpp"
 #include "plots.hpp"
+#include "safe_output.hpp"
 #include "study/error.hpp"
 #include "study/run_sweep.hpp"
 
@@ -46,9 +48,7 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   study::cli::MpiSession mpi(argc, argv);
   const bool root = mpi.rank() == 0;
   CLI::App app{"study: parameter sweeps of the slider-crank simulator with the chaos analysis of each point"};
@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
     // Rank 0 creates the directory; the others open it once it exists (as a resume of the same spec).
     // Every collective call is reached by every rank: a rank's failure is reported, not thrown past them.
     std::unique_ptr<study::ResultStore> store;
+    int store_failure = invalid_request;  // io_error where a file of the directory could not be written
     auto open_store = [&](bool as_resume) {
       try {
         // Rank 0's lock covers the other ranks, which open the directory only after it.
@@ -153,12 +154,13 @@ int main(int argc, char** argv) {
         for (const auto& d : store->discarded()) std::cerr << "study: recomputing " << d << "\n";
         return true;
       } catch (const std::exception& e) {
+        if (dynamic_cast<const study::StudyIoError*>(&e)) store_failure = io_error;
         std::cerr << "study: " << e.what() << "\n";
         return false;
       }
     };
-    if (!mpi.all_succeeded(root ? open_store(resume) : true)) return invalid_request;
-    if (!mpi.all_succeeded(root ? true : open_store(true))) return invalid_request;
+    if (!mpi.all_succeeded(root ? open_store(resume) : true)) return store_failure;
+    if (!mpi.all_succeeded(root ? true : open_store(true))) return store_failure;
 
     study::SweepExecution exec;
     exec.rank = mpi.rank();
@@ -268,8 +270,23 @@ int main(int argc, char** argv) {
   } catch (const std::filesystem::filesystem_error& e) {
     std::cerr << "study: " << e.what() << "\n";
     return io_error;
+  } catch (const safe_output::WriteError& e) {
+    std::cerr << "study: " << e.what() << "\n";
+    return io_error;
   } catch (const std::exception& e) {
     std::cerr << "study: internal error: " << e.what() << "\n";
     return internal_error;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  safe_output::StandardOutput out;
+  const int code = run(argc, argv);
+  if (const std::string why = out.finish(); !why.empty()) {
+    std::cerr << "study: " << why << "\n";
+    return code == ok ? io_error : code;
+  }
+  return code;
 }

@@ -10,6 +10,7 @@
 
 #include "gnuplot.hpp"
 #include "outputs.hpp"
+#include "safe_output.hpp"
 #include "chaos/format.hpp"
 #include "mechanism/simulate.hpp"
 #include "study/error.hpp"
@@ -79,14 +80,15 @@ bool run_pipeline(const PipelineRequest& r) {
     return false;
   }
   if (!r.series_output.empty()) {
-    std::ofstream f(r.series_output);
-    if (!f) throw StudyIoError("--series", r.series_output, "cannot be written");
+    safe_output::OutputFile file(r.series_output);
+    std::ostream& f = file.stream();
     // Every digit, so that another tool reads the series the pipeline analysed.
     f << "# t\tslider_y\tslider_vy\n";
     using chaos::format_number, chaos::Precision;
     for (std::size_t i = 0; i < t.size(); ++i)
       f << format_number(t[i], Precision::round_trip) << '\t' << format_number(y[i], Precision::round_trip) << '\t'
         << format_number(vy[i], Precision::round_trip) << '\n';
+    file.commit();
   }
   const SeriesAnalysis a = analyse_series_with_curves(y, analysis.interval, analysis);
   auto opt = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };

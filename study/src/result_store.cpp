@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "chaos/format.hpp"
+#include "safe_output.hpp"
 #include "study/error.hpp"
 #include "study/series_analysis.hpp"
 
@@ -128,9 +129,11 @@ int take_lock(const fs::path& dir) {
                          " holds " + path.string() + "); wait for it to finish or choose another directory");
   }
   const std::string me = "process " + std::to_string(::getpid()) + "\n";
+  errno = 0;
   if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
+    const int error = errno ? errno : EIO;  // a short write sets none
     ::close(fd);
-    throw StudyError("-o", path.string(), "cannot be written");
+    throw StudyIoError("-o", path.string(), std::string("cannot be written (") + std::strerror(error) + ")");
   }
   return fd;
 }
@@ -138,21 +141,11 @@ int take_lock(const fs::path& dir) {
 }  // namespace
 
 void write_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw StudyIoError("output", tmp.string(), std::string("cannot be written: ") + std::strerror(errno));
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 &&
-                    ::fsync(fileno(f)) == 0;
-    const int error = errno;
-    std::fclose(f);
-    if (!ok) {
-      std::remove(tmp.c_str());  // a full disk left samples.tsv.tmp.PID behind
-      throw StudyIoError("output", tmp.string(),
-                         std::string("could not be written completely (") + std::strerror(error) + ")");
-    }
+  try {
+    safe_output::write_file(path.string(), text);
+  } catch (const safe_output::WriteError& e) {
+    throw StudyIoError(e.what());  // exit 4, as every input/output failure of the study
   }
-  fs::rename(tmp, path);
 }
 
 ResultStore::ResultStore(fs::path dir, const SweepSpec& spec, bool resume, bool lock)

@@ -170,6 +170,13 @@ l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.cross_check.method, .c
 [[ $l == '["kantz","linear_region",true,true]' ]] && pass || fail "lyapunov cross-check on henon gave $l"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --method kantz --no-cross-check --json | jq -c '[.status, .cross_check, .local_maps, .parameters.cross_check]')
 [[ $l == '["linear_region",null,null,false]' ]] && pass || fail "lyapunov --no-cross-check gave $l"
+# Settings the curve of N samples cannot satisfy are refused with the rule and the numbers, as d2
+# refuses its reference points, instead of being answered as a property of the data.
+expect_error 3 "period must not exceed the curve's steps: period <= K = 500 \\(.*N = 5000\\) \\(got period = 100000\\)" -- lyapunov --period 100000 -q "$work/lorenz.dat"
+expect_error 3 "min_steps <= K \\+ 1 with K = 50 \\(given \\(-s\\), N = 5000\\) \\(got min_steps = 1000\\)" -- lyapunov --min-steps 1000 -s 50 -q "$work/lorenz.dat"
+expect_error 3 "2 half_width <= K with K = 50 .*\\(got half_width = 40\\)" -- lyapunov --half-width 40 -s 50 -q "$work/lorenz.dat"
+expect_error 3 "reference_points must not exceed the [0-9]+ points .*P = N - \\(m-1\\)\\*tau - K = 5000 - .*\\(got reference_points = 6000\\)" -- lyapunov --reference-points 6000 -q "$work/lorenz.dat"
+expect_error 3 "reference_points must not exceed the 2942 points .*P = N - \\(m-1\\)\\*tau - K = 3000 - 3\\*1 - 55 \\(got reference_points = 2943\\)" -- lyapunov -m 2 -d 1 -s 55 --reference-points 2943 -q "$work/henon.dat"
 # The third estimator, as in chaos analyze: on clean Hénon x (3000 iterations) the local maps are
 # inconsistent at m = 2 and consistent at m + 1 = 3, within 10% of lambda_1 = 0.4195 per iteration (from
 # the equations), and agree with the fit, so the value stands.

@@ -9,7 +9,7 @@
 // A value is never withheld where a fit exists: a doubtful one is `rough`, not missing. The interval
 // is the spread of the estimate over the estimator's own reasonable choices (fit range, embedding
 // dimension, the halves of the record, the other estimator), not a regression's standard error;
-// docs/lyapunov.md states how well it holds on the zoo.
+// docs/reference/lyapunov.md states how well it holds on the zoo.
 
 #include <optional>
 #include <string>

@@ -64,7 +64,8 @@ class ResultStore {
   std::vector<std::string> discarded_;
 };
 
-// Writes `text` to `path` atomically (a temporary file in the same directory, then rename).
+// Writes `text` to `path` atomically (safe_output::write_file: a temporary file in the same
+// directory, every write checked, then rename); a failure is a StudyIoError naming the path and why.
 void write_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace study
