@@ -79,10 +79,15 @@ std::string plot_script(const LyapunovResult& r) {
 void run(LyapunovArgs& args) {
   const Series series = load_series(args.input);
   Progress progress(args.quiet);
-  if (args.params.options.reference_points == 0)
+  if (args.params.reference_points && *args.params.reference_points == 0)
     progress.hint("lyapunov", series.values.size(),
                   "the divergence curve follows the neighbours of every one of the points and may take long; "
                   "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
+  else
+    progress.hint("lyapunov", series.values.size(),
+                  "the automatic choices (Cao's method) and the neighbour searches run on all the samples and may "
+                  "take long; -m, -d and -t skip the choices, -l 100000 uses the first 10^5 samples (the curves "
+                  "average over --reference-points, at most 10^4 by default)");
   args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   args.params.check_progress =
@@ -169,8 +174,8 @@ void register_lyapunov(CLI::App& app) {
   command->add_option("-k,--min-neighbours", args->params.options.min_neighbours,
                       "Kantz: reference points with fewer neighbours are skipped")
       ->capture_default_str();
-  command->add_option("--reference-points", args->params.options.reference_points,
-                      "use this many evenly spaced reference points (0: all)")
+  command->add_option("--reference-points", args->params.reference_points,
+                      "use this many evenly spaced reference points (default: at most 10^4, as chaos analyze; 0: all)")
       ->capture_default_str();
   command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
   command->add_option("--threads", args->params.options.threads, "threads (results identical for any number)")

@@ -127,6 +127,9 @@ struct LyapunovParams {
   LyapunovOptions options;
   LyapunovFitOptions fit;
   std::optional<std::size_t> delay, dimension, theiler, steps, period;
+  // Left out: as chaos analyze, min(N, 10^4) evenly spaced reference points (choose_lyapunov_options);
+  // 0: all of them.
+  std::optional<std::size_t> reference_points;
   std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   std::string method = "rosenstein";
   std::string norm = "max";

@@ -196,16 +196,17 @@ void require_lyapunov_settings_fit(const LyapunovParams& params, std::size_t n, 
            "2 half_width <= K with " + steps + " (got half_width = " + std::to_string(params.fit.half_width) + ")");
   // The reference points are drawn from the P points that can be followed for K steps, fewest at
   // the largest dimension fitted; the series-length rule itself is the estimator's (lyapunov.hpp).
-  if (params.options.reference_points == 0 || params.options.dimension > n || params.fit.dimensions > n) return;
+  // Only a given number is checked: the automatic one is at most P by construction.
+  if (!params.reference_points || *params.reference_points == 0 || params.options.dimension > n || params.fit.dimensions > n) return;
   const std::size_t m = params.options.dimension + (params.fit.dimensions > 0 ? params.fit.dimensions - 1 : 0);
   const std::size_t tau = params.options.delay;
   if (m - 1 > n / std::max<std::size_t>(tau, 1) || (m - 1) * tau + k >= n) return;  // too short: the estimator says so
   const std::size_t points = n - (m - 1) * tau - k;
-  if (params.options.reference_points > points)
+  if (*params.reference_points > points)
     refuse("reference_points must not exceed the " + std::to_string(points) +
            " points that can be followed for all K steps at the largest dimension fitted, m = " + std::to_string(m) +
            ": P = N - (m-1)*tau - K = " + std::to_string(n) + " - " + std::to_string(m - 1) + "*" + std::to_string(tau) +
-           " - " + std::to_string(k) + " (got reference_points = " + std::to_string(params.options.reference_points) + ")");
+           " - " + std::to_string(k) + " (got reference_points = " + std::to_string(*params.reference_points) + ")");
 }
 
 }  // namespace
@@ -235,6 +236,15 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   } else {
     params.options.steps = choose_lyapunov_steps(scales.theiler, params.fit.period, x.size());
     steps_source = "20 correlation times or periods, at least 20, at most N/10";
+  }
+  std::string reference_points_source = "given (--reference-points)";
+  if (params.reference_points) {
+    params.options.reference_points = *params.reference_points;
+  } else {
+    params.options.reference_points =
+        choose_lyapunov_options(scales, x.size(), params.options.dimension, params.options.delay,
+                                params.options.theiler, params.options.method).reference_points;
+    reference_points_source = "at most 10^4, evenly spaced, as chaos analyze";
   }
   require_lyapunov_settings_fit(params, x.size(), steps_source);
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
@@ -298,7 +308,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
                                                                          "the reference points have a neighbour, at most "
                                                                          "20 on average"))
         .parameter("min_neighbours", params.options.min_neighbours);
-  report.parameter("reference_points", params.options.reference_points).parameter("threads", params.options.threads)
+  report.parameter("reference_points", params.options.reference_points)
+      .parameter("reference_points_source", reference_points_source).parameter("threads", params.options.threads)
       .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
       .parameter("min_steps", r.fit.min_steps).parameter("period", params.fit.period)
       .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions)
@@ -356,6 +367,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     c["status"] = to_string(check->fit.status);
     c["lambda"] = optional_json(per_time ? check->lambda_per_time : check->fit.lambda);
     c["explanation"] = check->fit.explanation;
+    c["estimate"] = estimate_json(per_time ? scaled(check->fit.estimate, 1.0 / *in.dt) : check->fit.estimate);
     if (check->options.method == LyapunovMethod::kantz) c["radius"] = check->curve.radius;
   } else {
     j["cross_check"] = nullptr;
@@ -366,6 +378,13 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
                        {"lambda", optional_json(maps_per_time ? maps->lambda_per_time : maps->lambda)},
                        {"lambda_interval", interval_json(maps_per_time ? maps->lambda_per_time_interval : maps->lambda_interval)},
                        {"dimension", maps->variants.front().dimension},
+                       {"base", maps->base.lambda / (maps_per_time ? *maps->dt : 1.0)},
+                       {"variants", [&] {
+                          auto v = nlohmann::ordered_json::array();
+                          for (const auto& variant : maps->variants)
+                            v.push_back({{"name", variant.name}, {"lambda", variant.lambda / (maps_per_time ? *maps->dt : 1.0)}});
+                          return v;
+                        }()},
                        {"explanation", maps->explanation}};
   } else if (params.cross_check) {
     j["local_maps"] = {{"status", "not_run"}, {"explanation", maps_refusal}};

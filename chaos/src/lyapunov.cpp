@@ -671,9 +671,8 @@ void check_estimates(LyapunovFit& rosenstein, LyapunovFit& kantz, double toleran
 }
 
 // An answer checked against the local-map exponent, the independent estimate: rough beside maps
-// that find the data not deterministic or not diverging, that give another value (consistent and
-// more than the tolerance away), or whose variants all lie on one side of it (inconsistent: the
-// variants spread, but none supports this value).
+// that find the data not deterministic or not diverging, or whose value (consistent) or base
+// estimate (inconsistent) lies more than the tolerance away.
 void check_estimate(Estimate& e, const LocalMapResult& maps, double tolerance) {
   if (!e.value) return;
   const std::string name = "the local linear maps ";
@@ -691,18 +690,15 @@ void check_estimate(Estimate& e, const LocalMapResult& maps, double tolerance) {
         e.downgrade(name + "give " + format_number(*maps.lambda, Precision::title) + " per sample, more than " +
                     format_number(tolerance * 100, Precision::title) + "% away");
       return;
-    case LocalMapStatus::inconsistent: {
-      double lo = INFINITY, hi = -INFINITY;
-      for (const auto& v : maps.variants) {
-        lo = std::min(lo, v.lambda);
-        hi = std::max(hi, v.lambda);
-      }
-      if (!(*e.value >= lo * (1 - tolerance) && *e.value <= hi * (1 + tolerance)))
-        e.downgrade("the local linear maps' variants span " + format_number(lo, Precision::title) + ".." +
-                    format_number(hi, Precision::title) + " per sample, none within " +
-                    format_number(tolerance * 100, Precision::title) + "% of this value");
+    case LocalMapStatus::inconsistent:
+      // The variants spread, so their base estimate is only a rough third opinion: an answer it
+      // puts more than the tolerance away is rough (Ueda x at N = 10^5: Rosenstein and Kantz agree
+      // on 0.078, 24% below lambda_1, where the maps' base reads 0.095).
+      if (maps.base.maps > 0 && !agree(*e.value, maps.base.lambda, tolerance))
+        e.downgrade("the local linear maps' base estimate (their variants disagree) gives " +
+                    format_number(maps.base.lambda, Precision::title) + " per sample, more than " +
+                    format_number(tolerance * 100, Precision::title) + "% away");
       return;
-    }
   }
 }
 

@@ -287,7 +287,7 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
   get(p, "dimensions", params.fit.dimensions);
   get(p, "radius", params.options.radius);
   get(p, "min_neighbours", params.options.min_neighbours);
-  get(p, "reference_points", params.options.reference_points);
+  get(p, "reference_points", params.reference_points);
   get(p, "norm", params.norm);
   get(p, "threads", params.options.threads);
   get(p, "tolerance", params.fit.tolerance);

@@ -330,3 +330,23 @@ def test_mutual_searches_as_far_as_the_automatic_delay():
     short = chaos.mutual(x, max_delay=20)
     assert short.first_minimum is None
     assert "still falling" in short.no_minimum
+
+
+def test_lambda_1_is_one_answer_with_an_interval_and_a_status():
+    # Lorenz x at dt 0.01, N = 2*10^4, defaults only: lambda_1 = 0.9056 (Sprott 2003,
+    # references/references.tsv), within 10% and confident (the bar of the answers); analyze and
+    # lyapunov give the same answer, and its interval holds its value.
+    x = chaos.generate("lorenz", length=20000, components="x").components["x"]
+    a = chaos.analyze(x, dt=0.01)["lambda_1"]
+    assert a["status"] == "confident", a["reason"]
+    assert a["value"] == pytest.approx(0.9056, rel=0.1)
+    assert a["interval"][0] <= a["value"] <= a["interval"][1]
+    r = chaos.lyapunov(x, dt=0.01)
+    for key in ("value", "status", "source"):
+        assert r["lambda_1"][key] == a[key]
+    assert list(r["lambda_1"]["interval"]) == list(a["interval"])
+    assert r["estimate"]["status"] in ("confident", "rough")
+    # Without the checks there is no combined answer and the method's own is rough at best.
+    plain = chaos.lyapunov(x, dt=0.01, cross_check=False, halves=False)
+    assert plain["lambda_1"] is None
+    assert plain["estimate"]["status"] != "confident"

@@ -2,14 +2,16 @@
 """lambda_1 answers of `chaos analyze` on every chaotic zoo system, against lambda_1 from the equations.
 
 For each system: the zoo's series (`chaos zoo --series`), its first N samples for each N asked,
-`chaos analyze --json`, and its `lambda_1` answer (value, interval, status). Prints one row per system
+`chaos lyapunov --json` with every default (the same lambda_1 as `chaos analyze` gives, without its
+D2 and surrogate steps), and its `lambda_1` answer (value, interval, status). Prints one row per system
 and N, then, per N:
   coverage     confident and within 10% of lambda_1 from the equations (the zoo's band);
   calibration  the reference inside the stated interval, over confident and rough answers;
   worst        confident answers farther from the reference than twice their half-width.
 The references are the "lambda_1 eq." column of docs/validation/zoo.md (chaos spectrum, from the equations).
 
-Usage: scripts/measure/lyapunov_answers.py CHAOS_BINARY [N ...] [--jobs J] [--only a,b]
+Usage: scripts/measure/lyapunov_answers.py CHAOS_BINARY [N ...] [--jobs J] [--only a,b] [--save DIR]
+(--save keeps each run's whole JSON as DIR/SYSTEM-N.json.)
 """
 import json
 import os
@@ -35,7 +37,7 @@ def references():
     return out
 
 
-def run(chaos, name, n, workdir):
+def run(chaos, name, n, workdir, save=None):
     series = os.path.join(workdir, name + ".json")
     if not os.path.exists(series):
         with open(series, "w") as f:
@@ -46,16 +48,24 @@ def run(chaos, name, n, workdir):
     path = os.path.join(workdir, f"{name}-{n}.txt")
     with open(path, "w") as f:
         f.write("\n".join(repr(v) for v in values[:n]) + "\n")
-    cmd = [chaos, "analyze", path, "-q", "--json"] + (["--dt", str(dt)] if dt else [])
+    cmd = [chaos, "lyapunov", path, "-q", "--json"] + (["--dt", str(dt)] if dt else [])
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         return {"status": "error", "reason": done.stderr.strip()[:200]}
+    if save:
+        with open(os.path.join(save, f"{name}-{n}.json"), "w") as f:
+            f.write(done.stdout)
     return json.loads(done.stdout)["lambda_1"]
 
 
 def main():
     args = sys.argv[1:]
-    jobs, only = 2, None
+    jobs, only, save = 2, None, None
+    if "--save" in args:
+        i = args.index("--save")
+        save = args[i + 1]
+        os.makedirs(save, exist_ok=True)
+        del args[i:i + 2]
     if "--jobs" in args:
         i = args.index("--jobs")
         jobs = int(args[i + 1])
@@ -76,7 +86,7 @@ def main():
             subprocess.run([chaos, "zoo", "--series", name, "--json"], stdout=f, check=True)
     tasks = [(name, n) for n in lengths for name in names]
     with ThreadPoolExecutor(jobs) as pool:
-        answers = list(pool.map(lambda t: run(chaos, t[0], t[1], workdir), tasks))
+        answers = list(pool.map(lambda t: run(chaos, t[0], t[1], workdir, save), tasks))
     print("system\tN\tlambda_eq\tvalue\tlow\thigh\tstatus\tinside\treason")
     summary = {n: {"confident": 0, "good": 0, "stated": 0, "held": 0, "worst": 0, "systems": 0} for n in lengths}
     for (name, n), a in zip(tasks, answers):

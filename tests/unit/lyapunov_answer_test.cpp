@@ -120,24 +120,27 @@ LyapunovResult with_answer(EstimateStatus status, std::optional<double> value, d
   return r;
 }
 
-TEST(CombineLyapunov, TwoAgreeingAnswersGiveTheirMeanAndTheirSpan) {
+// The floors of lyapunov_answer.hpp: a confident interval reaches at least 10% of the value either
+// side, a rough one 20%.
+TEST(CombineLyapunov, TwoAgreeingAnswersGiveTheirMeanAndTheirSpanAtLeastTheFloor) {
   const auto r = with_answer(EstimateStatus::confident, 1.0, 0.97, 1.03);
   const auto k = with_answer(EstimateStatus::rough, 1.04, 0.99, 1.08);
   const auto a = chaos::combine_lyapunov(&r, &k, nullptr, 0.5);
   EXPECT_EQ(a.estimate.status, EstimateStatus::confident);
   EXPECT_DOUBLE_EQ(*a.estimate.value, 1.02);
-  EXPECT_DOUBLE_EQ(a.estimate.interval->low, 0.97);
-  EXPECT_DOUBLE_EQ(a.estimate.interval->high, 1.08);
+  EXPECT_DOUBLE_EQ(a.estimate.interval->low, 1.02 * 0.9);  // the span [0.97, 1.08] is narrower
+  EXPECT_DOUBLE_EQ(a.estimate.interval->high, 1.02 * 1.1);
   EXPECT_DOUBLE_EQ(*a.per_time().value, 2.04);  // per time unit, dt = 0.5
 }
 
-TEST(CombineLyapunov, ASpanWiderThanTenPercentIsRough) {
-  const auto r = with_answer(EstimateStatus::confident, 1.0, 0.97, 1.03);
-  const auto k = with_answer(EstimateStatus::confident, 1.3, 1.25, 1.35);
+TEST(CombineLyapunov, ASpanWiderThanTenPercentIsRoughAndKeepsItsSpan) {
+  const auto r = with_answer(EstimateStatus::confident, 1.0, 0.77, 1.03);
+  const auto k = with_answer(EstimateStatus::confident, 1.3, 1.25, 1.45);
   const auto a = chaos::combine_lyapunov(&r, &k, nullptr);
   EXPECT_EQ(a.estimate.status, EstimateStatus::rough);
-  EXPECT_DOUBLE_EQ(a.estimate.interval->low, 0.97);
-  EXPECT_DOUBLE_EQ(a.estimate.interval->high, 1.35);
+  EXPECT_DOUBLE_EQ(*a.estimate.value, 1.15);
+  EXPECT_DOUBLE_EQ(a.estimate.interval->low, 0.77);    // wider than 1.15 * 0.8 = 0.92
+  EXPECT_DOUBLE_EQ(a.estimate.interval->high, 1.45);   // wider than 1.15 * 1.2 = 1.38
 }
 
 TEST(CombineLyapunov, OneAnswerAloneIsRoughAndNoAnswerIsNone) {

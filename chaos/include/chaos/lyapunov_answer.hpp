@@ -2,14 +2,19 @@
 // One lambda_1 from the three estimators of lyapunov.hpp and lyapunov_local_maps.hpp, with one
 // interval and one status (estimate.hpp), the three kept beside it as the evidence.
 //   - Rosenstein's and Kantz's answers, each already checked against the other, the record's halves
-//     and the local maps (cross_check, require_reproduced_by_halves): where both give a value, lambda_1
-//     is their mean and the interval spans both intervals; confident when at least one of them is
-//     confident and that span's half-width is at most 10% of the value.
+//     and the local maps (cross_check, require_reproduced_by_halves): where both give a value,
+//     lambda_1 is their mean, or the median of the three where the local maps are consistent; the
+//     interval spans their intervals. Confident when at least one of the two is confident and that
+//     span is at most 10% of the value either side.
 //   - Where only one gives a value, that value, rough (the other estimator does not confirm it).
-//   - Where neither does, the local maps: their value where their variants agree, else their base
-//     estimate with the variants' range as the interval; rough either way (a divergence curve
-//     that shows no exponential stretch is evidence against a sharp value).
+//   - Where neither does, the local maps' value (or their base estimate where their variants
+//     disagree), rough: a divergence curve with no exponential stretch is evidence against a sharp
+//     value.
 //   - none where no estimator gives a value.
+// The interval is then widened to at least 10% of the value either side (confident), 20% (rough)
+// or 30% (local maps alone), and a rough one spans the local maps' variants too: the spread over
+// the estimators' choices misses their systematic error, which these floors cover on the zoo
+// (docs/reference/lyapunov.md, "Answers and their intervals").
 
 #include <optional>
 #include <string>

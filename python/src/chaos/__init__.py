@@ -275,7 +275,7 @@ correlation_sum = d2  # the correlation sums are part of d2's result (correlatio
 
 
 def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None, steps=None, period=None, dimensions=3,
-             radius=None, min_neighbours=1, reference_points=0, norm="max", threads=1, tolerance=0.1, half_width=0,
+             radius=None, min_neighbours=1, reference_points=None, norm="max", threads=1, tolerance=0.1, half_width=0,
              min_steps=0, min_rise=2.0, cross_check=True, halves=True, progress=None, dt=None, column=1, skip=0,
              length=None):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
@@ -308,6 +308,9 @@ def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None
     estimator over each half of the record as well: a linear region that neither half shows, or that a
     half puts more than ``tolerance`` away, gives status ``not_reproduced``; ``halves=False`` gives the
     plain estimate.
+
+    ``reference_points`` left out averages over at most 10^4 evenly spaced reference points, as
+    ``analyze`` does; 0 uses every point.
 
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
 
