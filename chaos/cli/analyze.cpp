@@ -162,9 +162,8 @@ void run(AnalyzeArgs& args) {
     out << "fnn_embedding_dimension\t" << (fnn->embedding_dimension ? std::to_string(*fnn->embedding_dimension) : "none")
         << "\t[false fraction <= " << number(fnn_options.threshold) << "]\n";
   if (a.cao)
-    out << "determinism\tmax|E2-1| = " << number(a.cao->max_E2_deviation)
-        << (a.cao->stochastic ? "\t[E2 within its sampling error of 1: indistinguishable from noise]\n"
-                              : "\t[E2 departs from 1 beyond its sampling error: deterministic structure]\n");
+    out << "determinism\t" << run.determinism << ": max|E2-1| = " << number(a.cao->max_E2_deviation) << "\t["
+        << run.determinism_explanation << "]\n";
   out << "correlation_dimension\t";
   if (a.d2) {
     out << (a.d2->d2 ? number(*a.d2->d2) : "none");

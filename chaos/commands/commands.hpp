@@ -231,6 +231,13 @@ struct AnalyzeRun {
   std::optional<EndMatch> segment;
   std::optional<MutualInformationResult> mutual;  // with params.mutual_curve, for a stationary series
   std::string theiler_source;
+  // Whether the series shows determinism: Cao's E2 and the surrogate test together. E2 departs
+  // from 1 for a linear stochastic oscillation seen through a static nonlinearity too (an AR(2)
+  // process of period 40 through atan: max|E2 - 1| = 0.22-0.25 at N = 5000 and 2*10^4), which the
+  // IAAFT surrogates share, so the surrogate test must reject as well. "deterministic",
+  // "not_shown" (E2 departs, the surrogates do not differ), "stochastic" (E2 within its sampling
+  // error of 1), or "not_run"; the explanation says which evidence gave it.
+  std::string determinism, determinism_explanation;
   Report report;
 };
 // The file name of the built-in series, as `chaos analyze` reports it.

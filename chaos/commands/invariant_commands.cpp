@@ -469,7 +469,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     if (!params.progress) return nullptr;
     return [progress = params.progress, name](double fraction) { progress(name, fraction); };
   };
-  AnalyzeRun run{analyse_series(x, in.dt, options), std::nullopt, {}, std::nullopt, std::nullopt, std::nullopt, {},
+  AnalyzeRun run{analyse_series(x, in.dt, options), std::nullopt, {}, std::nullopt, std::nullopt, std::nullopt, {}, {}, {},
                  Report("analyze", output)};
   const AutomaticAnalysis& a = run.analysis;
   const TimeScales& scales = a.scales;
@@ -491,6 +491,26 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
                                                                step("nonlinearity test"));
     run.segment = test.segment;
     run.nonlinear = std::move(test.result);
+  }
+  if (!a.cao) {
+    run.determinism = "not_run";
+    run.determinism_explanation = "Cao's method was not run";
+  } else if (a.cao->stochastic) {
+    run.determinism = "stochastic";
+    run.determinism_explanation = "E2 within its sampling error of 1: indistinguishable from noise";
+  } else if (!run.nonlinear) {
+    run.determinism = "not_shown";
+    run.determinism_explanation = "E2 departs from 1 beyond its sampling error, but the surrogate test was not run: "
+                                  "a linear process seen through a static nonlinearity can do that too";
+  } else if (run.nonlinear->test.rejected) {
+    run.determinism = "deterministic";
+    run.determinism_explanation = "E2 departs from 1 beyond its sampling error, and the surrogate test rejects a "
+                                  "linear Gaussian process: deterministic structure";
+  } else {
+    run.determinism = "not_shown";
+    run.determinism_explanation = "E2 departs from 1 beyond its sampling error, but the surrogate test does not reject "
+                                  "a linear Gaussian process seen through a static transformation, which can do that "
+                                  "too: no evidence of determinism";
   }
   if (params.mutual_curve && scales.stationary) {
     // The information curve the delay was read from (the pipeline keeps only its minimum), as far
@@ -528,6 +548,8 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   j["fnn_embedding_dimension"] = fnn ? optional_json(fnn->embedding_dimension) : nullptr;
   j["max_E2_deviation"] = a.cao ? nlohmann::ordered_json(a.cao->max_E2_deviation) : nullptr;
   j["stochastic"] = a.cao ? nlohmann::ordered_json(a.cao->stochastic) : nullptr;
+  j["determinism"] = run.determinism;
+  j["determinism_explanation"] = run.determinism_explanation;
   j["d2"] = a.d2 ? optional_json(a.d2->d2) : nullptr;
   j["d2_interval"] = a.d2 ? interval_json(a.d2->d2_interval) : nullptr;
   j["d2_status"] = a.d2 ? to_string(a.d2->status) : "not_run";

@@ -350,3 +350,24 @@ def test_lambda_1_is_one_answer_with_an_interval_and_a_status():
     plain = chaos.lyapunov(x, dt=0.01, cross_check=False, halves=False)
     assert plain["lambda_1"] is None
     assert plain["estimate"]["status"] != "confident"
+
+
+def test_a_transformed_linear_oscillation_is_not_called_deterministic():
+    # A linear stochastic oscillation (AR(2), poles at radius 0.98, period 40 samples) seen through
+    # the static nonlinearity atan(x / 80): Cao's E2 departs from 1 (max|E2 - 1| about 0.23), as for
+    # a deterministic series, but the IAAFT surrogates share its spectrum and amplitude distribution,
+    # so the surrogate test does not reject and analyze does not claim determinism. (The test's
+    # significance is 5%: about one seed in 20 would reject by chance; this seed does not.) Lorenz x
+    # is deterministic by both.
+    rng = np.random.default_rng(1)
+    a1, a2 = 2 * 0.98 * np.cos(2 * np.pi / 40), -0.98 ** 2
+    x = np.zeros(6000)
+    e = rng.standard_normal(6000)
+    for t in range(2, 6000):
+        x[t] = a1 * x[t - 1] + a2 * x[t - 2] + e[t]
+    r = chaos.analyze(np.arctan(x[1000:] / 80))
+    assert r["max_E2_deviation"] > 0.1 and not r["stochastic"]
+    assert r["nonlinearity"]["rejected"] is False
+    assert r["determinism"] == "not_shown", r["determinism_explanation"]
+    lorenz = chaos.generate("lorenz", length=20000, components="x").components["x"]
+    assert chaos.analyze(lorenz, dt=0.01)["determinism"] == "deterministic"
