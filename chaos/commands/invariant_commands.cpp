@@ -246,6 +246,20 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
                                 params.options.theiler, params.options.method).reference_points;
     reference_points_source = "at most 10^4, evenly spaced, as chaos analyze";
   }
+  // As chaos analyze stops there: the automatic delay, window, dimension and steps come from the
+  // record's correlation time, which on a non-stationary record grows with the record (a random
+  // walk at N = 10^5 asked for 10^4 steps and Kantz neighbourhoods of hundreds, minutes of work for
+  // no answer). Given all four, the estimator runs as told.
+  // A record too short for the curve is refused as such by the estimator, first.
+  // (In double: given values can be as large as the type holds.)
+  const double needed = (static_cast<double>(params.options.dimension) + static_cast<double>(params.fit.dimensions) - 2) *
+                            static_cast<double>(params.options.delay) +
+                        static_cast<double>(params.options.steps) + 2 * static_cast<double>(params.options.theiler) + 3;
+  if (!scales.stationary && static_cast<double>(x.size()) >= needed &&
+      (!params.delay || !params.theiler || !params.dimension || !params.steps))
+    throw InvalidInput(ErrorCode::too_short,
+                       "largest Lyapunov exponent with automatic choices: " + scales.stationarity_explanation +
+                           "; or give -d, -t, -m and -s to run the estimator anyway");
   require_lyapunov_settings_fit(params, x.size(), steps_source);
   LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
   // The same estimator over each half of the record: a linear region must be reproduced.

@@ -177,6 +177,15 @@ expect_error 3 "min_steps <= K \\+ 1 with K = 50 \\(given \\(-s\\), N = 5000\\) 
 expect_error 3 "2 half_width <= K with K = 50 .*\\(got half_width = 40\\)" -- lyapunov --half-width 40 -s 50 -q "$work/lorenz.dat"
 expect_error 3 "reference_points must not exceed the [0-9]+ points .*P = N - \\(m-1\\)\\*tau - K = 5000 - .*\\(got reference_points = 6000\\)" -- lyapunov --reference-points 6000 -q "$work/lorenz.dat"
 expect_error 3 "reference_points must not exceed the 2942 points .*P = N - \\(m-1\\)\\*tau - K = 3000 - 3\\*1 - 55 \\(got reference_points = 2943\\)" -- lyapunov -m 2 -d 1 -s 55 --reference-points 2943 -q "$work/henon.dat"
+# A random walk with the automatic choices is refused as analyze stops on it (its correlation time
+# grows with the record, and the curves followed N/10 steps with neighbourhoods of hundreds of
+# points: minutes for no answer); with every choice given the estimator runs.
+awk 'BEGIN { srand(7); s = 0; for (i = 0; i < 20000; i++) { s += rand() - 0.5; print s } }' > "$work/walk.dat"
+expect_error 3 "automatic choices: .*fewer than 50 of its own correlation times.*give -d, -t, -m and -s" -- lyapunov -q "$work/walk.dat"
+"$CHAOS" lyapunov -m 3 -d 1 -t 10 -s 20 -q "$work/walk.dat" > /dev/null && pass || fail "lyapunov with every choice given refused a random walk"
+# The answers: one lambda_1 with an interval and a status, and the method's own estimate.
+l=$("$CHAOS" lyapunov "$work/henon.dat" --json | jq -c '[.lambda_1.status, (.lambda_1.value > 0.38 and .lambda_1.value < 0.46), (.lambda_1.interval[0] <= .lambda_1.value and .lambda_1.value <= .lambda_1.interval[1]), .estimate.status]')
+[[ $l == '["confident",true,true,"confident"]' ]] && pass || fail "lyapunov answers on henon gave $l"
 # The third estimator, as in chaos analyze: on clean Hénon x (3000 iterations) the local maps are
 # inconsistent at m = 2 and consistent at m + 1 = 3, within 10% of lambda_1 = 0.4195 per iteration (from
 # the equations), and agree with the fit, so the value stands.
