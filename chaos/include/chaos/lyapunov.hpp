@@ -146,12 +146,11 @@ struct LyapunovFit {
   std::vector<double> lambda_by_curve;               // least-squares slope of each curve over the stretch
   std::string explanation;                           // one sentence a user can read
   // The answer (estimate.hpp), per sample: the strict linear region's slope where there is one;
-  // else the straightest rising stretch at a looser flatness (2 and 3 times the tolerance) or a
-  // smaller rise (1 e-fold), `rough`. Its interval spans the least-squares slopes of every curve
-  // over the stretch and over each half of it, and widens with every check that adds an estimate
-  // (the record's halves, the other estimator). A fit is `confident` alone only when its stretch
-  // meets the tolerance, it rises by 1 e-fold or more, and the interval's half-width is at most 10%
-  // of the value; the checks below only ever make it rough. `none` where nothing rises.
+  // else the straightest stretch rising by 1 e-fold at the tolerance, then at 2 and 3 times it
+  // (these two `rough`). Its interval spans the least-squares slopes of every curve over the
+  // stretch and over each half of it. It is `confident` only when its stretch meets the tolerance
+  // and that span is at most 10% of the value either side; the checks below (cross_check,
+  // require_reproduced_by_halves) only ever make it rough, saying why. `none` where nothing rises.
   Estimate estimate;
 };
 
