@@ -109,6 +109,7 @@ nlohmann::ordered_json zoo_result_to_json(const ZooCaseResult& result) {
                     {"delay", r.delay}, {"dimension", r.dimension}, {"automatic", r.automatic},
                     {"d2", estimate_to_json(r.d2)}, {"rosenstein", estimate_to_json(r.rosenstein)},
                     {"kantz", estimate_to_json(r.kantz)}, {"local_maps", estimate_to_json(r.local_maps)},
+                    {"lyapunov", estimate_to_json(r.lyapunov)},
                     {"note", r.note}});
   return {{"case_index", result.case_index}, {"rows", std::move(rows)}, {"seconds", real_json(result.seconds)},
           {"error", result.error}};
@@ -129,6 +130,7 @@ ZooCaseResult zoo_result_from_json(const nlohmann::ordered_json& j) {
     r.rosenstein = estimate_from_json(row.at("rosenstein"));
     r.kantz = estimate_from_json(row.at("kantz"));
     r.local_maps = estimate_from_json(row.at("local_maps"));
+    r.lyapunov = estimate_from_json(row.at("lyapunov"));
     r.note = row.at("note").get<std::string>();
     result.rows.push_back(std::move(r));
   }

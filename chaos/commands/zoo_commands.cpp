@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <fstream>
 #include <map>
@@ -125,6 +126,26 @@ ZooRun run_zoo(const ZooParams& params,
   });
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  // The lambda_1 answers over every chaotic row (automatic and grid): how many are confident and in
+  // band, how often the interval holds lambda_1 from the equations (confident and rough rows), and how
+  // many confident ones lie farther from it than twice their half-width.
+  struct AnswerTally {
+    std::size_t rows = 0, confident = 0, in_band = 0, stated = 0, held = 0, beyond = 0;
+  };
+  std::map<std::size_t, AnswerTally> answers;  // by N; automatic rows only
+  AnswerTally all_answers;                     // every row
+  const auto tally_answer = [](AnswerTally& t, const ZooEstimate& e, double reference) {
+    ++t.rows;
+    if (!e.value || !std::isfinite(reference)) return;
+    if (e.status != "confident" && e.status != "rough") return;
+    ++t.stated;
+    if (e.interval && e.interval->low <= reference && reference <= e.interval->high) ++t.held;
+    if (e.status != "confident") return;
+    ++t.confident;
+    t.in_band += e.verdict == ZooVerdict::in_band;
+    const double half = e.interval ? 0.5 * (e.interval->high - e.interval->low) : 0.0;
+    t.beyond += std::abs(*e.value - reference) > 2.0 * half;
+  };
   // Judgement.
   std::size_t wrong = 0, chaotic = 0, d2_covered = 0, lambda_covered = 0;
   std::vector<std::string> wrong_rows;
@@ -132,10 +153,11 @@ ZooRun run_zoo(const ZooParams& params,
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     for (const ZooRow& r : results[i].rows)
-      for (const auto* e : {&r.d2, &r.rosenstein, &r.kantz, &r.local_maps})
+      for (const auto* e : {&r.d2, &r.lyapunov, &r.rosenstein, &r.kantz, &r.local_maps})
         if (e->verdict == ZooVerdict::wrong) {
           ++wrong;
           const std::string what = e == &r.d2           ? "D2"
+                                   : e == &r.lyapunov   ? "lambda_1 (the answer)"
                                    : e == &r.rosenstein ? "lambda (Rosenstein)"
                                    : e == &r.kantz      ? "lambda (Kantz)"
                                                         : "lambda (local maps)";
@@ -147,6 +169,10 @@ ZooRun run_zoo(const ZooParams& params,
     const ZooRow& base = results[i].rows.back().automatic ? results[i].rows.back() : *std::find_if(
         results[i].rows.rbegin(), results[i].rows.rend(), [](const ZooRow& r) { return r.automatic; });
     if (c.kind == ZooCaseKind::chaotic) {
+      for (const ZooRow& r : results[i].rows) {
+        tally_answer(all_answers, r.lyapunov, c.lambda_equations);
+        if (r.automatic) tally_answer(answers[r.n], r.lyapunov, c.lambda_equations);
+      }
       ++chaotic;
       d2_covered += base.d2.verdict == ZooVerdict::in_band;
       lambda_covered += base.rosenstein.verdict == ZooVerdict::in_band || base.kantz.verdict == ZooVerdict::in_band ||
@@ -156,6 +182,7 @@ ZooRun run_zoo(const ZooParams& params,
       control_lambda[c.kind].add(base.rosenstein.verdict);
       control_lambda[c.kind].add(base.kantz.verdict);
       control_lambda[c.kind].add(base.local_maps.verdict);
+      control_lambda[c.kind].add(base.lyapunov.verdict);
     }
   }
 
@@ -177,7 +204,7 @@ ZooRun run_zoo(const ZooParams& params,
      << "D_KY + 0.1 (D_KY from the equations); lambda_1 within 10% of lambda_1 from the equations (`chaos spectrum`); "
      << "noise, surrogates and random walks: no confident value at all; periodic and quasi-periodic signals: "
      << "D2 equal to the torus dimension +-0.1 and no confident lambda_1. A confident value is a D2 with status "
-     << "`saturated` or a lambda_1 with status `linear_region` (Rosenstein, Kantz) or `consistent` (local maps); every other "
+     << "`saturated`, a lambda_1 answer with status `confident`, or a lambda_1 with status `linear_region` (Rosenstein, Kantz) or `consistent` (local maps); every other "
      << "status is *unsure*. "
      << "What the remaining wrong rows have in common, and what was measured about them, is in docs/notes/zoo-notes.md.\n\n"
      << "## Summary\n\n"
@@ -188,7 +215,16 @@ ZooRun run_zoo(const ZooParams& params,
        << d2_covered << " of " << chaotic << "** chaotic systems (" << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), 3)
        << "%); lambda_1 (Rosenstein, Kantz or local maps) for **" << lambda_covered << " of " << chaotic << "** ("
        << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), 3) << "%). The issue's goal is 90% for each.\n";
-  md << "- Controls (in band / unsure / wrong; lambda counts all three methods):";
+  const auto answer_text = [](const AnswerTally& t) {
+    std::ostringstream a;
+    a << t.confident << " confident of " << t.rows << ", " << t.in_band << " of them in band; the interval holds lambda_1 "
+      << "from the equations in " << t.held << " of " << t.stated << " confident or rough answers; " << t.beyond
+      << " confident farther from it than twice their half-width";
+    return a.str();
+  };
+  for (const auto& [n, t] : answers) md << "- lambda_1 answers (lyapunov_answer.hpp), automatic choices at N = " << n << ": " << answer_text(t) << ".\n";
+  if (all_answers.rows > 0) md << "- lambda_1 answers over every chaotic row: " << answer_text(all_answers) << ".\n";
+  md << "- Controls (in band / unsure / wrong; lambda counts the answer and the three methods):";
   for (const auto& [kind, t] : control_d2) md << " " << to_string(kind) << " D2 " << t.text() << ", lambda " << control_lambda[kind].text() << ";";
   md << "\n\n";
   if (!wrong_rows.empty()) {
@@ -200,32 +236,32 @@ ZooRun run_zoo(const ZooParams& params,
      << "tau, m and w are the pipeline's choices (MI minimum, Cao, max(1/e time, half period)); lambda per time unit "
      << "for flows, per iteration for maps, with the range of the local slopes over the fitted stretch (Rosenstein, "
      << "Kantz) or of the estimator's variants (local maps).\n\n"
-     << "| system | N | tau | m | w | D2 | D2 band | lambda Rosenstein | lambda Kantz | lambda local maps | lambda_1 eq. | D_KY eq. | literature lambda_1 / D2 | dysts lambda_1 / D2 | s |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "| system | N | tau | m | w | D2 | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | lambda_1 eq. | D_KY eq. | literature lambda_1 / D2 | dysts lambda_1 / D2 | s |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     if (c.kind != ZooCaseKind::chaotic) continue;
     for (const ZooRow& r : results[i].rows) {
       if (!r.automatic) continue;
       md << "| " << c.name << " | " << r.n << " | " << r.delay << " | " << r.dimension << " | " << r.theiler << " | "
-         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.rosenstein) << " | " << estimate(r.kantz)
-         << " | " << estimate(r.local_maps) << " | " << num(c.lambda_equations) << " | " << num(c.kaplan_yorke) << " | " << num(c.literature_lambda) << " / "
+         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
+         << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | " << num(c.lambda_equations) << " | " << num(c.kaplan_yorke) << " | " << num(c.literature_lambda) << " / "
          << num(c.literature_d2) << " | " << num(c.dysts_lambda) << " / " << num(c.dysts_d2) << " | "
          << num(results[i].seconds, 3) << " |\n";
     }
-    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " ||||||||||||||\n";
+    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||||||||\n";
   }
   md << "\n## Controls, automatic choices\n\n"
-     << "| case | kind | what | N | D2 | D2 band | lambda Rosenstein | lambda Kantz | lambda local maps | note |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+     << "| case | kind | what | N | D2 | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | note |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     if (c.kind == ZooCaseKind::chaotic) continue;
     for (const ZooRow& r : results[i].rows)
       md << "| " << c.name << " | " << to_string(c.kind) << " | " << c.description << " | " << r.n << " | "
-         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.rosenstein) << " | " << estimate(r.kantz)
-         << " | " << estimate(r.local_maps) << " | " << r.note << " |\n";
-    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||\n";
+         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
+         << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | " << r.note << " |\n";
+    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " ||||||||||\n";
   }
   bool any_grid = false;
   for (const auto& r : results) any_grid = any_grid || r.rows.size() > 2;
@@ -276,7 +312,7 @@ ZooRun run_zoo(const ZooParams& params,
                       {"automatic", r.automatic}, {"delay", r.delay}, {"dimension", r.dimension},
                       {"theiler", r.theiler}, {"theiler_factor", r.theiler_factor}, {"d2", estimate_json(r.d2)},
                       {"rosenstein", estimate_json(r.rosenstein)}, {"kantz", estimate_json(r.kantz)},
-                      {"local_maps", estimate_json(r.local_maps)},
+                      {"local_maps", estimate_json(r.local_maps)}, {"lyapunov", estimate_json(r.lyapunov)},
                       {"note", r.note}, {"seconds", results[i].seconds}, {"error", results[i].error}});
   j["rows"] = std::move(rows);
   run.cases = cases;

@@ -39,10 +39,16 @@ Estimate LyapunovAnswer::per_time() const { return dt ? scaled(estimate, 1.0 / *
 
 LyapunovAnswer combine_lyapunov(const LyapunovResult* rosenstein, const LyapunovResult* kantz,
                                 const LocalMapResult* local_maps, std::optional<double> dt) {
+  return combine_lyapunov(rosenstein ? &rosenstein->fit.estimate : nullptr, kantz ? &kantz->fit.estimate : nullptr,
+                          local_maps, dt);
+}
+
+LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kantz, const LocalMapResult* local_maps,
+                                std::optional<double> dt) {
   LyapunovAnswer answer;
   answer.dt = dt;
-  const Estimate* r = rosenstein && rosenstein->fit.estimate.value ? &rosenstein->fit.estimate : nullptr;
-  const Estimate* k = kantz && kantz->fit.estimate.value ? &kantz->fit.estimate : nullptr;
+  const Estimate* r = rosenstein && rosenstein->value ? rosenstein : nullptr;
+  const Estimate* k = kantz && kantz->value ? kantz : nullptr;
   const bool maps_consistent =
       local_maps && local_maps->status == LocalMapStatus::consistent && local_maps->lambda.has_value();
   Estimate& e = answer.estimate;
@@ -95,8 +101,8 @@ LyapunovAnswer combine_lyapunov(const LyapunovResult* rosenstein, const Lyapunov
     return answer;
   }
   std::string why;
-  if (rosenstein) why += "Rosenstein: " + rosenstein->fit.estimate.reason;
-  if (kantz) why += std::string(why.empty() ? "" : "; ") + "Kantz: " + kantz->fit.estimate.reason;
+  if (rosenstein) why += "Rosenstein: " + rosenstein->reason;
+  if (kantz) why += std::string(why.empty() ? "" : "; ") + "Kantz: " + kantz->reason;
   if (local_maps) why += std::string(why.empty() ? "" : "; ") + "local maps: " + to_string(local_maps->status);
   e.reason = why.empty() ? "no estimator was run" : why;
   return answer;

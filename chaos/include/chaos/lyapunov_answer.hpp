@@ -36,5 +36,8 @@ struct LyapunovAnswer {
 
 LyapunovAnswer combine_lyapunov(const LyapunovResult* rosenstein, const LyapunovResult* kantz,
                                 const LocalMapResult* local_maps, std::optional<double> dt = std::nullopt);
+// The same from the two estimators' answers (LyapunovFit::estimate), for callers that hold fits.
+LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kantz, const LocalMapResult* local_maps,
+                                std::optional<double> dt = std::nullopt);
 
 }  // namespace chaos

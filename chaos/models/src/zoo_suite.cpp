@@ -10,6 +10,7 @@
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/detail/parallel.hpp"
+#include "chaos/lyapunov_answer.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/models/control_signals.hpp"
 #include "chaos/correlation_sum.hpp"
@@ -284,6 +285,16 @@ ZooEstimate lambda_estimate(const LyapunovFit& fit, std::optional<double> dt, co
   return e;
 }
 
+ZooEstimate answer_estimate(const LyapunovAnswer& a, const ZooBand& band) {
+  ZooEstimate e;
+  const Estimate per_time = a.per_time();
+  e.value = per_time.value;
+  e.interval = per_time.interval;
+  e.status = to_string(per_time.status);
+  e.verdict = judge(e.value, per_time.status == EstimateStatus::confident, band);
+  return e;
+}
+
 ZooEstimate local_maps_estimate(const LocalMapResult& r, const ZooBand& band) {
   ZooEstimate e;
   e.value = r.dt ? r.lambda_per_time : r.lambda;
@@ -390,6 +401,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
                                                         : not_run("not_run");
       if (a.local_maps && a.local_maps->variants.front().dimension != base.dimension)
         base.local_maps.dimension = a.local_maps->variants.front().dimension;
+      base.lyapunov = a.lyapunov ? answer_estimate(*a.lyapunov, c.lambda_band) : not_run("not_run");
       result.rows.push_back(base);
       if (!grid || !a.dimension || !a.delay) continue;
 
@@ -487,6 +499,9 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run("not_run: " + maps.refusal);
+          row.lyapunov = answer_estimate(combine_lyapunov(r ? &r->estimate : nullptr, q ? &q->estimate : nullptr,
+                                                          maps.result ? &*maps.result : nullptr, c.dt),
+                                         c.lambda_band);
           result.rows.push_back(row);
         }
       }

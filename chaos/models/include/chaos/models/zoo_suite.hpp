@@ -5,7 +5,8 @@
 // confident estimate judged against a band fixed in advance:
 //   - D2 within +-0.1 of a cited literature D2; where none is cited, not above D_KY + 0.1 (D_KY from
 //     the equations);
-//   - lambda_1 within 10% of the spectrum's lambda_1 from the equations;
+//   - lambda_1 within 10% of the spectrum's lambda_1 from the equations (each estimator's strict fit,
+//     and the one answer of lyapunov_answer.hpp where it is confident);
 //   - noise, surrogates and random walks: no confident D2 and no confident lambda_1 at all;
 //   - periodic and quasi-periodic signals: a confident D2 must equal the torus dimension (1, 2 or 3)
 //     within +-0.1, and no confident lambda_1.
@@ -89,6 +90,9 @@ struct ZooRow {
   bool automatic = true;                              // the automatic choices, not a neighbour
   ZooEstimate d2, rosenstein, kantz;
   ZooEstimate local_maps;  // lambda_1 from local linear maps (lyapunov_local_maps.hpp), confident when consistent
+  // lambda_1, the one answer of lyapunov_answer.hpp (status confident, rough or none), judged like
+  // the others where confident; its interval's calibration is summarised in the report.
+  ZooEstimate lyapunov;
   std::string note;  // why the pipeline stopped, when it did
 };
 
