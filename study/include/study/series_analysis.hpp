@@ -66,7 +66,8 @@ struct SeriesAnalysis {
   std::string d2_status = "not computed";  // chaos::D2Status as text (saturated, not_saturated, not_reproduced, ...)
   std::optional<double> d2, d2_low, d2_high;
   std::vector<std::optional<double>> d2_by_dimension;  // per m = 1..max_dimension
-  // The surrogate test: "rejected" (nonlinear), "not rejected", "not asked", or why it did not run.
+  // The surrogate test: "rejected" (not a linear Gaussian process), "not rejected", "not asked", or
+  // why it did not run.
   std::string nonlinearity = "not asked";
   std::optional<std::size_t> nonlinearity_rank;  // 1: the data's prediction error is below every surrogate's
   std::size_t surrogates = 0;                    // K used
