@@ -172,18 +172,11 @@ void run(AnalyzeArgs& args) {
   } else {
     out << "not run\t[" << not_run << "]\n";
   }
-  const char* per = per_time ? "time unit" : "sample";
-  // An answer as "value in [low, high] per unit (status)", or "none".
-  const auto estimate_text = [&](const Estimate& e) {
-    std::string text = e.value ? number(*e.value) : "none";
-    if (e.value && e.interval)
-      text += " in [" + number(e.interval->low) + ", " + number(e.interval->high) + "] per " + per;
-    return text + " (" + to_string(e.status) + ")";
-  };
+  const std::string per = per_time ? "time unit" : "sample";
   out << "largest_lyapunov_exponent\t";
   if (a.lyapunov) {
     const Estimate e = a.lyapunov->per_time();
-    out << estimate_text(e) << "\t[" << (a.lyapunov->source.empty() ? "" : a.lyapunov->source + ": ") << e.reason << "]\n";
+    out << estimate_text(e, per) << "\t[" << (a.lyapunov->source.empty() ? "" : a.lyapunov->source + ": ") << e.reason << "]\n";
   } else {
     out << "not run\t[" << not_run << "]\n";
   }
@@ -195,7 +188,7 @@ void run(AnalyzeArgs& args) {
       return;
     }
     const Estimate e = per_time ? scaled(l->fit.estimate, 1.0 / *l->dt) : l->fit.estimate;
-    out << estimate_text(e) << "\t[" << l->options.steps << " steps, m = " << l->dimensions.front() << ".."
+    out << estimate_text(e, per) << "\t[" << l->options.steps << " steps, m = " << l->dimensions.front() << ".."
         << l->dimensions.back() << "; " << to_string(l->fit.status) << ": " << l->fit.explanation;
     if (e.status != EstimateStatus::confident && !e.reason.empty()) out << "; answer: " << e.reason;
     out << "]\n";

@@ -93,7 +93,7 @@ void run(LyapunovArgs& args) {
   args.params.check_progress =
       progress.callback(std::string("cross-check (") + (args.params.method == "kantz" ? "rosenstein" : "kantz") + ")");
   args.params.maps_progress = progress.callback("cross-check (local maps)");
-  auto [r, check, maps, maps_refusal, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
+  auto [r, check, maps, maps_refusal, estimate, answer, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
   report.open(args.output);
   const bool per_time = r.dt.has_value();
@@ -105,18 +105,13 @@ void run(LyapunovArgs& args) {
     return;
   }
   report.write_header(out);
-  // The answers first (the JSON's lambda_1 and estimate), then the strict fit behind them.
-  const auto answer_text = [&](const nlohmann::ordered_json& e) {
-    std::string text = e["value"].is_null() ? std::string("none") : number(e["value"].get<double>());
-    if (!e["interval"].is_null())
-      text += " in [" + number(e["interval"][0].get<double>()) + ", " + number(e["interval"][1].get<double>()) + "]";
-    return text + " per " + (per_time ? "time unit" : "sample") + " (" + e["status"].get<std::string>() +
-           "): " + e["reason"].get<std::string>();
-  };
-  const auto& j = report.json();
-  if (!j["lambda_1"].is_null())
-    out << "# lambda_1 = " << answer_text(j["lambda_1"]) << " [" << j["lambda_1"]["source"].get<std::string>() << "]\n";
-  out << "# estimate = " << answer_text(j["estimate"]) << " [" << args.params.method << "]\n";
+  // The answers first, then the strict fit behind them.
+  const std::string per = per_time ? "time unit" : "sample";
+  if (answer) {
+    const Estimate e = answer->per_time();
+    out << "# lambda_1 = " << estimate_text(e, per) << ": " << e.reason << " [" << answer->source << "]\n";
+  }
+  out << "# estimate = " << estimate_text(estimate, per) << ": " << estimate.reason << " [" << args.params.method << "]\n";
   out << "# status = " << to_string(r.fit.status) << ": " << r.fit.explanation << "\n";
   out << "# lambda = " << (lambda ? number(*lambda) : "none") << "  interval " << interval_text(lambda_interval)
       << "  per " << (per_time ? "time unit" : "sample") << "\n";

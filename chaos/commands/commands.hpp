@@ -151,6 +151,10 @@ struct LyapunovRun {
   std::optional<LyapunovResult> check;  // the other method's result, when cross-checked
   std::optional<LocalMapResult> local_maps;  // the local-map check, when cross-checked and it could run
   std::string local_maps_refusal;            // why it could not run (series too short), else empty
+  // The answers, per time unit when dt is known: this method's, and lambda_1 from every estimator
+  // run (none with the checks off).
+  Estimate estimate;
+  std::optional<LyapunovAnswer> lambda_1;
   Report report;
 };
 LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const OutputOptions& output = {});

@@ -251,11 +251,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   // walk at N = 10^5 asked for 10^4 steps and Kantz neighbourhoods of hundreds, minutes of work for
   // no answer). Given all four, the estimator runs as told.
   // A record too short for the curve is refused as such by the estimator, first.
-  // (In double: given values can be as large as the type holds.)
-  const double needed = (static_cast<double>(params.options.dimension) + static_cast<double>(params.fit.dimensions) - 2) *
-                            static_cast<double>(params.options.delay) +
-                        static_cast<double>(params.options.steps) + 2 * static_cast<double>(params.options.theiler) + 3;
-  if (!scales.stationary && static_cast<double>(x.size()) >= needed &&
+  if (!scales.stationary && x.size() >= minimum_length(params.options, params.fit.dimensions) &&
       (!params.delay || !params.theiler || !params.dimension || !params.steps))
     throw InvalidInput(ErrorCode::too_short,
                        "largest Lyapunov exponent with automatic choices: " + scales.stationarity_explanation +
@@ -334,13 +330,16 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   Estimate estimate = r.fit.estimate;
   if (!params.cross_check || !params.halves)
     estimate.downgrade(std::string("checks off (") + (!params.cross_check ? "--no-cross-check" : "--no-halves") + ")");
-  const LyapunovAnswer answer = combine_lyapunov(r.options.method == LyapunovMethod::rosenstein ? &r : check ? &*check : nullptr,
-                                                 r.options.method == LyapunovMethod::kantz ? &r : check ? &*check : nullptr,
-                                                 maps ? &*maps : nullptr, in.dt);
-  j["estimate"] = estimate_json(per_time ? scaled(estimate, 1.0 / *in.dt) : estimate);
-  if (params.cross_check && params.halves) {
-    j["lambda_1"] = estimate_json(answer.per_time());
-    j["lambda_1"]["source"] = answer.source;
+  if (per_time) estimate = scaled(estimate, 1.0 / *in.dt);
+  std::optional<LyapunovAnswer> answer;
+  if (params.cross_check && params.halves)
+    answer = combine_lyapunov(r.options.method == LyapunovMethod::rosenstein ? &r : check ? &*check : nullptr,
+                              r.options.method == LyapunovMethod::kantz ? &r : check ? &*check : nullptr,
+                              maps ? &*maps : nullptr, in.dt);
+  j["estimate"] = estimate_json(estimate);
+  if (answer) {
+    j["lambda_1"] = estimate_json(answer->per_time());
+    j["lambda_1"]["source"] = answer->source;
   } else {
     j["lambda_1"] = nullptr;
   }
@@ -405,7 +404,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   } else {
     j["local_maps"] = nullptr;
   }
-  return {std::move(r), std::move(check), std::move(maps), std::move(maps_refusal), std::move(report)};
+  return {std::move(r),        std::move(check),  std::move(maps), std::move(maps_refusal),
+          std::move(estimate), std::move(answer), std::move(report)};
 }
 
 LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams params, const OutputOptions& output) {

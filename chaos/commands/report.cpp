@@ -58,6 +58,12 @@ nlohmann::ordered_json estimate_json(const Estimate& e) {
           {"reason", e.reason}};
 }
 
+std::string estimate_text(const Estimate& e, const std::string& per) {
+  std::string text = e.value ? number(*e.value) : "none";
+  if (e.value && e.interval) text += " in [" + number(e.interval->low) + ", " + number(e.interval->high) + "] per " + per;
+  return text + " (" + to_string(e.status) + ")";
+}
+
 Norm parse_norm(const std::string& name) {
   if (name == "max") return Norm::max;
   if (name == "euclidean") return Norm::euclidean;

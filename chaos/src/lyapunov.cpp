@@ -250,8 +250,7 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
   // P = N - (m-1) tau - K points have all K future steps; P >= 2w + 3 leaves every reference point
   // at least one candidate outside its Theiler window.
   const std::size_t span = detail::mul_sat(m - 1, tau);
-  const std::size_t minimum = detail::add_sat(detail::add_sat(span, steps), detail::add_sat(detail::mul_sat(2, w), 3));
-  require_length(x, minimum, what,
+  require_length(x, minimum_length(options), what,
                  "N >= (m-1) tau + steps + 2 w + 3 with m = " + std::to_string(m) + ", tau = " + std::to_string(tau) +
                      ", steps = " + std::to_string(steps) + ", w = " + std::to_string(w) +
                      ", so that every reference point can be followed for all steps and has a candidate outside "
@@ -577,6 +576,12 @@ LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const Lya
   return fit;
 }
 
+std::size_t minimum_length(const LyapunovOptions& options, std::size_t dimensions) {
+  const std::size_t highest = detail::add_sat(options.dimension, dimensions > 0 ? dimensions - 1 : 0);
+  const std::size_t span = detail::mul_sat(highest > 0 ? highest - 1 : 0, options.delay);
+  return detail::add_sat(detail::add_sat(span, options.steps), detail::add_sat(detail::mul_sat(2, options.theiler), 3));
+}
+
 LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options,
                                 const LyapunovFitOptions& fit, std::optional<double> dt) {
   if (dt && !(std::isfinite(*dt) && *dt > 0.0))
@@ -587,8 +592,7 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
   // The highest dimension needs the longest series: refuse it before the lower curves are
   // computed (a huge --dimensions would otherwise compute curve after curve until one is refused).
   const std::size_t highest = detail::add_sat(options.dimension, fit.dimensions - 1);
-  const std::size_t span = detail::mul_sat(highest - 1, options.delay);
-  require_length(x, detail::add_sat(detail::add_sat(span, options.steps), detail::add_sat(detail::mul_sat(2, options.theiler), 3)),
+  require_length(x, minimum_length(options, fit.dimensions),
                  "largest Lyapunov exponent",
                  "N >= (m-1) tau + steps + 2 w + 3 for the highest of the " + std::to_string(fit.dimensions) +
                      " dimensions fitted, m = " + std::to_string(highest) + ", with tau = " + std::to_string(options.delay) +

@@ -171,6 +171,10 @@ struct LyapunovResult {
   std::vector<std::size_t> dimensions;      // the embedding dimensions fitted together (fit.dimensions)
 };
 
+// The shortest series the curves of `dimensions` embedding dimensions m, m+1, ... can be computed
+// from: (m_highest - 1) tau + steps + 2 w + 3 (saturating, for any option values).
+std::size_t minimum_length(const LyapunovOptions& options, std::size_t dimensions = 1);
+
 // Curve and fit in one call; `dt` (when known) converts to time units.
 LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options = {},
                                 const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
