@@ -165,10 +165,8 @@ void run(AnalyzeArgs& args) {
     out << "determinism\t" << run.determinism << ": max|E2-1| = " << number(a.cao->max_E2_deviation) << "\t["
         << run.determinism_explanation << "]\n";
   out << "correlation_dimension\t";
-  if (a.d2) {
-    out << (a.d2->d2 ? number(*a.d2->d2) : "none");
-    if (a.d2->d2_interval) out << " in [" << number(a.d2->d2_interval->low) << ", " << number(a.d2->d2_interval->high) << "]";
-    out << "\t[" << to_string(a.d2->status) << ": " << a.d2->explanation << "]\n";
+  if (a.d2 && a.d2_estimate) {
+    out << estimate_text(*a.d2_estimate) << "\t[" << to_string(a.d2->status) << ": " << a.d2_estimate->reason << "]\n";
   } else {
     out << "not run\t[" << not_run << "]\n";
   }

@@ -65,7 +65,7 @@ void run(D2Args& args) {
   D2Params params = args.params;
   params.sums.progress = progress.callback("correlation sums");
   params.halves_progress = progress.callback("correlation sums of the record's halves");
-  auto [sums, d2, report, run_fast] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
+  auto [sums, d2, estimate, report, run_fast] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
   report.open(args.output);
   std::ostream& out = report.stream();
@@ -74,6 +74,7 @@ void run(D2Args& args) {
     return;
   }
   report.write_header(out);
+  out << "# D2 = " << estimate_text(estimate) << ": " << estimate.reason << "\n";
   out << "# status = " << to_string(d2.status) << ": " << d2.explanation << "\n";
   out << "# d2 = " << (d2.d2 ? number(*d2.d2) : "none") << "  interval " << interval_text(d2.d2_interval)
       << "  scaling region eps in " << interval_text(d2.scaling_region) << "\n";

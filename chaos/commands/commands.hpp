@@ -115,6 +115,7 @@ struct D2Params {
 struct D2Run {
   CorrelationSumResult sums;
   CorrelationDimensionResult d2;
+  Estimate estimate;  // D2 as one answer (d2_answer.hpp)
   Report report;
   std::optional<AdaptiveD2Result> fast;  // with --fast: the budget chosen and the rounds (its sums and d2 moved out)
 };

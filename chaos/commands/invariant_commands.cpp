@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "chaos/choose.hpp"
+#include "chaos/d2_answer.hpp"
 #include "chaos/error.hpp"
 #include "chaos/lyapunov_answer.hpp"
 #include "chaos/models/generate.hpp"
@@ -140,6 +141,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   if (d2.variant_delay)
     j["delay_variant"] = {{"delay", *d2.variant_delay}, {"status", to_string(*d2.variant_delay_status)},
                           {"d2", optional_json(d2.variant_delay_d2)}};
+  const Estimate estimate = fast ? subsets_answer(*fast, d2, params.dimension) : d2_answer(d2, params.dimension);
+  j["estimate"] = estimate_json(estimate);
   j["saturated"] = d2.status == D2Status::saturated;
   j["status"] = to_string(d2.status);
   j["explanation"] = d2.explanation;
@@ -162,10 +165,11 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
     j["fast"] = {{"target", params.adaptive.target},
                  {"reference_points", fast->exact ? nlohmann::ordered_json("exact") : nlohmann::ordered_json(fast->reference_points)},
                  {"exact", fast->exact},
+                 {"settled", fast->settled},
                  {"explanation", fast->explanation},
                  {"rounds", rounds}};
   }
-  return {std::move(sums), std::move(d2), std::move(report), std::move(fast)};
+  return {std::move(sums), std::move(d2), estimate, std::move(report), std::move(fast)};
 }
 
 namespace {
@@ -567,6 +571,8 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   j["d2"] = a.d2 ? optional_json(a.d2->d2) : nullptr;
   j["d2_interval"] = a.d2 ? interval_json(a.d2->d2_interval) : nullptr;
   j["d2_status"] = a.d2 ? to_string(a.d2->status) : "not_run";
+  j["d2_estimate"] = estimate_json(a.d2_estimate ? *a.d2_estimate
+                                                 : Estimate{EstimateStatus::none, std::nullopt, std::nullopt, a.stopped});
   j["d2_explanation"] = a.d2 ? a.d2->explanation : a.stopped;
   if (a.d2 && a.d2->variant_delay)
     j["d2_delay_variant"] = {{"delay", *a.d2->variant_delay}, {"status", to_string(*a.d2->variant_delay_status)},

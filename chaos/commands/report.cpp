@@ -60,7 +60,8 @@ nlohmann::ordered_json estimate_json(const Estimate& e) {
 
 std::string estimate_text(const Estimate& e, const std::string& per) {
   std::string text = e.value ? number(*e.value) : "none";
-  if (e.value && e.interval) text += " in [" + number(e.interval->low) + ", " + number(e.interval->high) + "] per " + per;
+  if (e.value && e.interval)
+    text += " in [" + number(e.interval->low) + ", " + number(e.interval->high) + "]" + (per.empty() ? "" : " per " + per);
   return text + " (" + to_string(e.status) + ")";
 }
 

@@ -89,8 +89,9 @@ nlohmann::ordered_json interval_json(const std::optional<Interval>& i);
 // An answer (estimate.hpp) as {"value", "interval", "status", "reason"}: the one shape every
 // command and the Python package give an estimate in.
 nlohmann::ordered_json estimate_json(const Estimate& e);
-// The same as text: "value in [low, high] per PER (status)", or "none (status)".
-std::string estimate_text(const Estimate& e, const std::string& per);
+// The same as text: "value in [low, high] per PER (status)", or "none (status)"; with no unit
+// (PER empty, as for D2) "value in [low, high] (status)".
+std::string estimate_text(const Estimate& e, const std::string& per = "");
 
 Norm parse_norm(const std::string& name);
 

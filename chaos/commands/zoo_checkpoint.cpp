@@ -16,7 +16,7 @@ namespace chaos::cli {
 
 namespace {
 
-constexpr int checkpoint_format = 1;
+constexpr int checkpoint_format = 2;
 
 // A double as JSON: a number when finite (nlohmann writes the shortest text that reads back to the
 // same double), else "inf", "-inf" or "nan", which JSON numbers cannot hold.
@@ -60,6 +60,19 @@ ZooEstimate estimate_from_json(const nlohmann::ordered_json& j) {
   e.verdict = verdict_from_string(j.at("verdict").get<std::string>());
   if (!j.at("dimension").is_null()) e.dimension = j.at("dimension").get<std::size_t>();
   return e;
+}
+
+nlohmann::ordered_json band_to_json(const ZooBand& b) {
+  nlohmann::ordered_json accepted = nlohmann::ordered_json::array();
+  for (const auto& i : b.accepted) accepted.push_back({real_json(i.low), real_json(i.high)});
+  return {{"accepted", std::move(accepted)}, {"source", b.source}};
+}
+
+ZooBand band_from_json(const nlohmann::ordered_json& j) {
+  ZooBand b;
+  for (const auto& i : j.at("accepted")) b.accepted.push_back(Interval{real_from_json(i.at(0)), real_from_json(i.at(1))});
+  b.source = j.at("source").get<std::string>();
+  return b;
 }
 
 // The first line: what the file's results depend on besides the case.
@@ -109,7 +122,8 @@ nlohmann::ordered_json zoo_result_to_json(const ZooCaseResult& result) {
                     {"delay", r.delay}, {"dimension", r.dimension}, {"automatic", r.automatic},
                     {"d2", estimate_to_json(r.d2)}, {"rosenstein", estimate_to_json(r.rosenstein)},
                     {"kantz", estimate_to_json(r.kantz)}, {"local_maps", estimate_to_json(r.local_maps)},
-                    {"lyapunov", estimate_to_json(r.lyapunov)},
+                    {"lyapunov", estimate_to_json(r.lyapunov)}, {"d2_answer", estimate_to_json(r.d2_answer)},
+                    {"d2_reference", estimate_to_json(r.d2_reference)}, {"d2_band", band_to_json(r.d2_band)},
                     {"note", r.note}});
   return {{"case_index", result.case_index}, {"rows", std::move(rows)}, {"seconds", real_json(result.seconds)},
           {"error", result.error}};
@@ -131,6 +145,9 @@ ZooCaseResult zoo_result_from_json(const nlohmann::ordered_json& j) {
     r.kantz = estimate_from_json(row.at("kantz"));
     r.local_maps = estimate_from_json(row.at("local_maps"));
     r.lyapunov = estimate_from_json(row.at("lyapunov"));
+    r.d2_answer = estimate_from_json(row.at("d2_answer"));
+    r.d2_reference = estimate_from_json(row.at("d2_reference"));
+    r.d2_band = band_from_json(row.at("d2_band"));
     r.note = row.at("note").get<std::string>();
     result.rows.push_back(std::move(r));
   }

@@ -72,6 +72,12 @@ struct Tally {
   }
 };
 
+nlohmann::ordered_json band_json(const ZooBand& b) {
+  auto out = nlohmann::ordered_json::array();
+  for (const auto& i : b.accepted) out.push_back({i.low, i.high});
+  return out;
+}
+
 nlohmann::ordered_json estimate_json(const ZooEstimate& e) {
   return {{"value", optional_json(e.value)}, {"interval", interval_json(e.interval)}, {"status", e.status},
           {"verdict", to_string(e.verdict)}, {"dimension", optional_json(e.dimension)}};
@@ -132,8 +138,8 @@ ZooRun run_zoo(const ZooParams& params,
   struct AnswerTally {
     std::size_t rows = 0, confident = 0, in_band = 0, stated = 0, held = 0, beyond = 0;
   };
-  std::map<std::size_t, AnswerTally> answers;  // by N; automatic rows only
-  AnswerTally all_answers;                     // every row
+  std::map<std::size_t, AnswerTally> answers, d2_answers;  // by N; automatic rows only
+  AnswerTally all_answers, all_d2_answers;                 // every row
   const auto tally_answer = [](AnswerTally& t, const ZooEstimate& e, double reference) {
     ++t.rows;
     if (!e.value || !std::isfinite(reference)) return;
@@ -153,17 +159,20 @@ ZooRun run_zoo(const ZooParams& params,
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     for (const ZooRow& r : results[i].rows)
-      for (const auto* e : {&r.d2, &r.lyapunov, &r.rosenstein, &r.kantz, &r.local_maps})
+      for (const auto* e : {&r.d2, &r.d2_answer, &r.lyapunov, &r.rosenstein, &r.kantz, &r.local_maps})
         if (e->verdict == ZooVerdict::wrong) {
           ++wrong;
+          const bool is_d2 = e == &r.d2 || e == &r.d2_answer;
           const std::string what = e == &r.d2           ? "D2"
+                                   : e == &r.d2_answer  ? "D2 (the answer)"
                                    : e == &r.lyapunov   ? "lambda_1 (the answer)"
                                    : e == &r.rosenstein ? "lambda (Rosenstein)"
                                    : e == &r.kantz      ? "lambda (Kantz)"
                                                         : "lambda (local maps)";
           wrong_rows.push_back(c.name + ": " + what + " = " + num(e->value) + " with status " + e->status + " at N = " +
                                std::to_string(r.n) + ", w = " + std::to_string(r.theiler) + ", m = " +
-                               std::to_string(r.dimension) + "; band " + bands(e == &r.d2 ? c.d2_band : c.lambda_band));
+                               std::to_string(r.dimension) + "; band " + bands(is_d2 ? r.d2_band : c.lambda_band) +
+                               (is_d2 ? " (" + r.d2_band.source + ")" : std::string()));
         }
     if (results[i].rows.empty()) continue;
     const ZooRow& base = results[i].rows.back().automatic ? results[i].rows.back() : *std::find_if(
@@ -172,13 +181,18 @@ ZooRun run_zoo(const ZooParams& params,
       for (const ZooRow& r : results[i].rows) {
         tally_answer(all_answers, r.lyapunov, c.lambda_equations);
         if (r.automatic) tally_answer(answers[r.n], r.lyapunov, c.lambda_equations);
+        // D2 answers are held to the state's own D2 where it has one (the rows without are left out).
+        if (!r.d2_reference.value) continue;
+        tally_answer(all_d2_answers, r.d2_answer, *r.d2_reference.value);
+        if (r.automatic) tally_answer(d2_answers[r.n], r.d2_answer, *r.d2_reference.value);
       }
       ++chaotic;
-      d2_covered += base.d2.verdict == ZooVerdict::in_band;
+      d2_covered += base.d2_answer.verdict == ZooVerdict::in_band;
       lambda_covered += base.rosenstein.verdict == ZooVerdict::in_band || base.kantz.verdict == ZooVerdict::in_band ||
                         base.local_maps.verdict == ZooVerdict::in_band;
     } else {
       control_d2[c.kind].add(base.d2.verdict);
+      control_d2[c.kind].add(base.d2_answer.verdict);
       control_lambda[c.kind].add(base.rosenstein.verdict);
       control_lambda[c.kind].add(base.kantz.verdict);
       control_lambda[c.kind].add(base.local_maps.verdict);
@@ -200,11 +214,13 @@ ZooRun run_zoo(const ZooParams& params,
        << "times sum to " << num(sum, 4) << " s";
   }
   md << ".\n\n"
-     << "Bands, fixed before any run (zoo_suite.hpp): D2 within +-0.1 of a cited literature D2, else not above "
+     << "Bands, fixed before any run (zoo_suite.hpp): D2 within +-0.1 of the attractor's own D2 at the same N, "
+     << "Theiler window and scales (the plateau of the full state's correlation sums from the equations, "
+     << "zoo_state_d2.hpp), else within +-0.1 of a cited literature D2, else not above "
      << "D_KY + 0.1 (D_KY from the equations); lambda_1 within 10% of lambda_1 from the equations (`chaos spectrum`); "
      << "noise, surrogates and random walks: no confident value at all; periodic and quasi-periodic signals: "
      << "D2 equal to the torus dimension +-0.1 and no confident lambda_1. A confident value is a D2 with status "
-     << "`saturated`, a lambda_1 answer with status `confident`, or a lambda_1 with status `linear_region` (Rosenstein, Kantz) or `consistent` (local maps); every other "
+     << "`saturated`, a D2 or lambda_1 answer with status `confident`, or a lambda_1 with status `linear_region` (Rosenstein, Kantz) or `consistent` (local maps); every other "
      << "status is *unsure*. "
      << "What the remaining wrong rows have in common, and what was measured about them, is in docs/notes/zoo-notes.md.\n\n"
      << "## Summary\n\n"
@@ -212,18 +228,25 @@ ZooRun run_zoo(const ZooParams& params,
      << (params.grid && !params.fast ? "automatic choices and grid" : "automatic choices only: no grid in this run") << ").\n";
   if (chaotic > 0)
     md << "- Coverage with the automatic choices at N = " << (params.fast ? "10^4" : "10^5") << ": D2 confident and in band for **"
-       << d2_covered << " of " << chaotic << "** chaotic systems (" << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), 3)
+       << d2_covered << " of " << chaotic << "** chaotic systems (the D2 answer; " << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), 3)
        << "%); lambda_1 (Rosenstein, Kantz or local maps) for **" << lambda_covered << " of " << chaotic << "** ("
        << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), 3) << "%). The issue's goal is 90% for each.\n";
-  const auto answer_text = [](const AnswerTally& t) {
+  const auto answer_text = [](const AnswerTally& t, const std::string& reference) {
     std::ostringstream a;
-    a << t.confident << " confident of " << t.rows << ", " << t.in_band << " of them in band; the interval holds lambda_1 "
-      << "from the equations in " << t.held << " of " << t.stated << " confident or rough answers; " << t.beyond
+    a << t.confident << " confident of " << t.rows << ", " << t.in_band << " of them in band; the interval holds "
+      << reference << " in " << t.held << " of " << t.stated << " confident or rough answers; " << t.beyond
       << " confident farther from it than twice their half-width";
     return a.str();
   };
-  for (const auto& [n, t] : answers) md << "- lambda_1 answers (lyapunov_answer.hpp), automatic choices at N = " << n << ": " << answer_text(t) << ".\n";
-  if (all_answers.rows > 0) md << "- lambda_1 answers over every chaotic row: " << answer_text(all_answers) << ".\n";
+  const std::string lambda_reference = "lambda_1 from the equations", d2_reference = "the state's own D2";
+  for (const auto& [n, t] : answers)
+    md << "- lambda_1 answers (lyapunov_answer.hpp), automatic choices at N = " << n << ": " << answer_text(t, lambda_reference) << ".\n";
+  if (all_answers.rows > 0) md << "- lambda_1 answers over every chaotic row: " << answer_text(all_answers, lambda_reference) << ".\n";
+  for (const auto& [n, t] : d2_answers)
+    md << "- D2 answers (d2_answer.hpp), automatic choices at N = " << n << ", rows with a state reference: "
+       << answer_text(t, d2_reference) << ".\n";
+  if (all_d2_answers.rows > 0)
+    md << "- D2 answers over every chaotic row with a state reference: " << answer_text(all_d2_answers, d2_reference) << ".\n";
   md << "- Controls (in band / unsure / wrong; lambda counts the answer and the three methods):";
   for (const auto& [kind, t] : control_d2) md << " " << to_string(kind) << " D2 " << t.text() << ", lambda " << control_lambda[kind].text() << ";";
   md << "\n\n";
@@ -236,32 +259,34 @@ ZooRun run_zoo(const ZooParams& params,
      << "tau, m and w are the pipeline's choices (MI minimum, Cao, max(1/e time, half period)); lambda per time unit "
      << "for flows, per iteration for maps, with the range of the local slopes over the fitted stretch (Rosenstein, "
      << "Kantz) or of the estimator's variants (local maps).\n\n"
-     << "| system | N | tau | m | w | D2 | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | lambda_1 eq. | D_KY eq. | literature lambda_1 / D2 | dysts lambda_1 / D2 | s |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "| system | N | tau | m | w | D2 answer | D2 | D2 of the state | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | lambda_1 eq. | D_KY eq. | literature lambda_1 / D2 | dysts lambda_1 / D2 | s |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     if (c.kind != ZooCaseKind::chaotic) continue;
     for (const ZooRow& r : results[i].rows) {
       if (!r.automatic) continue;
       md << "| " << c.name << " | " << r.n << " | " << r.delay << " | " << r.dimension << " | " << r.theiler << " | "
-         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
+         << estimate(r.d2_answer) << " | " << estimate(r.d2) << " | " << estimate(r.d2_reference) << " | "
+         << bands(r.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
          << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | " << num(c.lambda_equations) << " | " << num(c.kaplan_yorke) << " | " << num(c.literature_lambda) << " / "
          << num(c.literature_d2) << " | " << num(c.dysts_lambda) << " / " << num(c.dysts_d2) << " | "
          << num(results[i].seconds, 3) << " |\n";
     }
-    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||||||||\n";
+    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||||||||||\n";
   }
   md << "\n## Controls, automatic choices\n\n"
-     << "| case | kind | what | N | D2 | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | note |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "| case | kind | what | N | D2 answer | D2 | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | note |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const ZooCase& c = cases[i];
     if (c.kind == ZooCaseKind::chaotic) continue;
     for (const ZooRow& r : results[i].rows)
       md << "| " << c.name << " | " << to_string(c.kind) << " | " << c.description << " | " << r.n << " | "
-         << estimate(r.d2) << " | " << bands(c.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
-         << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | " << r.note << " |\n";
-    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " ||||||||||\n";
+         << estimate(r.d2_answer) << " | " << estimate(r.d2) << " | " << bands(r.d2_band) << " | " << estimate(r.lyapunov)
+         << " | " << estimate(r.rosenstein) << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | "
+         << r.note << " |\n";
+    if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||||\n";
   }
   bool any_grid = false;
   for (const auto& r : results) any_grid = any_grid || r.rows.size() > 2;
@@ -271,18 +296,21 @@ ZooRun run_zoo(const ZooParams& params,
        << "(D2: the highest dimension of the saturation test; lambda: the lowest of the three fitted together; local "
        << "maps: m itself). "
        << "Counts are in band / unsure / wrong over the 24 grid points.\n\n"
-       << "| system | D2 | lambda Rosenstein | lambda Kantz | lambda local maps |\n|---|---|---|---|---|\n";
+       << "| system | D2 answer | D2 | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps |\n"
+       << "|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < cases.size(); ++i) {
       if (!cases[i].grid) continue;
-      Tally d2, r, k, l;
+      Tally d2_answer, d2, lambda_answer, r, k, l;
       for (const ZooRow& row : results[i].rows)
         if (!row.automatic) {
+          d2_answer.add(row.d2_answer.verdict);
           d2.add(row.d2.verdict);
+          lambda_answer.add(row.lyapunov.verdict);
           r.add(row.rosenstein.verdict);
           k.add(row.kantz.verdict);
           l.add(row.local_maps.verdict);
         }
-      md << "| " << cases[i].name << " | " << d2.text() << " | " << r.text() << " | " << k.text() << " | " << l.text()
+      md << "| " << cases[i].name << " | " << d2_answer.text() << " | " << d2.text() << " | " << lambda_answer.text() << " | " << r.text() << " | " << k.text() << " | " << l.text()
          << " |\n";
     }
   }
@@ -311,6 +339,8 @@ ZooRun run_zoo(const ZooParams& params,
       rows.push_back({{"case", cases[i].name}, {"kind", to_string(cases[i].kind)}, {"n", r.n},
                       {"automatic", r.automatic}, {"delay", r.delay}, {"dimension", r.dimension},
                       {"theiler", r.theiler}, {"theiler_factor", r.theiler_factor}, {"d2", estimate_json(r.d2)},
+                      {"d2_answer", estimate_json(r.d2_answer)}, {"d2_reference", estimate_json(r.d2_reference)},
+                      {"d2_band", {{"accepted", band_json(r.d2_band)}, {"source", r.d2_band.source}}},
                       {"rosenstein", estimate_json(r.rosenstein)}, {"kantz", estimate_json(r.kantz)},
                       {"local_maps", estimate_json(r.local_maps)}, {"lyapunov", estimate_json(r.lyapunov)},
                       {"note", r.note}, {"seconds", results[i].seconds}, {"error", results[i].error}});

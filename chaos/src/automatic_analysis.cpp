@@ -152,6 +152,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   s.threads = options.threads;
   if (options.progress) s.progress = [&](double f) { options.progress("correlation sums", f); };
   a.d2 = automatic_correlation_dimension(x, s, options.check_halves, options.check_delay);
+  a.d2_estimate = d2_answer(*a.d2);
 
   const auto lyapunov = [&](LyapunovMethod method) {
     LyapunovOptions l = choose_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);

@@ -352,6 +352,24 @@ def test_lambda_1_is_one_answer_with_an_interval_and_a_status():
     assert plain["estimate"]["status"] != "confident"
 
 
+def test_d2_is_one_answer_with_an_interval_and_a_status():
+    # Lorenz x at dt 0.01, N = 2*10^4, defaults only: D2 = 2.05 +- 0.01 (Grassberger & Procaccia
+    # 1983, references/references.tsv), within 0.1 and confident; analyze and d2 answer in the same
+    # shape, and the interval holds the value. White noise has no D2: the answer is none, never a
+    # value (its D2(m) follows m).
+    x = chaos.generate("lorenz", length=20000, components="x").components["x"]
+    a = chaos.analyze(x, dt=0.01)["d2_estimate"]
+    assert a["status"] == "confident", a["reason"]
+    assert a["value"] == pytest.approx(2.05, abs=0.1)
+    assert a["interval"][0] <= a["value"] <= a["interval"][1]
+    r = chaos.d2(x, dt=0.01)
+    assert r["estimate"]["status"] == "confident"
+    assert r["estimate"]["value"] == pytest.approx(r["d2"])
+    noise = np.random.default_rng(4).standard_normal(5000)
+    n = chaos.d2(noise, delay=1, theiler=0)["estimate"]
+    assert n["status"] == "none" and n["value"] is None, n
+
+
 def test_a_transformed_linear_oscillation_is_not_called_deterministic():
     # A linear stochastic oscillation (AR(2), poles at radius 0.98, period 40 samples) seen through
     # the static nonlinearity atan(x / 80): Cao's E2 departs from 1 (max|E2 - 1| about 0.23), as for

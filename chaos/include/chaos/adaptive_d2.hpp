@@ -34,9 +34,11 @@
 // zoo's chaotic series at N = 10^5 (three seeds, first rounds of 250 points), 7 of 62 accepted
 // budgets lay 0.020-0.041 from the exact D2; with them, none of 32 at the default first round
 // (docs/validation/fast-d2-zoo.md). When the next round would count more than an eighth of the points, the
-// exact counts are used instead: a budget that has not settled by then saves little, and the rounds
-// already spent cost about a third of the exact job on top of it (Henon, N = 10^5: 1.3 times the
-// exact job; over the zoo, 1.28 times on average).
+// rounds stop and the merged counts answer, rough (subsets_answer): counting exactly then would cost
+// the whole exact job on top of the rounds (Henon, N = 10^5: 1.3 times the exact job), and the
+// user asked for speed; the exact D2 is one flag away (no --fast). Where the first round alone
+// would count more than an eighth of the points (N below about 8000), the exact counts are used:
+// they are cheap there.
 
 #include <cstddef>
 #include <optional>
@@ -46,6 +48,8 @@
 
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
+#include "chaos/d2_answer.hpp"
+#include "chaos/estimate.hpp"
 
 namespace chaos {
 
@@ -78,10 +82,17 @@ struct AdaptiveD2Result {
   CorrelationSumResult sums;         // the counts the final D2 comes from
   CorrelationDimensionResult d2;
   std::size_t reference_points = 0;  // reference points behind `sums`; 0 when the counts are exact
-  bool exact = false;                // the subsets never agreed before half the points: exact counts
+  bool exact = false;    // the first round would already count more than an eighth of the points: exact counts
+  bool settled = false;  // a round was accepted; otherwise (and not exact) the last round's merged counts
   std::vector<AdaptiveD2Round> rounds;
   std::string explanation;           // how the budget was chosen, one sentence
 };
+
+// D2 of a fast run as one answer (d2_answer.hpp) from `d2` (its result, after any halves check):
+// the interval also spans the last round's two subsets; where no round was accepted the answer is
+// rough, its interval widened by two standard errors of the merged counts, and the reason says so.
+Estimate subsets_answer(const AdaptiveD2Result& fast, const CorrelationDimensionResult& d2,
+                        const CorrelationDimensionOptions& dimension = {});
 
 // `sums` gives the delay, dimensions, window, radii, norm, search, seed and threads; its
 // reference_points, reference_offset and pairs_per_radius must be 0 (the budget is chosen here).

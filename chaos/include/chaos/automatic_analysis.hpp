@@ -32,6 +32,7 @@
 #include "chaos/cao.hpp"
 #include "chaos/choose.hpp"
 #include "chaos/correlation_dimension.hpp"
+#include "chaos/d2_answer.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/lyapunov_answer.hpp"
@@ -74,6 +75,8 @@ struct AutomaticAnalysis {
   std::optional<std::size_t> dimension;  // Cao's, or the given one
   std::optional<CaoResult> cao;
   std::optional<CorrelationDimensionResult> d2;
+  // D2 as one answer with an interval and a status (d2_answer.hpp); empty where D2 did not run.
+  std::optional<Estimate> d2_estimate;
   std::optional<LyapunovResult> rosenstein, kantz;
   // lambda_1 from local linear maps at (m, tau, w) with the estimator's defaults, or at (m + 1, tau,
   // w) where the run at m was inconsistent and that one is consistent (its variants' first entry

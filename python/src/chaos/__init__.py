@@ -229,9 +229,14 @@ def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_ra
     the delay; ``parameters`` names each rule), radii from range/1000 to range/4. P. Grassberger and I. Procaccia, Phys. Rev. Lett. 50, 346 (1983);
     J. Theiler, Phys. Rev. A 34, 2427 (1986). docs/reference/correlation_sum.md, docs/reference/correlation_dimension.md.
 
+    The answer is ``r["estimate"]``: ``value``, ``interval``, ``status`` (``confident``, ``rough``
+    or ``none``) and ``reason`` (docs/reference/statuses.md); the detailed ``status`` is its
+    explanation.
+
     ``fast=True`` (``--fast``) chooses the reference subset from the data: it doubles from
     ``fast_start`` points until two disjoint subsets agree on one unambiguous plateau within
-    ``fast_target``, else the exact counts are used; the result's ``fast`` key gives the budget and
+    ``fast_target``; where they do not within an eighth of the points, the counts so far answer
+    ``rough`` (``fast["settled"]`` is False); the result's ``fast`` key gives the budget and
     the rounds (docs/reference/correlation_dimension.md). With a subset or a cap the result also has
     local_slope_error, d2_standard_error and slopes_too_uncertain (jackknife over groups of
     reference points).
@@ -372,7 +377,8 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     (else the autocorrelation's first zero crossing; where neither lies within ``max_delay``, both
     rules once more up to twice the Theiler window, so a finely sampled flow still gets one); embedding
     dimension where Cao's E1 saturates (unless E2 says stochastic), corroborated by false nearest
-    neighbours; D2 with its scaling region; lambda_1 by Rosenstein and by Kantz over m..m+2 and by
+    neighbours; D2 with its scaling region, as one answer ``r["d2_estimate"]`` (``value``,
+    ``interval``, ``status``, ``reason``, as for lambda_1); lambda_1 by Rosenstein and by Kantz over m..m+2 and by
     local maps, combined into one answer ``r["lambda_1"]`` with ``value``, ``interval``, ``status``
     (``confident`` / ``rough`` / ``none``) and ``reason`` (each method's own answer under
     ``lambda_estimate``, ``lambda_kantz_estimate``); a one-sided rank-order test against IAAFT surrogates (prediction error). ``delay_check=True``
@@ -634,8 +640,10 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
     """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
     controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
     short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
-    against a band fixed in advance (chaos/models/include/chaos/models/zoo_suite.hpp): D2 within +-0.1 of a cited
-    literature D2, else not above D_KY + 0.1 (Kaplan and Yorke 1979, from the equations); lambda_1
+    against a band fixed in advance (chaos/models/include/chaos/models/zoo_suite.hpp): D2 within +-0.1 of the
+    attractor's own D2 at the same N, Theiler window and scales (the plateau of its full state's
+    correlation sums, from the equations), else of a cited literature D2, else not above D_KY + 0.1
+    (Kaplan and Yorke 1979, from the equations); lambda_1
     within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
     no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension
     +-0.1 and no confident lambda_1. docs/validation/zoo.md is its report.

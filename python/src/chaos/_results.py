@@ -110,9 +110,10 @@ class Result:
         for key in ("status", "d2", "lambda", "first_minimum", "embedding_dimension", "delay", "decorrelation_time"):
             if key in self._json and not isinstance(self._json[key], (list, dict)):
                 shown.append(f"{key}={self._json[key]!r}")
-        answer = self._json.get("lambda_1")
-        if isinstance(answer, dict):
-            shown.append(f"lambda_1={answer.get('value')!r} ({answer.get('status')})")
+        for key in ("estimate", "d2_estimate", "lambda_1"):
+            answer = self._json.get(key)
+            if isinstance(answer, dict):
+                shown.append(f"{key}={answer.get('value')!r} ({answer.get('status')})")
         return f"<{type(self).__name__} {self._json.get('command', '')}: {', '.join(shown)}>"
 
     def plot(self, ax=None):

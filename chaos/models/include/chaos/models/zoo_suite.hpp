@@ -3,8 +3,11 @@
 // and a set of negative and tricky controls (control_signals.hpp, IAAFT surrogates, noisy,
 // quantised and short chaos) through the automatic pipeline (automatic_analysis.hpp), with each
 // confident estimate judged against a band fixed in advance:
-//   - D2 within +-0.1 of a cited literature D2; where none is cited, not above D_KY + 0.1 (D_KY from
-//     the equations);
+//   - D2 within +-0.1 of the attractor's own D2 at the same N, Theiler window and scales: the
+//     plateau of the full state's correlation sums from the equations (zoo_state_d2.hpp), per N and
+//     window. Where the state has none (a delay equation, or no plateau), within +-0.1 of a cited
+//     literature D2, or, where none is cited, not above D_KY + 0.1 (D_KY from the equations). The
+//     zero-scale values (literature, D_KY) stay in the report for information;
 //   - lambda_1 within 10% of the spectrum's lambda_1 from the equations (each estimator's strict fit,
 //     and the one answer of lyapunov_answer.hpp where it is confident);
 //   - noise, surrogates and random walks: no confident D2 and no confident lambda_1 at all;
@@ -49,6 +52,9 @@ struct ZooCase {
   std::size_t length = 100000;
   std::optional<double> dt;  // sampling interval (flows)
   std::function<std::vector<double>(std::size_t n)> series;
+  // Chaotic systems with a state vector: the state of the same n samples (zoo_state), from which
+  // each row's D2 reference is computed; empty otherwise.
+  std::function<std::vector<std::vector<double>>(std::size_t n)> state;
   ZooBand d2_band, lambda_band;  // lambda band per time unit (flows) or per iteration (maps)
   // From the equations and the references (chaotic cases): NaN where not known.
   double lambda_equations = std::numeric_limits<double>::quiet_NaN();
@@ -93,6 +99,13 @@ struct ZooRow {
   // lambda_1, the one answer of lyapunov_answer.hpp (status confident, rough or none), judged like
   // the others where confident; its interval's calibration is summarised in the report.
   ZooEstimate lyapunov;
+  // D2, the one answer of d2_answer.hpp (confident, rough or none), judged like `d2` where confident;
+  // its interval's calibration against the reference is summarised in the report.
+  ZooEstimate d2_answer;
+  // The attractor's own D2 at this row's N and Theiler window (state_d2_reference; status none where
+  // the state gives no plateau or the case has no state), and the band both D2 columns were judged by.
+  ZooEstimate d2_reference;
+  ZooBand d2_band;
   std::string note;  // why the pipeline stopped, when it did
 };
 

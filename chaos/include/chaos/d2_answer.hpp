@@ -1,0 +1,37 @@
+#pragma once
+// One D2 answer (estimate.hpp) from a correlation-dimension result (correlation_dimension.hpp): a
+// value, an interval and confident / rough / none, the detailed status kept as the explanation.
+//   saturated        the plateau's D2. The interval spans the local slopes and per-dimension fits
+//                    over the plateau (d2_interval), the halves' D2 and the other delay's D2 where
+//                    those checks ran, and two jackknife standard errors where the counts are a
+//                    subset. Confident when its half-width is at most 0.1; rough when it is wider,
+//                    when another plateau of the same dimensions reads more than 0.1 away (the
+//                    interval then spans it: which scales are read changes the value), or when the
+//                    value exceeds the Eckmann-Ruelle limit 2 log10 N.
+//   not_reproduced   the plateau's slope, rough; the interval spans it and the halves' (or the other
+//                    delay's) D2: the records disagree, and the interval says by how much.
+//   scale_dependent  the plateau at the smaller scales (D2 is the small-scale limit), rough; the
+//                    interval spans both plateaus.
+//   noise_limited    the plateau above the noise floor, rough: below it the scales where D2 is defined
+//                    cannot be read, and the plateau above may be a large-scale exponent.
+//   not_saturated    with a plateau that a lower dimension contradicts (step 5 of
+//                    correlation_dimension.hpp): its slope, rough, the interval reaching that lower
+//                    dimension's slope. Without a shared plateau: where the highest dimensions'
+//                    own D2(m) agree within twice the flatness tolerance, their mean, rough (they
+//                    saturate, but on no common octave of scales); otherwise none (D2(m) still grows
+//                    with m, as for noise).
+//   no_scaling_region  none.
+// Where the estimate's interval holds the attractor's own D2 at the same N and scales is measured
+// on the zoo (docs/reference/correlation_dimension.md, "Answers and their intervals").
+
+#include "chaos/correlation_dimension.hpp"
+#include "chaos/estimate.hpp"
+
+namespace chaos {
+
+// The largest half-width of a confident D2.
+inline constexpr double d2_confident_half_width = 0.1;
+
+Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options = {});
+
+}  // namespace chaos

@@ -1,0 +1,147 @@
+#include "chaos/d2_answer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "chaos/format.hpp"
+
+namespace chaos {
+
+namespace {
+
+std::string text(double v) { return format_number(v, Precision::title); }
+
+std::string radii_text(const Interval& r) { return "eps in [" + text(r.low) + ", " + text(r.high) + "]"; }
+
+// Widens the interval by the checks that ran beside the estimate: the record's halves and the
+// other delay. Returns what they read, in words (empty when none ran or gave a value).
+std::string include_checks(Estimate& e, const CorrelationDimensionResult& d2) {
+  std::string read;
+  const auto add = [&](const std::optional<double>& v, const std::string& label) {
+    if (!v) return;
+    e.include(*v);
+    read += (read.empty() ? "" : ", ") + label + " " + text(*v);
+  };
+  add(d2.first_half_d2, "first half");
+  add(d2.second_half_d2, "second half");
+  if (d2.variant_delay) add(d2.variant_delay_d2, "delay " + std::to_string(*d2.variant_delay));
+  return read;
+}
+
+Estimate from_plateau(const D2Plateau& p) {
+  Estimate e;
+  e.status = EstimateStatus::rough;
+  e.value = p.slope;
+  e.interval = p.slopes;
+  e.include(p.slope);
+  return e;
+}
+
+}  // namespace
+
+Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
+  Estimate e;
+  switch (d2.status) {
+    case D2Status::saturated: {
+      if (!d2.d2) break;
+      e.status = EstimateStatus::confident;
+      e.value = *d2.d2;
+      if (d2.d2_interval) e.interval = *d2.d2_interval;
+      e.include(*d2.d2);
+      if (d2.d2_standard_error) {
+        e.include(*d2.d2 - 2.0 * *d2.d2_standard_error);
+        e.include(*d2.d2 + 2.0 * *d2.d2_standard_error);
+      }
+      const std::string checks = include_checks(e, d2);
+      e.reason = "a plateau shared by m = " + std::to_string(d2.saturation_dimensions_used.front()) + ".." +
+                 std::to_string(d2.saturation_dimensions_used.back()) +
+                 (d2.scaling_region ? " over " + radii_text(*d2.scaling_region) : std::string()) +
+                 (checks.empty() ? std::string() : " (reproduced: " + checks + ")");
+      for (const auto& other : d2.other_plateaus)
+        if (std::abs(other.slope - *d2.d2) > d2_confident_half_width) {
+          e.include(other.slope);
+          e.downgrade("another plateau of the same dimensions reads " + text(other.slope) + " at " +
+                      radii_text(other.radii) + ": the value depends on which scales are read");
+        }
+      if (e.interval && 0.5 * (e.interval->high - e.interval->low) > d2_confident_half_width)
+        e.downgrade("the interval is wider than +-" + text(d2_confident_half_width));
+      if (d2.exceeds_eckmann_ruelle)
+        e.downgrade("the value exceeds the Eckmann-Ruelle limit 2 log10(N) = " + text(d2.eckmann_ruelle_limit));
+      return e;
+    }
+    case D2Status::not_reproduced: {
+      if (d2.plateaus.empty()) break;
+      e = from_plateau(d2.plateaus.front());
+      const std::string checks = include_checks(e, d2);
+      e.reason = "the plateau at " + radii_text(d2.plateaus.front().radii) + " is not reproduced" +
+                 (checks.empty() ? std::string(" by the record's halves") : " (" + checks + ")");
+      return e;
+    }
+    case D2Status::scale_dependent: {
+      if (d2.plateaus.size() < 2) break;
+      e = from_plateau(d2.plateaus[1]);
+      e.include(d2.plateaus[0].slopes.low);
+      e.include(d2.plateaus[0].slopes.high);
+      e.reason = "the slope changes with scale: " + text(d2.plateaus[1].slope) + " at " +
+                 radii_text(d2.plateaus[1].radii) + ", " + text(d2.plateaus[0].slope) + " at " +
+                 radii_text(d2.plateaus[0].radii) + "; the value is the smaller scales'";
+      return e;
+    }
+    case D2Status::noise_limited: {
+      if (d2.plateaus.empty()) break;
+      e = from_plateau(d2.plateaus.front());
+      e.reason = "the plateau at " + radii_text(d2.plateaus.front().radii) + " is bounded below by noise at eps = " +
+                 (d2.noise_floor ? text(*d2.noise_floor) : std::string("?")) +
+                 ": the smaller scales, where D2 is defined, cannot be read";
+      return e;
+    }
+    case D2Status::not_saturated: {
+      if (!d2.plateaus.empty()) {
+        e = from_plateau(d2.plateaus.front());
+        if (d2.steepest_lower_slope) e.include(*d2.steepest_lower_slope);
+        e.reason = "the plateau at " + radii_text(d2.plateaus.front().radii) + " is contradicted by m = " +
+                   (d2.steepest_lower_dimension ? std::to_string(*d2.steepest_lower_dimension) : std::string("?")) +
+                   ", which reads " + (d2.steepest_lower_slope ? text(*d2.steepest_lower_slope) : std::string("?")) +
+                   " there";
+        return e;
+      }
+      // No shared plateau: the highest dimensions' own D2(m), where they agree.
+      std::vector<std::size_t> top;
+      for (std::size_t d = d2.d2_by_dimension.size(); d-- > 0 && top.size() < options.saturation_dimensions;)
+        if (d2.d2_by_dimension[d]) top.push_back(d);
+      if (top.size() == options.saturation_dimensions) {
+        double lo = *d2.d2_by_dimension[top.front()], hi = lo, sum = 0.0;
+        for (const auto d : top) {
+          lo = std::min(lo, *d2.d2_by_dimension[d]);
+          hi = std::max(hi, *d2.d2_by_dimension[d]);
+          sum += *d2.d2_by_dimension[d];
+        }
+        const double mean = sum / static_cast<double>(top.size());
+        if (hi - lo <= 2.0 * options.region.tolerance * std::abs(mean)) {
+          e.status = EstimateStatus::rough;
+          e.value = mean;
+          for (const auto d : top)
+            if (d2.d2_by_dimension_interval[d]) {
+              e.include(d2.d2_by_dimension_interval[d]->low);
+              e.include(d2.d2_by_dimension_interval[d]->high);
+            }
+          e.include(lo);
+          e.include(hi);
+          e.reason = "D2(m) of m = " + std::to_string(d2.dimension[top.back()]) + ".." +
+                     std::to_string(d2.dimension[top.front()]) + " agree (" + text(lo) + " to " + text(hi) +
+                     "), but on no common octave of scales";
+          return e;
+        }
+      }
+      e.reason = "not saturated: D2(m) still grows with m or the highest dimensions disagree";
+      return e;
+    }
+    case D2Status::no_scaling_region: break;
+  }
+  e = Estimate{};
+  e.reason = std::string(to_string(d2.status)) + ": no plateau of the local slopes to read a value from";
+  return e;
+}
+
+}  // namespace chaos
