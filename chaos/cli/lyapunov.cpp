@@ -81,13 +81,16 @@ void run(LyapunovArgs& args) {
   Progress progress(args.quiet);
   if (args.params.reference_points && *args.params.reference_points == 0)
     progress.hint("lyapunov", series.values.size(),
-                  "the divergence curve follows the neighbours of every one of the points and may take long; "
-                  "--reference-points 10000 averages over evenly spaced reference points in a fraction of the time");
+                  "the divergence curves follow the neighbours of every one of the points, and the local maps the "
+                  "whole chain, and may take long; --reference-points 10000 bounds every part (the curves, their "
+                  "halves and cross-checks average over that many evenly spaced points, the local maps follow at "
+                  "most 10 maps per point) in a fraction of the time");
   else
     progress.hint("lyapunov", series.values.size(),
                   "the automatic choices (Cao's method) and the neighbour searches run on all the samples and may "
-                  "take long; -m, -d and -t skip the choices, -l 100000 uses the first 10^5 samples (the curves "
-                  "average over --reference-points, at most 10^4 by default)");
+                  "take long; -m, -d and -t skip the choices, -l 100000 uses the first 10^5 samples (every other "
+                  "part is bounded by --reference-points, at most 10^4 by default: the curves, their halves and "
+                  "cross-checks average over that many points, the local maps follow at most 10 maps per point)");
   args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   args.params.check_progress =
@@ -135,6 +138,10 @@ void run(LyapunovArgs& args) {
         << " time units\n";
   out << "# references_used = " << r.curve.references_used << " of " << r.curve.reference_points
       << "  mean_neighbours = " << number(r.curve.mean_neighbours) << "\n";
+  const std::size_t capped = r.curve.capped_neighbourhoods + (check ? check->curve.capped_neighbourhoods : 0);
+  if (capped > 0)
+    out << "# capped_neighbourhoods = " << capped << " (Kantz neighbourhoods represented by --max-neighbours = "
+        << args.params.options.max_neighbours << " of their members)\n";
   out << (per_time ? "# step\ttime\tdivergence\tlocal_slope\tterms\n" : "# step\tdivergence\tlocal_slope\tterms\n");
   for (std::size_t k = 0; k < r.curve.step.size(); ++k) {
     out << r.curve.step[k];
@@ -168,6 +175,11 @@ void register_lyapunov(CLI::App& app) {
                       "reference points have a neighbour and at most 20 on average)");
   command->add_option("-k,--min-neighbours", args->params.options.min_neighbours,
                       "Kantz: reference points with fewer neighbours are skipped")
+      ->capture_default_str();
+  command->add_option("--max-neighbours", args->params.options.max_neighbours,
+                      "Kantz: at most this many neighbours per reference point; a larger neighbourhood is represented "
+                      "by that many of its members evenly spaced in time, and the output counts them "
+                      "(capped_neighbourhoods; 0: no bound)")
       ->capture_default_str();
   command->add_option("--reference-points", args->params.reference_points,
                       "use this many evenly spaced reference points (default: at most 10^4, as chaos analyze; 0: all)")

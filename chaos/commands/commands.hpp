@@ -124,7 +124,11 @@ CorrelationSearch parse_search(const std::string& name);
 
 // chaos lyapunov
 struct LyapunovParams {
-  LyapunovParams() { fit.dimensions = 3; }  // m, m+1, m+2 must agree
+  // m, m+1, m+2 must agree; Kantz neighbourhoods of at most 1000 points (lyapunov.hpp, max_neighbours)
+  LyapunovParams() {
+    fit.dimensions = 3;
+    options.max_neighbours = 1000;
+  }
   LyapunovOptions options;
   LyapunovFitOptions fit;
   std::optional<std::size_t> delay, dimension, theiler, steps, period;

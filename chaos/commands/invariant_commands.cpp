@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "chaos/choose.hpp"
 #include "chaos/d2_answer.hpp"
@@ -261,16 +262,26 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
                        "largest Lyapunov exponent with automatic choices: " + scales.stationarity_explanation +
                            "; or give -d, -t, -m and -s to run the estimator anyway");
   require_lyapunov_settings_fit(params, x.size(), steps_source);
-  LyapunovResult r = largest_lyapunov(x, params.options, params.fit, in.dt);
-  // The same estimator over each half of the record: a linear region must be reproduced.
-  if (params.halves) check_record_halves(r, x, params.options, params.fit);
-  std::optional<LyapunovResult> check;
+  // This estimator and, for the cross-check, the other one, on one embedding per dimension.
+  std::vector<LyapunovOptions> runs{params.options};
   if (params.cross_check) {
     LyapunovOptions other = params.options;
     other.method = other.method == LyapunovMethod::rosenstein ? LyapunovMethod::kantz : LyapunovMethod::rosenstein;
     other.progress = params.check_progress;
-    check = largest_lyapunov(x, other, params.fit, in.dt);
-    if (params.halves) check_record_halves(*check, x, other, params.fit);
+    runs.push_back(other);
+  }
+  std::vector<LyapunovResult> results = largest_lyapunov_runs(x, runs, params.fit, in.dt);
+  LyapunovResult r = std::move(results.front());
+  std::optional<LyapunovResult> check;
+  if (params.cross_check) check = std::move(results.back());
+  // The same estimators over each half of the record: a linear region must be reproduced.
+  if (params.halves) {
+    std::vector<LyapunovResult*> both{&r};
+    if (check) both.push_back(&*check);
+    check_record_halves(std::span<LyapunovResult* const>(both), x, runs, params.fit);
+  }
+  if (params.cross_check) {
+    const LyapunovOptions& other = runs.back();
     if (other.method == LyapunovMethod::kantz)
       cross_check(r, *check, params.fit.tolerance);
     else
@@ -281,10 +292,16 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   // check cannot see (docs/notes/zoo-noise.md).
   std::optional<LocalMapResult> maps;
   std::string maps_refusal;
+  // The reference points bound the maps too: a chain of at most 10 maps per reference point (the
+  // maps along one trajectory are correlated, so a chain needs more of them than the curves need
+  // reference points; at the default 10^4, every record of up to 10^5 samples keeps its whole chain).
+  // 0 reference points (all): the whole chain.
+  const std::size_t max_maps = 10 * std::min<std::size_t>(params.options.reference_points, std::numeric_limits<std::size_t>::max() / 10);
   if (params.cross_check) {
     LocalMapOptions l = choose_local_map_options(params.options.dimension, params.options.delay, params.options.theiler);
     l.norm = params.options.norm;
     l.threads = params.options.threads;
+    l.max_maps = max_maps;
     const auto& report_progress = params.maps_progress;
     if (report_progress) report_progress(0.0);
     try {
@@ -322,6 +339,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
                                                                          "the reference points have a neighbour, at most "
                                                                          "20 on average"))
         .parameter("min_neighbours", params.options.min_neighbours);
+  report.parameter("max_neighbours", params.options.max_neighbours)
+      .parameter("max_maps", params.cross_check ? std::optional<std::size_t>(max_maps) : std::nullopt);
   report.parameter("reference_points", params.options.reference_points)
       .parameter("reference_points_source", reference_points_source).parameter("threads", params.options.threads)
       .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
@@ -378,6 +397,9 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   j["reference_points_examined"] = r.curve.reference_points;
   j["references_used"] = r.curve.references_used;
   j["mean_neighbours"] = r.curve.mean_neighbours;
+  // Kantz: reference points whose neighbourhood was cut to max_neighbours members (0 where none was).
+  const std::size_t capped = r.curve.capped_neighbourhoods + (check ? check->curve.capped_neighbourhoods : 0);
+  j["capped_neighbourhoods"] = capped;
   if (check) {
     auto& c = j["cross_check"];
     c["method"] = to_string(check->options.method);

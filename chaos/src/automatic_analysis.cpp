@@ -8,6 +8,7 @@
 #include "chaos/error.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/series.hpp"
+#include "lyapunov_local_maps_detail.hpp"
 
 namespace chaos {
 
@@ -55,6 +56,33 @@ void check_record_halves(LyapunovResult& result, std::span<const double> x, Lyap
   }
 }
 
+void check_record_halves(std::span<LyapunovResult* const> results, std::span<const double> x,
+                         const std::vector<LyapunovOptions>& options, const LyapunovFitOptions& fit) {
+  if (results.size() != options.size())
+    throw InvalidInput(ErrorCode::invalid_parameter, "Lyapunov halves check: one set of options per result");
+  std::vector<LyapunovResult*> checked;
+  std::vector<LyapunovOptions> runs;
+  for (std::size_t r = 0; r < results.size(); ++r)
+    if (results[r]->fit.estimate.value) {
+      checked.push_back(results[r]);
+      runs.push_back(options[r]);
+      runs.back().progress = nullptr;  // the progress shown is the whole record's curves
+    }
+  if (checked.empty()) return;
+  const auto [first, second] = record_halves(x);
+  std::vector<LyapunovResult> a, b;
+  try {
+    // Each half embedded once for every run (largest_lyapunov_runs).
+    a = largest_lyapunov_runs(first, runs, fit, checked.front()->dt);
+    b = largest_lyapunov_runs(second, runs, fit, checked.front()->dt);
+  } catch (const InvalidInput&) {
+    // A half that cannot be analysed: each run on its own, so each says why in its own words.
+    for (std::size_t r = 0; r < checked.size(); ++r) check_record_halves(*checked[r], x, runs[r], fit);
+    return;
+  }
+  for (std::size_t r = 0; r < checked.size(); ++r) require_reproduced_by_halves(*checked[r], a[r], b[r], fit.tolerance);
+}
+
 void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double> x, const CorrelationSumOptions& sums,
                          const CorrelationDimensionOptions& options) {
   if (d2.status != D2Status::saturated) return;
@@ -73,7 +101,11 @@ void check_delay_variant(CorrelationDimensionResult& d2, std::span<const double>
 LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const LocalMapOptions& options,
                                              std::optional<double> dt, bool next_dimension,
                                              const std::function<void()>& retrying) {
-  LocalMapsRuns runs{largest_lyapunov_local_maps(x, options, dt), std::nullopt};
+  // The run at m computes its "m + 1" variant, which is the base of the run at m + 1 to the last
+  // bit: the retry takes it instead of computing it again. (0.05: largest_lyapunov_local_maps's tolerance.)
+  std::optional<LocalMapEstimate> next_base;
+  LocalMapsRuns runs{detail::local_maps_run(x, options, dt, 0.05, nullptr, next_dimension ? &next_base : nullptr),
+                     std::nullopt};
   // Only an inconsistent run is tried again: noise (not_deterministic) and a series without
   // exponential divergence (not_positive) are what the data are, not an effect of m.
   if (!next_dimension || runs.result.status != LocalMapStatus::inconsistent) return runs;
@@ -81,7 +113,7 @@ LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const Lo
   const std::size_t m = ++next_options.dimension;
   if (retrying) retrying();
   try {
-    LocalMapResult next = largest_lyapunov_local_maps(x, next_options, dt);
+    LocalMapResult next = detail::local_maps_run(x, next_options, dt, 0.05, next_base ? &*next_base : nullptr, nullptr);
     if (next.status == LocalMapStatus::consistent) {
       next.explanation = "at m = " + std::to_string(m) + ": " + next.explanation + "; at m = " +
                          std::to_string(options.dimension) + ", inconsistent: " + runs.result.explanation;

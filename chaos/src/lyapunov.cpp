@@ -45,7 +45,7 @@ struct Partial {
   std::vector<double> product;         // mantissas not yet flushed
   std::vector<std::int64_t> exponent;  // sum of the binary exponents
   std::vector<std::size_t> terms, zeros;
-  std::size_t used = 0, pending = 0;
+  std::size_t used = 0, pending = 0, capped = 0;
   double neighbours = 0.0;
   explicit Partial(std::size_t steps)
       : sum(steps + 1, 0.0), product(steps + 1, 1.0), exponent(steps + 1, 0), terms(steps + 1, 0), zeros(steps + 1, 0) {}
@@ -55,7 +55,7 @@ struct Partial {
     std::fill(exponent.begin(), exponent.end(), 0);
     std::fill(terms.begin(), terms.end(), 0);
     std::fill(zeros.begin(), zeros.end(), 0);
-    used = pending = 0;
+    used = pending = capped = 0;
     neighbours = 0.0;
   }
   // ln d joins step k's sum (d > 0).
@@ -119,6 +119,7 @@ struct Partial {
       zeros[k] += p.zeros[k];
     }
     used += p.used;
+    capped += p.capped;
     neighbours += p.neighbours;
   }
   // The mean of ln d at step k, over its terms (terms[k] > 0).
@@ -157,7 +158,7 @@ struct PairDistances {
 // Work space of one thread.
 struct Scratch {
   PairDistances pair;
-  std::vector<std::size_t> neighbourhood;
+  std::vector<std::size_t> neighbourhood, kept;
   std::vector<double> mean;
 };
 
@@ -241,7 +242,45 @@ void LyapunovFitOptions::validate() const {
     refuse("Lyapunov fit: the minimum rise must be finite and >= 0 (got " + detail::format_number(min_rise) + ")");
 }
 
-DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
+namespace {
+
+// What the curves of one series at one embedding (m, tau, K, w, norm, reference points) share,
+// whatever the method: the rescaled series, the embedding, its kd-tree and the reference points in
+// the tree's leaf order. Built once, it serves Rosenstein's and Kantz's curves alike, and each
+// curve is bit for bit the one divergence_curve computes alone (the same values, visited in the
+// same order).
+struct Embedded {
+  int exponent;
+  std::vector<double> y;
+  double log_scale;
+  std::size_t points;
+  DelayEmbedding candidates;  // reference points and neighbours
+  KdTree tree;
+  std::vector<std::size_t> references;
+
+  Embedded(std::span<const double> x, const LyapunovOptions& options)
+      // An exact power-of-two rescaling keeps Euclidean sums of squares finite for any magnitude;
+      // ln d then shifts by exponent * ln 2, added back at the end.
+      : exponent(detail::scale_exponent(x)),
+        y(detail::scaled_by_power_of_two(x, exponent)),
+        log_scale(exponent * std::log(2.0)),
+        points(x.size() - detail::mul_sat(options.dimension - 1, options.delay) - options.steps),
+        candidates(y, options.dimension, options.delay, points),
+        tree(candidates, options.norm) {
+    // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
+    // nodes (in index order a chaotic series jumps across the whole tree at every query, and the
+    // searches wait on memory). The order is fixed by the data, so the sums stay deterministic.
+    std::vector<char> chosen(points, 0);
+    for (const std::size_t i : reference_indices(points, options.reference_points)) chosen[i] = 1;
+    for (const std::size_t i : tree.leaf_order())
+      if (chosen[i]) references.push_back(i);
+  }
+  Embedded(const Embedded&) = delete;  // candidates views y
+  Embedded& operator=(const Embedded&) = delete;
+};
+
+// Refuses what divergence_curve refuses: options, the series' values and its length.
+void check_curve_input(std::span<const double> x, const LyapunovOptions& options) {
   options.validate();
   const std::string what = std::string("largest Lyapunov exponent (") + to_string(options.method) + ")";
   require_finite(x, what);
@@ -249,33 +288,22 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
   const std::size_t m = options.dimension, tau = options.delay, steps = options.steps, w = options.theiler;
   // P = N - (m-1) tau - K points have all K future steps; P >= 2w + 3 leaves every reference point
   // at least one candidate outside its Theiler window.
-  const std::size_t span = detail::mul_sat(m - 1, tau);
   require_length(x, minimum_length(options), what,
                  "N >= (m-1) tau + steps + 2 w + 3 with m = " + std::to_string(m) + ", tau = " + std::to_string(tau) +
                      ", steps = " + std::to_string(steps) + ", w = " + std::to_string(w) +
                      ", so that every reference point can be followed for all steps and has a candidate outside "
                      "the Theiler window");
+}
 
-  // An exact power-of-two rescaling keeps Euclidean sums of squares finite for any magnitude;
-  // ln d then shifts by exponent * ln 2, added back at the end.
-  const int exponent = detail::scale_exponent(x);
-  const std::vector<double> y = detail::scaled_by_power_of_two(x, exponent);
-  const double log_scale = exponent * std::log(2.0);
-
-  const std::size_t points = x.size() - span - steps;
-  const DelayEmbedding candidates(y, m, tau, points);  // reference points and neighbours
-  const KdTree tree(candidates, options.norm);
+DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
+  const std::size_t m = options.dimension, tau = options.delay, steps = options.steps, w = options.theiler;
+  const int exponent = e.exponent;
+  const std::vector<double>& y = e.y;
+  const double log_scale = e.log_scale;
+  const std::size_t points = e.points;
+  const KdTree& tree = e.tree;
+  const std::vector<std::size_t>& references = e.references;
   const NeighborQuery query{w, true};
-  // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
-  // nodes (in index order a chaotic series jumps across the whole tree at every query, and the
-  // searches wait on memory). The order is fixed by the data, so the sums stay deterministic.
-  std::vector<std::size_t> references;
-  {
-    std::vector<char> chosen(points, 0);
-    for (const std::size_t i : reference_indices(points, options.reference_points)) chosen[i] = 1;
-    for (const std::size_t i : tree.leaf_order())
-      if (chosen[i]) references.push_back(i);
-  }
 
   DivergenceCurve curve;
   curve.method = options.method;
@@ -340,13 +368,24 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
       if (s.neighbourhood.size() < options.min_neighbours || s.neighbourhood.empty()) return;
       ++p.used;
       p.neighbours += static_cast<double>(s.neighbourhood.size());
+      // A neighbourhood above max_neighbours is represented by that many of its members, evenly
+      // spaced in time (index order): its mean distance from a sample that does not favour the
+      // nearest ones, at a cost bounded per reference point.
+      const std::vector<std::size_t>* members = &s.neighbourhood;
+      if (options.max_neighbours != 0 && s.neighbourhood.size() > options.max_neighbours) {
+        const std::size_t found = s.neighbourhood.size(), cap = options.max_neighbours;
+        s.kept.resize(cap);
+        for (std::size_t r = 0; r < cap; ++r) s.kept[r] = s.neighbourhood[r * found / cap];
+        members = &s.kept;
+        ++p.capped;
+      }
       s.mean.assign(steps + 1, 0.0);
-      for (const std::size_t j : s.neighbourhood) {
+      for (const std::size_t j : *members) {
         s.pair.compute(y, i, j, m, tau, steps, options.norm);
         for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.pair.d[k];
       }
       // The sum of distances is 0 only if every one is: then the mean has no logarithm (a zero).
-      const double size = static_cast<double>(s.neighbourhood.size());
+      const double size = static_cast<double>(members->size());
       for (std::size_t k = 0; k <= steps; ++k) s.mean[k] /= size;
       p.add_logs(s.mean.data());
     });
@@ -360,9 +399,18 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
   curve.terms = std::move(total.terms);
   curve.zero_distances = std::move(total.zeros);
   curve.references_used = total.used;
+  curve.capped_neighbourhoods = total.capped;
   curve.mean_neighbours = total.used > 0 ? total.neighbours / static_cast<double>(total.used) : 0.0;
   if (curve.divergence[0]) curve.mean_initial_distance = std::exp(*curve.divergence[0]);
   return curve;
+}
+
+}  // namespace
+
+DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
+  check_curve_input(x, options);
+  const Embedded e(x, options);
+  return curve_on(e, options);
 }
 
 LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options) {
@@ -582,13 +630,30 @@ std::size_t minimum_length(const LyapunovOptions& options, std::size_t dimension
   return detail::add_sat(detail::add_sat(span, options.steps), detail::add_sat(detail::mul_sat(2, options.theiler), 3));
 }
 
-LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options,
-                                const LyapunovFitOptions& fit, std::optional<double> dt) {
+namespace {
+
+// The options of runs that may share their embeddings: the same m, tau, w, K, norm and reference points.
+bool same_embedding(const LyapunovOptions& a, const LyapunovOptions& b) {
+  return a.dimension == b.dimension && a.delay == b.delay && a.theiler == b.theiler && a.steps == b.steps &&
+         a.norm == b.norm && a.reference_points == b.reference_points;
+}
+
+}  // namespace
+
+std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, const std::vector<LyapunovOptions>& runs,
+                                                  const LyapunovFitOptions& fit, std::optional<double> dt) {
   if (dt && !(std::isfinite(*dt) && *dt > 0.0))
     refuse("Lyapunov exponent: the sampling interval dt must be positive and finite (got dt = " +
            detail::format_number(*dt) + ")");
   fit.validate();
-  options.validate();
+  if (runs.empty()) return {};
+  for (const LyapunovOptions& o : runs) {
+    o.validate();
+    if (!same_embedding(o, runs.front()))
+      refuse("Lyapunov exponent: runs that share their embeddings need the same m, delay, Theiler window, steps, norm "
+             "and reference points");
+  }
+  const LyapunovOptions& options = runs.front();
   // The highest dimension needs the longest series: refuse it before the lower curves are
   // computed (a huge --dimensions would otherwise compute curve after curve until one is refused).
   const std::size_t highest = detail::add_sat(options.dimension, fit.dimensions - 1);
@@ -597,29 +662,51 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
                  "N >= (m-1) tau + steps + 2 w + 3 for the highest of the " + std::to_string(fit.dimensions) +
                      " dimensions fitted, m = " + std::to_string(highest) + ", with tau = " + std::to_string(options.delay) +
                      ", steps = " + std::to_string(options.steps) + ", w = " + std::to_string(options.theiler));
-  LyapunovResult result;
-  result.curve = divergence_curve(x, options);
-  std::vector<DivergenceCurve> curves{result.curve};
-  result.dimensions = {options.dimension};
-  for (std::size_t extra = 1; extra < fit.dimensions; ++extra) {
-    LyapunovOptions higher = options;
-    higher.dimension = options.dimension + extra;
-    // Kantz: the same neighbourhood rule, its radius found afresh for the higher dimension.
-    curves.push_back(divergence_curve(x, higher));
-    result.dimensions.push_back(higher.dimension);
+  // Each dimension is embedded once (one rescaled series, one kd-tree, one reference order) and
+  // every run's curve is computed on it; Kantz's radius is found afresh for each dimension by the
+  // same rule, as in a run alone.
+  std::vector<std::vector<DivergenceCurve>> curves(runs.size());
+  std::vector<std::size_t> dimensions;
+  for (std::size_t extra = 0; extra < fit.dimensions; ++extra) {
+    LyapunovOptions at_m = options;
+    at_m.dimension = options.dimension + extra;
+    for (const LyapunovOptions& o : runs) {
+      LyapunovOptions c = o;
+      c.dimension = at_m.dimension;
+      check_curve_input(x, c);
+    }
+    const Embedded e(x, at_m);
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      LyapunovOptions o = runs[r];
+      o.dimension = at_m.dimension;
+      curves[r].push_back(curve_on(e, o));
+    }
+    dimensions.push_back(at_m.dimension);
   }
-  result.fit = fit_divergence(curves, fit);
-  result.options = options;
-  if (options.method == LyapunovMethod::kantz) result.options.radius = result.curve.radius;
-  result.dt = dt;
-  if (dt && result.fit.lambda) {
-    result.lambda_per_time = *result.fit.lambda / *dt;
-    result.lambda_per_time_interval = Interval{result.fit.lambda_interval->low / *dt, result.fit.lambda_interval->high / *dt};
+  std::vector<LyapunovResult> results(runs.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    LyapunovResult& result = results[r];
+    result.curve = curves[r].front();
+    result.dimensions = dimensions;
+    result.fit = fit_divergence(curves[r], fit);
+    result.options = runs[r];
+    if (runs[r].method == LyapunovMethod::kantz) result.options.radius = result.curve.radius;
+    result.dt = dt;
+    if (dt && result.fit.lambda) {
+      result.lambda_per_time = *result.fit.lambda / *dt;
+      result.lambda_per_time_interval =
+          Interval{result.fit.lambda_interval->low / *dt, result.fit.lambda_interval->high / *dt};
+    }
+    if (dt && result.fit.first_step)
+      result.fit_range_time = Interval{static_cast<double>(*result.fit.first_step) * *dt,
+                                       static_cast<double>(*result.fit.last_step) * *dt};
   }
-  if (dt && result.fit.first_step)
-    result.fit_range_time = Interval{static_cast<double>(*result.fit.first_step) * *dt,
-                                     static_cast<double>(*result.fit.last_step) * *dt};
-  return result;
+  return results;
+}
+
+LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options,
+                                const LyapunovFitOptions& fit, std::optional<double> dt) {
+  return std::move(largest_lyapunov_runs(x, std::vector<LyapunovOptions>{options}, fit, dt).front());
 }
 
 namespace {

@@ -13,6 +13,7 @@
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
 #include "chaos/detail/parallel.hpp"
+#include "lyapunov_local_maps_detail.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -37,25 +38,33 @@ struct FittedMap {
   std::size_t rank = 0;
 };
 
-// Fits the map of a chain point from its neighbours X_j and their images X_{j+s} (both read from
-// `e`, which holds the s further points) into `out`; a and b are work space.
-void fit_map(const DelayEmbedding& e, std::span<const Neighbor> neighbours, std::size_t s, double cutoff,
-             FittedMap& out, Matrix& a, Matrix& b) {
-  const std::size_t m = e.dimension(), k = neighbours.size();
-  a.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
-  b.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
-  for (std::size_t r = 0; r < k; ++r) {
-    const std::size_t j = neighbours[r].index;
-    for (std::size_t c = 0; c < m; ++c) {
-      a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j, c);
-      b(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j + s, c);
+// The least-squares fit of a chain point's neighbourhood: its neighbours X_j and their images
+// X_{j+s} (both read from `e`, which holds the s further points), centred on their means, and the
+// singular value decomposition of the centred neighbours. One fit serves every cutoff.
+struct Neighbourhood {
+  Matrix a, b;
+  Eigen::JacobiSVD<Matrix> svd;
+  void fit(const DelayEmbedding& e, std::span<const Neighbor> neighbours, std::size_t s) {
+    const std::size_t m = e.dimension(), k = neighbours.size();
+    a.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
+    b.resize(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m));
+    for (std::size_t r = 0; r < k; ++r) {
+      const std::size_t j = neighbours[r].index;
+      for (std::size_t c = 0; c < m; ++c) {
+        a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j, c);
+        b(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = e(j + s, c);
+      }
     }
+    // Affine fit: centre both clouds on their means, then fit the linear part.
+    a.rowwise() -= a.colwise().mean();
+    b.rowwise() -= b.colwise().mean();
+    svd.compute(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
   }
-  // Affine fit: centre both clouds on their means, then fit the linear part.
-  a.rowwise() -= a.colwise().mean();
-  b.rowwise() -= b.colwise().mean();
-  const Eigen::JacobiSVD<Matrix> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Vector& sigma = svd.singularValues();
+};
+
+// The map of a fitted neighbourhood over its singular directions above `cutoff` times the largest.
+void map_from(const Neighbourhood& n, std::size_t m, double cutoff, FittedMap& out) {
+  const Vector& sigma = n.svd.singularValues();
   out.map.setZero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
   out.rank = 0;
   if (sigma.size() == 0 || !(sigma(0) > 0.0)) {
@@ -66,12 +75,12 @@ void fit_map(const DelayEmbedding& e, std::span<const Neighbor> neighbours, std:
   Matrix mt = Matrix::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
   for (Eigen::Index d = 0; d < sigma.size(); ++d) {
     if (!(sigma(d) >= cutoff * sigma(0))) break;  // descending
-    mt += svd.matrixV().col(d) * ((svd.matrixU().col(d).transpose() * b) / sigma(d));
+    mt += n.svd.matrixV().col(d) * ((n.svd.matrixU().col(d).transpose() * n.b) / sigma(d));
     ++out.rank;
   }
   out.map = mt.transpose();
-  const double spread = b.squaredNorm();
-  out.residual = spread > 0.0 ? std::sqrt((b - a * mt).squaredNorm() / spread) : 0.0;
+  const double spread = n.b.squaredNorm();
+  out.residual = spread > 0.0 ? std::sqrt((n.b - n.a * mt).squaredNorm() / spread) : 0.0;
 }
 
 }  // namespace
@@ -203,49 +212,80 @@ class TangentWalk {
   std::size_t restarts_ = 0, poor_fits_ = 0;
 };
 
-// Runs on one chain (options' m, tau, w and norm, step s) that differ only in their fit choices,
-// each as local_map_exponent would make it alone. The neighbours of each chain point are searched
-// once, for the largest k: the k nearest are the first k of the k_max nearest (both are the start
-// of one order, by distance and then by index), so every run fits exactly the neighbours its own
-// search would find, and the estimates equal separate runs bit for bit. The variants of
-// largest_lyapunov_local_maps that keep the chain (k, cutoff, residual limit) cost one search
-// instead of one each. The choices must have passed checked_step_and_neighbours.
-std::vector<LocalMapEstimate> estimates_on_one_chain(std::span<const double> x, const LocalMapOptions& options,
-                                                     std::size_t s, std::span<const FitChoice> choices) {
-  const std::size_t m = options.dimension, tau = options.delay, w = options.theiler;
+// One chain of a series: options' m, tau, w and norm, step s. The rescaled series, the embedding
+// of the points whose image exists and its kd-tree, built once for every run on the chain.
+struct Chain {
+  std::size_t m, s;
+  NeighborQuery query;
+  std::vector<double> y;
+  std::size_t points;
+  DelayEmbedding candidates, images;
+  KdTree tree;
+  std::size_t length;  // chain points 0, s, 2s, ... < points, at most options.max_maps
+
+  Chain(std::span<const double> x, const LocalMapOptions& options, std::size_t step)
+      : m(options.dimension), s(step), query{options.theiler, true},
+        // The exact power-of-two rescaling keeps the fits' sums of squares finite for any
+        // magnitude; the maps do not depend on the scale.
+        y(detail::scaled_by_power_of_two(x, detail::scale_exponent(x))),
+        points(x.size() - detail::mul_sat(m - 1, options.delay) - s),  // points whose image X_{j+s} exists
+        candidates(y, m, options.delay, points),
+        images(y, m, options.delay),  // the same coordinates, with the s further points
+        tree(candidates, options.norm),
+        length(options.max_maps != 0 ? std::min((points + s - 1) / s, options.max_maps) : (points + s - 1) / s) {}
+  Chain(const Chain&) = delete;  // the embeddings view y
+  Chain& operator=(const Chain&) = delete;
+};
+
+// Runs on one chain that differ only in their fit choices, each as local_map_exponent would make
+// it alone. The neighbours of each chain point are searched once, for the largest k: the k nearest
+// are the first k of the k_max nearest (both are the start of one order, by distance and then by
+// index), so every run fits exactly the neighbours its own search would find. The neighbourhood of
+// each k is fitted (centred, decomposed) once for all the runs with that k, and each run's map is
+// formed from that decomposition with its own cutoff, as a run alone forms it; runs with the same
+// k and cutoff share the map itself. So the estimates equal separate runs bit for bit. The
+// variants of largest_lyapunov_local_maps that keep the chain (k, cutoff, residual limit) cost one
+// search and one decomposition per neighbourhood size. The choices must have passed
+// checked_step_and_neighbours.
+std::vector<LocalMapEstimate> estimates_on_chain(const Chain& chain, std::span<const FitChoice> choices,
+                                                 std::size_t threads) {
+  const std::size_t m = chain.m, s = chain.s;
   std::size_t k_max = 0;
   for (const FitChoice& c : choices) k_max = std::max(k_max, c.neighbours);
-  const std::size_t span = detail::mul_sat(m - 1, tau);
-
-  // The exact power-of-two rescaling keeps the fits' sums of squares finite for any magnitude; the
-  // maps do not depend on the scale.
-  const int exponent = detail::scale_exponent(x);
-  const std::vector<double> y = detail::scaled_by_power_of_two(x, exponent);
-  const std::size_t points = x.size() - span - s;  // points whose image X_{j+s} exists
-  const DelayEmbedding candidates(y, m, tau, points);
-  const DelayEmbedding images(y, m, tau);  // the same coordinates, with the s further points
-  const KdTree tree(candidates, options.norm);
-  const NeighborQuery query{w, true};
-
-  const std::size_t chain = (points + s - 1) / s;  // chain points 0, s, 2s, ... < points
+  // For each choice: the first choice with its k (whose neighbourhood fit it uses), and the first
+  // with its k and cutoff (whose map it copies), indices into `choices`.
   const std::size_t runs = choices.size();
+  std::vector<std::size_t> fit_of(runs), map_of(runs);
+  for (std::size_t c = 0; c < runs; ++c) {
+    fit_of[c] = map_of[c] = c;
+    for (std::size_t d = 0; d < c; ++d)
+      if (choices[d].neighbours == choices[c].neighbours) {
+        fit_of[c] = fit_of[d];
+        if (choices[d].cutoff == choices[c].cutoff) {
+          map_of[c] = map_of[d];
+          break;
+        }
+      }
+  }
+
   const std::size_t round = std::max<std::size_t>(1, round_maps / runs);
   std::vector<TangentWalk> walks;
   walks.reserve(runs);
-  for (const FitChoice& c : choices) walks.emplace_back(m, chain, c.max_residual);
-  std::vector<FittedMap> fitted(std::min(chain, round) * runs);  // [point in round * runs + run]
+  for (const FitChoice& c : choices) walks.emplace_back(m, chain.length, c.max_residual);
+  std::vector<FittedMap> fitted(std::min(chain.length, round) * runs);  // [point in round * runs + run]
   struct Workspace {  // one per worker
     std::vector<Neighbor> found;
-    Matrix a, b;
+    std::vector<Neighbourhood> fits;  // one per choice that fits its own neighbourhood
   };
-  std::vector<Workspace> workspace(detail::worker_count(options.threads, std::min(chain, round)));
+  std::vector<Workspace> workspace(detail::worker_count(threads, std::min(chain.length, round)));
+  for (Workspace& ws : workspace) ws.fits.resize(runs);
 
-  for (std::size_t first = 0; first < chain; first += round) {
-    const std::size_t count = std::min(round, chain - first);
-    detail::parallel_tasks(options.threads, count, [&](std::size_t r, std::size_t worker) {
+  for (std::size_t first = 0; first < chain.length; first += round) {
+    const std::size_t count = std::min(round, chain.length - first);
+    detail::parallel_tasks(threads, count, [&](std::size_t r, std::size_t worker) {
       Workspace& ws = workspace[worker];
       const std::size_t i = (first + r) * s;
-      tree.k_nearest(i, k_max, ws.found, query);
+      chain.tree.k_nearest(i, k_max, ws.found, chain.query);
       for (std::size_t c = 0; c < runs; ++c) {
         const std::size_t k = std::min(choices[c].neighbours, ws.found.size());
         FittedMap& f = fitted[r * runs + c];
@@ -255,7 +295,12 @@ std::vector<LocalMapEstimate> estimates_on_one_chain(std::span<const double> x, 
           f.residual = 1.0;
           continue;
         }
-        fit_map(images, std::span<const Neighbor>(ws.found.data(), k), s, choices[c].cutoff, f, ws.a, ws.b);
+        if (map_of[c] != c) {
+          f = fitted[r * runs + map_of[c]];
+          continue;
+        }
+        if (fit_of[c] == c) ws.fits[c].fit(chain.images, std::span<const Neighbor>(ws.found.data(), k), s);
+        map_from(ws.fits[fit_of[c]], m, choices[c].cutoff, f);
       }
     });
 
@@ -273,11 +318,20 @@ std::vector<LocalMapEstimate> estimates_on_one_chain(std::span<const double> x, 
 LocalMapEstimate local_map_exponent(std::span<const double> x, const LocalMapOptions& options) {
   const auto [s, k] = checked_step_and_neighbours(x, options);
   const FitChoice choice{k, options.cutoff, options.max_residual};
-  return estimates_on_one_chain(x, options, s, std::span<const FitChoice>(&choice, 1)).front();
+  const Chain chain(x, options, s);
+  return estimates_on_chain(chain, std::span<const FitChoice>(&choice, 1), options.threads).front();
 }
 
 LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const LocalMapOptions& options,
                                            std::optional<double> dt, double tolerance) {
+  return detail::local_maps_run(x, options, dt, tolerance, nullptr, nullptr);
+}
+
+namespace detail {
+
+LocalMapResult local_maps_run(std::span<const double> x, const LocalMapOptions& options, std::optional<double> dt,
+                              double tolerance, const LocalMapEstimate* known_base,
+                              std::optional<LocalMapEstimate>* next_dimension_base) {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     refuse("Lyapunov exponent (local maps): the agreement tolerance must be positive and finite (got " +
            detail::format_number(tolerance) + ")");
@@ -289,7 +343,16 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
   result.tolerance = tolerance;
   const double max_residual = options.max_residual;
   const std::size_t m = options.dimension;
-  result.base = local_map_exponent(x, options);
+  // The base and the variants that keep its chain share one embedding and kd-tree.
+  const auto [step, base_k] = checked_step_and_neighbours(x, options);
+  std::optional<Chain> chain;
+  if (known_base) {
+    result.base = *known_base;
+  } else {
+    chain.emplace(x, options, step);
+    const FitChoice choice{base_k, options.cutoff, options.max_residual};
+    result.base = estimates_on_chain(*chain, std::span<const FitChoice>(&choice, 1), options.threads).front();
+  }
   const std::size_t k = result.base.neighbours;
   result.variants.push_back({"base", m, options.delay, k, result.base.lambda});
   // The status below reads the variants only when the base passes its own tests (its maps explain
@@ -359,13 +422,23 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
   for (const Planned& p : planned)
     if (p.computable && p.same_chain) shared.push_back({p.options.neighbours, p.options.cutoff, p.options.max_residual});
   if (!shared.empty()) {
-    const std::vector<LocalMapEstimate> estimates = estimates_on_one_chain(x, options, result.base.step, shared);
+    if (!chain) chain.emplace(x, options, result.base.step);
+    const std::vector<LocalMapEstimate> estimates = estimates_on_chain(*chain, shared, options.threads);
     std::size_t next = 0;
     for (Planned& p : planned)
       if (p.computable && p.same_chain) p.lambda = estimates[next++].lambda;
   }
+  chain.reset();
   for (Planned& p : planned)
-    if (p.computable && !p.same_chain) p.lambda = local_map_exponent(x, p.options).lambda;
+    if (p.computable && !p.same_chain) {
+      const LocalMapEstimate e = local_map_exponent(x, p.options);
+      p.lambda = e.lambda;
+      // The m + 1 variant is, to the last bit, the base of a run at m + 1 with the same step, cutoff
+      // and residual limit and the default k = 5 (m + 1): local_maps_with_next_dimension reuses it.
+      if (next_dimension_base && p.options.dimension == m + 1 && p.options.delay == tau &&
+          (options.neighbours == 0 || options.neighbours == p.options.neighbours))
+        *next_dimension_base = e;
+    }
   for (const Planned& p : planned)
     if (p.computable) result.variants.push_back({p.name, p.options.dimension, p.options.delay, p.options.neighbours, p.lambda});
   result.variants.push_back({"first half", m, tau, k, result.base.first_half});
@@ -414,5 +487,7 @@ LocalMapResult largest_lyapunov_local_maps(std::span<const double> x, const Loca
   result.explanation = why.str();
   return result;
 }
+
+}  // namespace detail
 
 }  // namespace chaos

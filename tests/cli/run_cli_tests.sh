@@ -199,6 +199,20 @@ l=$("$CHAOS" lyapunov "$work/henon_noisy.dat" -m 3 --json | jq -c '[.status, .la
 [[ $l == '["unconfirmed",null,"not_deterministic",true]' ]] && pass || fail "lyapunov on noisy Hénon gave $l"
 l=$("$CHAOS" lyapunov "$work/henon_noisy.dat" -m 3 --no-cross-check --json | jq -c '[.status, .lambda < 0.4195 * 0.9]')
 [[ $l == '["linear_region",true]' ]] && pass || fail "lyapunov --no-cross-check on noisy Hénon gave $l"
+# --reference-points bounds every part (docs/reference/lyapunov.md, "Cost"): the local maps follow at most
+# 10 maps per reference point, recorded as max_maps. On a drifting record with every choice given, a
+# Kantz radius of the whole range puts every admissible point (all but the 2w + 1 of the window) in
+# every neighbourhood, far above --max-neighbours 50, so every reference point used is capped; with
+# --max-neighbours 0 none is.
+l=$("$CHAOS" lyapunov "$work/henon.dat" --reference-points 30 --json | jq -c '[.parameters.max_maps, .parameters.max_neighbours, .capped_neighbourhoods]')
+[[ $l == '[300,1000,0]' ]] && pass || fail "lyapunov --reference-points 30 gave $l"
+awk -v seed=7 'BEGIN { srand(seed); x = 0; for (i = 0; i < 3000; ++i) { x += rand() - 0.5; print x } }' > "$work/walk.dat"
+range=$(awk 'NR == 1 { lo = $1; hi = $1 } { if ($1 < lo) lo = $1; if ($1 > hi) hi = $1 } END { printf "%.17g", hi - lo }' "$work/walk.dat")
+walk=(lyapunov "$work/walk.dat" --method kantz -m 2 -d 1 -t 5 -s 20 -r "$range" --reference-points 200 --no-cross-check --no-halves --json)
+l=$("$CHAOS" "${walk[@]}" --max-neighbours 50 | jq -c '[.capped_neighbourhoods == .references_used, .references_used > 0, .parameters.max_neighbours]')
+[[ $l == '[true,true,50]' ]] && pass || fail "lyapunov --max-neighbours 50 on a random walk gave $l"
+l=$("$CHAOS" "${walk[@]}" --max-neighbours 0 | jq -c '[.capped_neighbourhoods, .mean_neighbours > 50]')
+[[ $l == '[0,true]' ]] && pass || fail "lyapunov --max-neighbours 0 on a random walk gave $l"
 "$CHAOS" lyapunov "$work/henon_noisy.dat" -m 3 | grep -q "^# local_maps = not_deterministic at m = 3" && pass || fail "lyapunov text output lacks the local_maps line"
 "$CHAOS" lyapunov "$work/henon.dat" | grep -q "^# cross_check = kantz: linear_region" && pass || fail "lyapunov text output lacks the cross-check line"
 l=$("$CHAOS" lyapunov "$work/henon.dat" --dt 0.5 --json | jq -c '[.per, (.lambda == .lambda_per_sample / 0.5)]')
@@ -587,6 +601,7 @@ fi
 for cmd in lyapunov cao fnn surrogates nonlinearity analyze; do
   err=$(timeout 1 "$CHAOS" "$cmd" "$work/long.dat" -o /dev/null 2>&1 >/dev/null)
   [[ $err == "chaos $cmd: N = 250000 samples: "*"(-q silences this)"* ]] && pass || fail "$cmd on 250000 points gave no hint: ${err:0:300}"
+  [[ $cmd != lyapunov || $err == *"bounded by --reference-points"* ]] && pass || fail "lyapunov's hint does not name the bound: ${err:0:300}"
   err=$(timeout 1 "$CHAOS" "$cmd" "$work/long.dat" -q -o /dev/null 2>&1 >/dev/null)
   [[ -z $err ]] && pass || fail "$cmd -q still writes to stderr: ${err:0:300}"
 done

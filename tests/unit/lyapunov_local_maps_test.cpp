@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/error.hpp"
 #include "chaos/random.hpp"
 #include "chaos/models/systems.hpp"
@@ -175,6 +176,48 @@ TEST(LocalMaps, VariantsOnOneSearchEqualSeparateRuns) {
       ++checked;
     }
     EXPECT_GE(checked, 7u);
+  }
+}
+
+TEST(LocalMaps, MaxMapsFollowsTheFirstMapsOfTheChain) {
+  // max_maps bounds the chain to its first maps; every chain point is one of a map averaged, a
+  // restart or a poor fit (TangentWalk), so those three add up to the bound. A bound at or above
+  // the chain's length (N - (m-1) tau - s = 5998 maps of s = 1) changes nothing, to the last bit.
+  const auto x = henon_x(6000);
+  LocalMapOptions o = options(2);
+  const auto whole = chaos::local_map_exponent(x, o);
+  EXPECT_EQ(whole.maps + whole.restarts + whole.poor_fits, 5998u);
+  for (const std::size_t bound : {5998u, 100000u}) {
+    o.max_maps = bound;
+    const auto same = chaos::local_map_exponent(x, o);
+    EXPECT_EQ(same.lambda, whole.lambda);
+    EXPECT_EQ(same.maps, whole.maps);
+  }
+  o.max_maps = 500;
+  const auto part = chaos::local_map_exponent(x, o);
+  EXPECT_EQ(part.maps + part.restarts + part.poor_fits, 500u);
+  // The first 500 maps of the same chain: Henon's lambda_1 = 0.41922 (Sprott 2003) within 15%
+  // (500 maps of a chaotic orbit scatter by several percent).
+  EXPECT_NEAR(part.lambda, 0.41922, 0.15 * 0.41922);
+  EXPECT_NE(part.lambda, whole.lambda);
+}
+
+TEST(LocalMaps, TheRetryAtTheNextDimensionEqualsARunThere) {
+  // local_maps_with_next_dimension takes the run at m's "m + 1" variant as the base of its retry;
+  // the expected values are those of a separate run at m + 1. Henon x, 3000 iterations: inconsistent
+  // at m = 2 and consistent at m = 3 (tests/cli/run_cli_tests.sh).
+  const auto x = henon_x(3000);
+  const auto runs = chaos::local_maps_with_next_dimension(x, options(2), std::nullopt);
+  ASSERT_TRUE(runs.at_m.has_value()) << runs.result.explanation;
+  const auto alone = chaos::largest_lyapunov_local_maps(x, options(3));
+  EXPECT_EQ(runs.result.status, alone.status);
+  EXPECT_EQ(runs.result.lambda, alone.lambda);
+  EXPECT_EQ(runs.result.base.lambda, alone.base.lambda);
+  EXPECT_EQ(runs.result.base.median_residual, alone.base.median_residual);
+  ASSERT_EQ(runs.result.variants.size(), alone.variants.size());
+  for (std::size_t v = 0; v < alone.variants.size(); ++v) {
+    EXPECT_EQ(runs.result.variants[v].name, alone.variants[v].name);
+    EXPECT_EQ(runs.result.variants[v].lambda, alone.variants[v].lambda) << alone.variants[v].name;
   }
 }
 

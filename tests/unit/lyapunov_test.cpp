@@ -16,6 +16,7 @@
 #include <cmath>
 #include <numbers>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -711,6 +712,74 @@ TEST(LyapunovHalves, ARegionStaysOnlyWhenAHalfShowsItAndNoHalfContradictsIt) {
   EXPECT_EQ(full.explanation, "no stretch");
 
   EXPECT_THROW(chaos::require_reproduced_by_halves(full, full, full, -0.1), chaos::InvalidInput);
+}
+
+// Two results are the same to the last bit: every value of the curves, the fits and the answers.
+void expect_identical(const chaos::LyapunovResult& a, const chaos::LyapunovResult& b) {
+  ASSERT_EQ(a.curve.divergence.size(), b.curve.divergence.size());
+  for (std::size_t k = 0; k < a.curve.divergence.size(); ++k) {
+    ASSERT_EQ(a.curve.divergence[k].has_value(), b.curve.divergence[k].has_value()) << "step " << k;
+    if (a.curve.divergence[k]) EXPECT_EQ(*a.curve.divergence[k], *b.curve.divergence[k]) << "step " << k;
+  }
+  EXPECT_EQ(a.curve.terms, b.curve.terms);
+  EXPECT_EQ(a.curve.zero_distances, b.curve.zero_distances);
+  EXPECT_EQ(a.curve.references_used, b.curve.references_used);
+  EXPECT_EQ(a.curve.radius, b.curve.radius);
+  EXPECT_EQ(a.curve.mean_neighbours, b.curve.mean_neighbours);
+  EXPECT_EQ(a.fit.status, b.fit.status);
+  EXPECT_EQ(a.fit.explanation, b.fit.explanation);
+  EXPECT_EQ(a.fit.lambda, b.fit.lambda);
+  EXPECT_EQ(a.fit.lambda_by_curve, b.fit.lambda_by_curve);
+  EXPECT_EQ(a.fit.estimate.value, b.fit.estimate.value);
+  EXPECT_EQ(a.fit.estimate.reason, b.fit.estimate.reason);
+  EXPECT_EQ(a.dimensions, b.dimensions);
+}
+
+TEST(LargestLyapunov, RunsOnSharedEmbeddingsEqualSeparateRuns) {
+  // largest_lyapunov_runs embeds each dimension once for Rosenstein and Kantz; the expected values
+  // are the separate runs', so any difference in the shared embedding, tree, reference order or
+  // Kantz radius shows. Henon x (a map, K = 20) and Lorenz x (a flow, w > 0, a reference subset),
+  // quantised Henon (ties, zero distances), both norms; then the halves check on both at once
+  // against each on its own.
+  const auto henon = chaos::henon(6000).components[0];
+  const auto lorenz = chaos::lorenz(8000).components[0];
+  std::vector<double> quantised = henon;
+  for (double& v : quantised) v = std::round(v * 100.0) / 100.0;
+  struct Case {
+    const std::vector<double>* x;
+    std::size_t m, tau, w, steps, references;
+    Norm norm;
+  };
+  for (const Case& c : {Case{&henon, 2, 1, 0, 20, 0, Norm::max}, Case{&lorenz, 3, 17, 40, 300, 1500, Norm::euclidean},
+                        Case{&quantised, 2, 1, 2, 20, 0, Norm::max}}) {
+    LyapunovOptions r;
+    r.dimension = c.m;
+    r.delay = c.tau;
+    r.theiler = c.w;
+    r.steps = c.steps;
+    r.reference_points = c.references;
+    r.norm = c.norm;
+    LyapunovOptions k = r;
+    k.method = LyapunovMethod::kantz;
+    chaos::LyapunovFitOptions fit;
+    fit.dimensions = 3;
+    auto both = chaos::largest_lyapunov_runs(*c.x, {r, k}, fit, 0.01);
+    ASSERT_EQ(both.size(), 2u);
+    auto alone_r = chaos::largest_lyapunov(*c.x, r, fit, 0.01);
+    auto alone_k = chaos::largest_lyapunov(*c.x, k, fit, 0.01);
+    expect_identical(both[0], alone_r);
+    expect_identical(both[1], alone_k);
+    std::vector<chaos::LyapunovResult*> pair{&both[0], &both[1]};
+    chaos::check_record_halves(std::span<chaos::LyapunovResult* const>(pair), *c.x, {r, k}, fit);
+    chaos::check_record_halves(alone_r, *c.x, r, fit);
+    chaos::check_record_halves(alone_k, *c.x, k, fit);
+    expect_identical(both[0], alone_r);
+    expect_identical(both[1], alone_k);
+  }
+  // Runs that do not share their embeddings are refused.
+  LyapunovOptions a, b;
+  b.delay = 2;
+  EXPECT_THROW(chaos::largest_lyapunov_runs(henon, {a, b}), chaos::InvalidInput);
 }
 
 TEST(LyapunovHalves, HenonIsReproducedAndAShortRotatingFlowIsNot) {

@@ -108,6 +108,11 @@ void check_record_halves(CorrelationDimensionResult& d2, std::span<const double>
 // reproducing the slope, and the explanation says why.
 void check_record_halves(LyapunovResult& result, std::span<const double> x, LyapunovOptions options,
                          const LyapunovFitOptions& fit);
+// The same for several results of one series that share their embeddings (largest_lyapunov_runs,
+// e.g. Rosenstein's and Kantz's): each half is embedded once for all of them, and each
+// result ends as check_record_halves on it alone leaves it. options[r] are the options of results[r].
+void check_record_halves(std::span<LyapunovResult* const> results, std::span<const double> x,
+                         const std::vector<LyapunovOptions>& options, const LyapunovFitOptions& fit);
 // The delay check for a D2 already computed from x with `sums` and `options`: when it saturated, the
 // same sums and rules at twice sums.delay (require_reproduced_at_delay). A record too short to embed
 // at that delay counts as not reproducing the plateau, and the explanation says why.

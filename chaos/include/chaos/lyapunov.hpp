@@ -69,6 +69,13 @@ struct LyapunovOptions {
   // does). Reference points with fewer than min_neighbours neighbours are skipped.
   std::optional<double> radius;
   std::size_t min_neighbours = 1;
+  // Kantz only: at most this many neighbours per reference point (0: no bound). A neighbourhood
+  // with more is represented by max_neighbours of its members evenly spaced in index order
+  // (U[floor(r |U| / max_neighbours)], r = 0, 1, ...), so a curve costs at most reference points x
+  // max_neighbours x (K + 1) distances whatever eps and the data (a given eps on drifting data can
+  // put most of the record in every neighbourhood). The curve counts the reference points affected
+  // (capped_neighbourhoods).
+  std::size_t max_neighbours = 0;
   // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
   std::size_t reference_points = 0;
   std::size_t threads = 1;     // results are identical for any thread count
@@ -89,6 +96,7 @@ struct DivergenceCurve {
   std::size_t references_used = 0;     // with a neighbour (Rosenstein) or >= min_neighbours (Kantz)
   double radius = 0.0;                 // Kantz: eps used; 0 for Rosenstein
   double mean_neighbours = 0.0;        // mean neighbourhood size of the references used (1 for Rosenstein)
+  std::size_t capped_neighbourhoods = 0;  // Kantz: references whose neighbourhood was cut to max_neighbours
   double mean_initial_distance = 0.0;  // exp of the step-0 value: typical starting separation
 };
 
@@ -178,6 +186,15 @@ std::size_t minimum_length(const LyapunovOptions& options, std::size_t dimension
 // Curve and fit in one call; `dt` (when known) converts to time units.
 LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions& options = {},
                                 const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);
+// Several runs on one series at once, typically Rosenstein's and Kantz's estimators with their
+// cross-check: each result equals largest_lyapunov(x, runs[r], fit, dt) bit for bit, while each
+// embedding dimension is embedded once for all runs (one rescaled series, one kd-tree, one
+// reference order). The runs may differ in method, radius, min_neighbours, max_neighbours and
+// progress; they must share m, delay, Theiler window, steps, norm and reference points
+// (InvalidInput otherwise).
+std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, const std::vector<LyapunovOptions>& runs,
+                                                  const LyapunovFitOptions& fit = {},
+                                                  std::optional<double> dt = std::nullopt);
 // The same with the method fixed.
 LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options = {},
                                            const LyapunovFitOptions& fit = {}, std::optional<double> dt = std::nullopt);

@@ -60,6 +60,10 @@ struct LocalMapOptions {
   // about 94% of the spread of the neighbourhood's image.
   double max_residual = 0.25;
   Norm norm = Norm::max;
+  // At most this many maps along the chain, the first ones (0: the whole chain, (N - (m-1) tau - s) / s
+  // maps). The neighbours are still searched in the whole embedding; the bound caps the searches and
+  // fits, so the cost beyond the kd-tree's N log N does not grow with N.
+  std::size_t max_maps = 0;
   std::size_t threads = 1;  // the result is identical for any thread count
   void validate() const;
 };
