@@ -95,7 +95,7 @@ void write_scene_header(std::ostream& out, const mechanism::Scene& scene, const 
     out << ", no key changed\n";
     return;
   }
-  out << "; the keys that differ from the built-in scene (every key: `mechanism scene` with the same file and --set):\n";
+  out << ", with these keys changed (every key: `mechanism scene` with the same file and --set):\n";
   for (const auto& line : changed) out << "#   " << line << "\n";
 }
 
