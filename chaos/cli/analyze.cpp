@@ -64,19 +64,60 @@ void empty_panel(std::ostringstream& s, const std::string& title, const std::str
 // One figure of the evidence, a panel each: I(tau) with the delay chosen, Cao's E1 and E2 with the
 // dimension, the false-neighbour fraction, and the local slopes of the correlation sums with the
 // scaling region and D2.
+// lambda_1's evidence: the local slopes of Rosenstein's and Kantz's divergence curves against the
+// time followed (in time units with dt), the answer as a dashed line inside its interval, shaded.
+void lyapunov_panel(std::ostringstream& s, const AutomaticAnalysis& a, const std::optional<double>& dt) {
+  const double scale = dt.value_or(1.0);
+  const std::string per = dt ? "time unit" : "sample";
+  std::string title = "lambda_1: none";
+  if (a.lyapunov) {
+    const Estimate e = a.lyapunov->per_time();
+    if (e.value) title = "lambda_1 = " + format_number(*e.value, Precision::title) + " per " + per;
+    title += " (" + std::string(to_string(e.status)) + ")";
+    if (e.interval)
+      s << "set object 1 rect from graph 0, first " << e.interval->low << " to graph 1, first " << e.interval->high
+        << " fc rgb '#dddddd' fs solid 0.5 behind\n";
+    if (e.value) s << "set arrow 1 from graph 0, first " << *e.value << " to graph 1, first " << *e.value << " nohead dt 2\n";
+  }
+  s << "set key top right\nset xlabel '" << (dt ? "time followed (time units)" : "steps followed (samples)")
+    << "'\nset ylabel 'local slope (per " << per << ")'\nset title '" << gnuplot_text(title) << "' noenhanced\n";
+  std::vector<std::pair<const LyapunovResult*, const char*>> curves;
+  if (a.rosenstein) curves.emplace_back(&*a.rosenstein, "Rosenstein");
+  if (a.kantz) curves.emplace_back(&*a.kantz, "Kantz");
+  s << "plot ";
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    s << (c ? ", " : "") << "'-' using 1:2 with linespoints pt 7 ps 0.3 title '" << curves[c].second << "'";
+  s << "\n";
+  for (const auto& [r, name] : curves) {
+    bool any = false;
+    for (std::size_t k = 0; k < r->fit.local_slope.size(); ++k)
+      if (r->fit.local_slope[k]) {
+        s << static_cast<double>(k) * scale << " " << *r->fit.local_slope[k] / scale << "\n";
+        any = true;
+      }
+    if (!any) s << "NaN NaN\n";
+    s << "e\n";
+  }
+}
+
 std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualInformationResult>& mi,
-                        const std::optional<FnnResult>& fnn, double fnn_threshold) {
+                        const std::optional<FnnResult>& fnn, double fnn_threshold, const std::optional<double>& dt) {
   std::ostringstream s;
   const std::string stopped = a.scales.stationary ? a.stopped : "non-stationary series (see stationarity)";
   const auto reset = [&s] {
     s << "unset arrow\nunset label\nunset object\nunset logscale\nset autoscale\nset xtics autofreq\nset offsets 0, 0, 0, 0\n";
   };
-  s << "set multiplot layout 2,2 title 'chaos analyze: the evidence'\nset grid\n";
-  // Mutual information.
+  s << "set multiplot layout 3,2 title 'chaos analyze: the evidence'\nset grid\n";
+  // Mutual information, against the delay in time units when dt is known.
   if (mi)
     mutual_information_panel(s, *mi, a.delay, "delay",
-                             "mutual information: delay " + (a.delay ? std::to_string(*a.delay) : std::string("none")),
-                             std::nullopt, 0.4);
+                             "mutual information: delay " +
+                                 (a.delay ? std::to_string(*a.delay) + " samples" +
+                                                (dt ? " (" + format_number(static_cast<double>(*a.delay) * *dt, Precision::title) +
+                                                          " time units)"
+                                                    : std::string())
+                                          : std::string("none")),
+                             dt, 0.4);
   else
     empty_panel(s, "mutual information", stopped);
   reset();
@@ -113,6 +154,12 @@ std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualIn
   } else {
     empty_panel(s, "correlation dimension", a.d2 ? std::string("no local slopes") : stopped);
   }
+  reset();
+  // The largest Lyapunov exponent.
+  if (a.rosenstein || a.kantz)
+    lyapunov_panel(s, a, dt);
+  else
+    empty_panel(s, "largest Lyapunov exponent", stopped);
   s << "unset multiplot\n";
   return s.str();
 }
@@ -139,7 +186,7 @@ void run(AnalyzeArgs& args) {
   const FnnOptions& fnn_options = run.fnn_options;
   const std::optional<NonlinearityTestResult>& nonlinear = run.nonlinear;
   const std::optional<EndMatch>& segment = run.segment;
-  if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold), args.plot);
+  if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold, series.dt), args.plot);
   run.report.open(args.output);
   Report& report = run.report;
   std::ostream& out = report.stream();

@@ -39,6 +39,28 @@ void tokenize(std::string_view line, std::vector<std::string_view>& tokens) {
   }
 }
 
+// Splits a data line of a CSV file at commas only, each field trimmed of blanks, empty fields kept
+// (a pandas index column has an empty name; a date-time field "2020-01-01 00:00:00" holds a blank);
+// a '#' ends the line. A line with nothing but separators gives no tokens, as a blank line does.
+void tokenize_csv(std::string_view line, std::vector<std::string_view>& tokens) {
+  if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+  tokens.clear();
+  const auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  bool any = false;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    std::string_view field = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    while (!field.empty() && is_blank(field.front())) field.remove_prefix(1);
+    while (!field.empty() && is_blank(field.back())) field.remove_suffix(1);
+    any = any || !field.empty();
+    tokens.push_back(field);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (!any) tokens.clear();
+}
+
 // Six significant digits: enough for a bound or a magnitude in a message.
 std::string short_number(double v) {
   std::ostringstream out;
@@ -172,14 +194,17 @@ std::string shown(std::string_view token) {
 // are bad numbers, not names; a token starting with a NUL or another control byte is neither), and
 // none is NaN or infinity spelled out.
 bool is_header(const std::vector<std::string_view>& tokens) {
+  bool named = false;
   for (const auto token : tokens) {
+    if (token.empty()) continue;  // an unnamed column of a CSV header (pandas' index)
+    named = true;
     const auto c = static_cast<unsigned char>(token.front());
     if ((c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.' || c < 0x20 || c == 0x7f) return false;
     std::string lower(token);
     for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (lower == "nan" || lower == "inf" || lower == "infinity") return false;
   }
-  return true;
+  return named;
 }
 
 }  // namespace
@@ -206,13 +231,23 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
   std::size_t data_rows = 0;
   std::vector<std::string> header;  // the column names, when the first data line holds them
   bool first = true;
+  bool csv = false;  // a header of names with commas: every line is split at commas only
   const auto where = [&] { return source_name + ":" + std::to_string(line_number) + ": "; };
   while (series.values.size() < options.length && reader.next(line)) {
     ++line_number;
-    tokenize(line, tokens);
+    if (csv) tokenize_csv(line, tokens);
+    else tokenize(line, tokens);
     if (tokens.empty()) continue;  // blank line or comment
     if (first) {
       first = false;
+      if (line.substr(0, line.find('#')).find(',') != std::string_view::npos) {
+        std::vector<std::string_view> fields;
+        tokenize_csv(line, fields);
+        if (is_header(fields)) {
+          csv = true;
+          tokens = fields;
+        }
+      }
       if (is_header(tokens)) {
         for (const auto t : tokens) header.emplace_back(t);
         if (!options.column_name.empty()) {
@@ -238,6 +273,8 @@ Series read_series(std::istream& in, const std::string& source_name, const ReadO
                                                " requested but the line has only " + std::to_string(tokens.size()) +
                                                " column(s)");
     const std::string_view token = tokens[column - 1];
+    if (token.empty())
+      throw InvalidInput(ErrorCode::parse, where() + "column " + std::to_string(column) + " is empty (a CSV field with no value)");
     double value = 0.0;
     const Parsed parsed = parse_double(token, value);
     if (parsed == Parsed::out_of_range)

@@ -86,9 +86,17 @@ std::string number(double v) {
   return buf;
 }
 
-void write_scene_header(std::ostream& out, const mechanism::Scene& scene) {
-  std::istringstream lines(mechanism::to_toml(scene));
-  for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+// The scene in a few lines: the keys that differ from the built-in scene, which with it determine
+// the scene in full (`mechanism scene` with the same file and --set prints every key).
+void write_scene_header(std::ostream& out, const mechanism::Scene& scene, const SceneOptions& o) {
+  const std::vector<std::string> changed = mechanism::scene_differences(scene);
+  out << "# scene: " << (o.file.empty() ? std::string("the built-in seed scene") : "the file " + o.file + " on the built-in scene");
+  if (changed.empty()) {
+    out << ", no key changed\n";
+    return;
+  }
+  out << ", with these keys changed (every key: `mechanism scene` with the same file and --set):\n";
+  for (const auto& line : changed) out << "#   " << line << "\n";
 }
 
 // The slider's trajectory (seed Fig. 3: its centre's height against the crank angle and its
@@ -258,8 +266,7 @@ int run(int argc, char** argv) {
                << ")\n";
         else
           *out << "# Kaplan-Yorke dimension: none (the exponents computed do not bound it, or the run failed)\n";
-        *out << "# resolved scene:\n";
-        write_scene_header(*out, scene);
+        write_scene_header(*out, scene, lyap_opts);
         const std::size_t k = r.periods ? r.running.size() / r.periods : 0;  // also after a failed run
         *out << "# period";
         for (std::size_t j = 0; j < k; ++j) *out << "\tlambda_" << j + 1 << " [1/s]";
@@ -307,8 +314,8 @@ int run(int argc, char** argv) {
     }
     if (out) {
       *out << "# mechanism simulate: " << (scene.run.stroboscopic ? "one row per crank revolution" : "time series")
-           << "\n# resolved scene:\n";
-      write_scene_header(*out, scene);
+           << "\n";
+      write_scene_header(*out, scene, sim_opts);
       *out << "#";
       if (scene.run.stroboscopic) *out << " revolution";
       for (std::size_t c : columns) *out << (c == columns.front() && !scene.run.stroboscopic ? " " : "\t") << table.names[c] << " [" << table.units[c] << "]";

@@ -131,8 +131,10 @@ void visit_contact(Visitor& v, const std::string& p, ContactLawParameters& c) {
 template <class Visitor>
 void visit_friction(Visitor& v, const std::string& p, FrictionLawParameters& f, double& bristle_time_floor) {
   v.choice(p + "law", f.law, "friction law");
-  v.number(p + "static_coefficient", f.static_coefficient, Rule::non_negative, "mu_s");
-  v.number(p + "kinetic_coefficient", f.kinetic_coefficient, Rule::non_negative, "mu_k");
+  v.number(p + "static_coefficient", f.static_coefficient, Rule::non_negative,
+           "mu_s (the seed's Table 2 prints 0.1, below mu_k, so its Stribeck curve has no stiction peak; kept to "
+           "reproduce the paper, and only another pair with mu_s < mu_k is warned about)");
+  v.number(p + "kinetic_coefficient", f.kinetic_coefficient, Rule::non_negative, "mu_k (the seed's Table 2: 0.11)");
   v.number(p + "stribeck_velocity", f.stribeck_velocity, Rule::positive,
            "v_s, m/s (blank in the seed's Table 2; 1e-3 is common)");
   v.number(p + "stribeck_exponent", f.stribeck_exponent, Rule::positive,
@@ -718,13 +720,88 @@ Scene read_scene(std::string_view toml_text, const std::vector<std::string>& ove
 
 std::string to_toml(const Scene& scene) { return write_scene(scene, false); }
 
+namespace {
+
+// The keys of to_toml's text as dotted names with their printed values, in the text's order.
+std::vector<std::pair<std::string, std::string>> dotted_keys(const std::string& toml) {
+  std::vector<std::pair<std::string, std::string>> keys;
+  std::istringstream lines(toml);
+  std::string table;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line[0] == '[') {
+      table = line.substr(1, line.find(']') - 1) + ".";
+      continue;
+    }
+    const auto eq = line.find(" = ");
+    if (eq == std::string::npos) continue;
+    keys.emplace_back(table + line.substr(0, eq), line.substr(eq + 3));
+  }
+  return keys;
+}
+
+}  // namespace
+
+namespace {
+
+// Finds one key's unit in its documentation: the text before the first ',' or ';' ("m, gap per
+// side"), else after the last ", " ("constant crank speed, rpm"), when that is one of the units the
+// scene uses; anything else (a description, "dopri5", "mu_s") is no unit.
+struct UnitFinder {
+  std::string key, unit;
+  static bool is_unit(const std::string& u) {
+    static const std::set<std::string> units = {"m", "kg", "kg m^2", "Pa", "m/s", "m/s^2", "rad", "rad/s",
+                                                "s", "rpm", "N/m", "N/m^n", "N s/m", "N", "1/m", "s/m"};
+    return units.count(u) > 0;
+  }
+  void found(const std::string& k, std::string_view doc) {
+    if (k != key) return;
+    const std::string d(doc);
+    const std::string first = d.substr(0, d.find_first_of(",;"));
+    const auto comma = d.rfind(", ");
+    if (is_unit(first)) unit = first;
+    else if (comma != std::string::npos && is_unit(d.substr(comma + 2))) unit = d.substr(comma + 2);
+  }
+  void number(const std::string& k, double&, Rule, std::string_view doc) { found(k, doc); }
+  void flag(const std::string&, bool&, std::string_view) {}
+  template <class E>
+  void choice(const std::string&, E&, std::string_view) {}
+};
+
+}  // namespace
+
+std::string scene_key_unit(const std::string& key) {
+  UnitFinder finder{key, {}};
+  Scene scene;
+  visit_fields(finder, scene);
+  return finder.unit;
+}
+
+std::vector<std::string> scene_differences(const Scene& scene) {
+  const auto builtin = dotted_keys(to_toml(Scene{}));
+  std::map<std::string, std::string> base(builtin.begin(), builtin.end());
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : dotted_keys(to_toml(scene))) {
+    const auto it = base.find(key);
+    if (it == base.end() || it->second != value) changed.push_back(key + " = " + value);
+  }
+  return changed;
+}
+
 std::vector<std::string> scene_warnings(const Scene& s) {
   std::vector<std::string> w;
+  // The seed's Table 2 prints mu_s = 0.1 < mu_k = 0.11, and the built-in scene keeps that pair so that
+  // it reproduces the paper (docs/reference/mechanism/scene.md says so, and why). A warning about it
+  // on every run of the built-in scene told the user nothing they could act on; any other pair with
+  // mu_s < mu_k is a scene's own choice and is still warned about.
+  const FrictionLawParameters seed;
   auto check = [&](const std::string& name, JointKind kind, const FrictionLawParameters& f) {
-    if (kind == JointKind::clearance && f.law != FrictionLaw::none && f.stribeck_peak_missing()) {
+    const bool seed_pair = f.static_coefficient == seed.static_coefficient && f.kinetic_coefficient == seed.kinetic_coefficient;
+    if (kind == JointKind::clearance && f.law != FrictionLaw::none && f.stribeck_peak_missing() && !seed_pair) {
       w.push_back(name + ".friction: static_coefficient " + format_number(f.static_coefficient) +
                   " < kinetic_coefficient " + format_number(f.kinetic_coefficient) +
-                  ": no stiction peak (the seed's Table 2 prints these values; it may be a swap)");
+                  ": the Stribeck curve has no stiction peak (friction rises from rest instead of falling); "
+                  "a static coefficient at least the kinetic one gives the usual peak");
     }
     if (kind == JointKind::clearance && f.has_state() && s.integrator.bristles == BristleUpdate::exponential &&
         f.sigma1 > 0 && f.sigma1_velocity == 0.0) {

@@ -8,6 +8,9 @@
 #include <sstream>
 
 #include "chaos/poincare.hpp"
+#include "mechanism/scene.hpp"
+#include "mechanism/signals.hpp"
+#include "mechanism/slider_crank.hpp"
 #include "gnuplot.hpp"
 #include "outputs.hpp"
 #include "study/error.hpp"
@@ -85,6 +88,37 @@ Table read_table(const std::string& path) {
 
 std::string label(const std::string& given, const std::string& fallback) { return given.empty() ? fallback : given; }
 
+// The unit of a sampled signal, as `mechanism simulate` writes it in its table's header (the
+// built-in scene with every revolute joint given clearance has every signal a sweep can keep).
+std::string signal_unit(const std::string& name) {
+  static const mechanism::SignalTable table = mechanism::signal_table(mechanism::SliderCrank(mechanism::read_scene(
+      "", {"joint.crank_ground.type=\"clearance\"", "joint.crank_conrod.type=\"clearance\"",
+           "joint.conrod_slider.type=\"clearance\""})));
+  const auto it = std::find(table.names.begin(), table.names.end(), name);
+  if (it == table.names.end()) return "";
+  const std::string unit = table.units[static_cast<std::size_t>(it - table.names.begin())];
+  return unit == "-" ? "" : unit;
+}
+
+// A unit with the scale the values were multiplied by: "m", or "0.001 m" for --x-scale 1e3 ("x 1000"
+// for a value without a unit); empty for neither.
+std::string unit_text(const std::string& unit, double scale) {
+  std::ostringstream s;
+  if (scale != 1.0 && unit.empty()) s << "x " << scale;
+  else if (scale != 1.0) s << 1.0 / scale << " " << unit;
+  else s << unit;
+  return s.str();
+}
+
+// A default axis label: the name with its unit, so that an axis says what it shows
+// ("joint.slider.clearance (m)"; with --x-scale 1e3, "joint.slider.clearance (0.001 m)").
+std::string axis_label(const std::string& name, const std::string& unit, double scale) {
+  const std::string u = unit_text(unit, scale);
+  return u.empty() ? name : name + " (" + u + ")";
+}
+std::string key_label(const std::string& key, double scale) { return axis_label(key, mechanism::scene_key_unit(key), scale); }
+std::string signal_label(const std::string& signal, double scale) { return axis_label(signal, signal_unit(signal), scale); }
+
 // Axis keys are the columns between "point" and the first non-axis column of points.tsv.
 std::vector<std::string> axis_keys(const Table& samples) {
   std::vector<std::string> keys;
@@ -157,8 +191,8 @@ void draw(const PlotRequest& r) {
         title << r.title;
         for (std::size_t k = 0; k < keys.size(); ++k) title << (k || !r.title.empty() ? ", " : "") << keys[k] << " = " << t.rows[rows[0]][1 + k];
         g << "set title " << cli_support::quoted(title.str() + " (" + std::to_string(rows.size()) + " points)") << "\n"
-          << "set xlabel " << cli_support::quoted(label(r.x_label, r.signal)) << "\nset ylabel "
-          << cli_support::quoted(label(r.y_label, r.signal2)) << "\n$p << EOD\n";
+          << "set xlabel " << cli_support::quoted(label(r.x_label, signal_label(r.signal, r.x_scale))) << "\nset ylabel "
+          << cli_support::quoted(label(r.y_label, signal_label(r.signal2, r.z_scale))) << "\n$p << EOD\n";
         for (std::size_t i : rows) g << t.rows[i][y] * r.x_scale << ' ' << t.rows[i][z] * r.z_scale << '\n';
         g << "EOD\nplot $p using 1:2 with dots lc rgb 'black'\n";
       }
@@ -169,9 +203,9 @@ void draw(const PlotRequest& r) {
       for (const auto& row : t.rows) max_rev = std::max(max_rev, row[rev]);
       for (const auto& [value, rows] : groups) {
         g << "set title " << cli_support::quoted(panel_title(keys, value, r)) << "\nset xlabel "
-          << cli_support::quoted(label(r.x_label, keys[0])) << "\n";
+          << cli_support::quoted(label(r.x_label, key_label(keys[0], r.x_scale))) << "\n";
         if (r.figure == "bifurcation") {
-          g << "set ylabel " << cli_support::quoted(label(r.y_label, r.signal)) << "\n$b << EOD\n";
+          g << "set ylabel " << cli_support::quoted(label(r.y_label, signal_label(r.signal, r.y_scale))) << "\n$b << EOD\n";
           for (std::size_t i : rows)
             if (t.rows[i][rev] > max_rev - static_cast<double>(r.last))
               g << t.rows[i][1] * r.x_scale << ' ' << t.rows[i][y] * r.y_scale << '\n';
@@ -186,8 +220,11 @@ void draw(const PlotRequest& r) {
             hi = std::max(hi, t.rows[i][y]);
           }
           if (!(hi > lo)) hi = lo + 1e-12 * std::max(1.0, std::abs(lo)) + 1e-300;  // a constant signal: one thin bin
-          g << "set ylabel " << cli_support::quoted(label(r.y_label, r.signal)) << "\n"
-            << "set cblabel 'probability density'\nset palette rgbformulae 33,13,10\n"
+          g << "set ylabel " << cli_support::quoted(label(r.y_label, signal_label(r.signal, r.y_scale))) << "\n"
+            << "set cblabel " << cli_support::quoted(signal_unit(r.signal).empty() || !r.y_label.empty()
+                                                          ? std::string("probability density")
+                                                          : "probability density (per " + unit_text(signal_unit(r.signal), r.y_scale) + ")")
+            << "\nset palette rgbformulae 33,13,10\n"
             << (r.log_density ? "set logscale cb\n" : "") << "$d << EOD\n";
           for (const auto& [x, v] : values) {
             const chaos::Histogram h = chaos::probability_density(v, r.bins, lo, hi);
@@ -212,14 +249,25 @@ void draw(const PlotRequest& r) {
     const std::size_t shown = r.figure == "e2" ? e2 : d2;
     const bool any = std::any_of(t.rows.begin(), t.rows.end(), [&](const auto& row) { return !std::isnan(row[shown]); });
     if (!any) {
-      // A legitimate outcome (no point reached a saturated D2): an empty frame that says so.
-      g << "set title " << cli_support::quoted(label(r.title, r.figure)) << "\nset label "
-        << cli_support::quoted("no point has a value: analysis.tsv's status and d2_status columns say why")
-        << " at graph 0.5,0.5 center\nplot [0:1][0:1] NaN notitle\n";
-    } else if (r.figure == "d2map") {
+      // Nothing to draw is refused, saying why: an empty frame with exit 0 passed in scripts for a
+      // figure. The statuses counted come from analysis.tsv's d2_status (or status) column.
+      const std::size_t why = t.column(r.figure == "e2" ? "status" : "d2_status", analysis_path);
+      std::map<std::string, std::size_t> counts;
+      for (const auto& row : t.text) ++counts[row[why]];
+      std::string statuses;
+      for (const auto& [status, n] : counts) statuses += (statuses.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+      const std::string what = r.figure == "e2" ? "a max|E2 - 1|"
+                               : per_m          ? "a D2(m) at m = " + std::to_string(r.dimension)
+                                                : "a saturated D2";
+      throw StudyError("--figure", r.figure,
+                       "nothing to draw: none of the " + std::to_string(t.rows.size()) + " points has " + what +
+                           " (analysis.tsv's " + (r.figure == "e2" ? "status" : "d2_status") + " column: " + statuses + ")" +
+                           (r.figure != "e2" && !per_m ? "; --dimension M draws the per-dimension estimate D2(m) instead" : ""));
+    }
+    if (r.figure == "d2map") {
       if (keys.size() < 2) throw StudyError("--figure", "d2map", "needs a two-axis sweep");
-      g << "set xlabel " << cli_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
-        << cli_support::quoted(label(r.y_label, keys[1])) << "\nset cblabel "
+      g << "set xlabel " << cli_support::quoted(label(r.x_label, key_label(keys[0], r.x_scale))) << "\nset ylabel "
+        << cli_support::quoted(label(r.y_label, key_label(keys[1], r.y_scale))) << "\nset cblabel "
         << cli_support::quoted(per_m ? "D2(m = " + std::to_string(r.dimension) + "), not saturated" : "D2")
         << "\nset palette rgbformulae 33,13,10\nset title "
         << cli_support::quoted(label(r.title, per_m ? "D2(m) (blank: no flat region at this m)" : "correlation dimension D2 (blank: no saturated D2)"))
@@ -235,7 +283,7 @@ void draw(const PlotRequest& r) {
       const auto groups = by_second_axis(t, keys);
       std::size_t missing = 0;
       for (const auto& row : t.rows) missing += std::isnan(row[r.figure == "d2" ? d2 : e2]) ? 1 : 0;
-      g << "set xlabel " << cli_support::quoted(label(r.x_label, keys[0])) << "\nset ylabel "
+      g << "set xlabel " << cli_support::quoted(label(r.x_label, key_label(keys[0], r.x_scale))) << "\nset ylabel "
         << cli_support::quoted(label(r.y_label, r.figure == "e2" ? "max |E2(m) - 1|" : per_m ? "D2(m = " + std::to_string(r.dimension) + "), not a saturated D2" : "D2")) << "\n"
         << "set title " << cli_support::quoted(label(r.title, r.figure == "d2" ? "correlation dimension" : "Cao's E2") +
                                                 (missing ? " (" + std::to_string(missing) + " points without a value)" : ""))

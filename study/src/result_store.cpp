@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "chaos/format.hpp"
+#include "mechanism/scene.hpp"
 #include "safe_output.hpp"
 #include "study/error.hpp"
 #include "study/series_analysis.hpp"
@@ -324,7 +325,18 @@ void ResultStore::assemble() const {
   const Grid& grid = spec_.grid;
   std::string axes_header;
   for (const Axis& a : grid.axes()) axes_header += "\t" + a.key;
-  const std::string head = "# study sweep (docs/reference/study.md)\n" + commented(header_);
+  // A short header: the sweep's settings and the base scene as the keys that differ from the built-in
+  // scene (with it, the scene in full); spec.txt beside the table holds the whole resolved scene.
+  // The tables opened with all of spec.txt, some 190 '#' lines, before their column names.
+  const std::string marker = "base scene (resolved, before the axis values):\n";
+  std::string head = "# study sweep (docs/reference/study.md); spec.txt beside this file holds every setting and the "
+                     "whole resolved base scene\n" +
+                     commented(header_.substr(0, header_.find(marker)));
+  const std::vector<std::string> changed =
+      mechanism::scene_differences(mechanism::read_scene(spec_.scene_text, spec_.overrides, spec_.scene_source));
+  head += changed.empty() ? "# base scene: the built-in seed scene, no key changed\n"
+                          : "# base scene: the keys that differ from the built-in scene (before the axis values):\n";
+  for (const auto& line : changed) head += "#   " + line + "\n";
   std::string samples = head + "# point" + axes_header + "\trevolution\tt";
   for (const auto& s : spec_.signals) samples += "\t" + s;
   samples += "\n";

@@ -481,6 +481,14 @@ l=$("$CHAOS" analyze "$work/walk.dat" --json | jq -c '[.stationary, .d2_status, 
 # neighbours, D2 local slopes); a step that did not run is an empty panel that says so, not a failure.
 "$CHAOS" analyze --builtin-length 20000 --surrogates 4 --plot "$work/analyze.png" > /dev/null
 head -c 8 "$work/analyze.png" | od -An -c | grep -q "P   N   G" && pass || fail "analyze --plot made no PNG"
+# The figure has a lambda_1 panel (the answer in its title, the two estimators' local slopes), and
+# with --dt the mutual information against the delay in time units: it had neither. The built-in
+# series' dt is 0.01 (docs/guide/getting-started.md), so the delay's time is shown too.
+"$CHAOS" analyze --builtin-length 20000 --surrogates 4 -q --plot "$work/analyze.svg" > /dev/null
+grep -q "lambda_1 = [0-9.]* per time unit" "$work/analyze.svg" && grep -q ">Rosenstein<" "$work/analyze.svg" && grep -q ">Kantz<" "$work/analyze.svg" \
+  && pass || fail "analyze --plot: no lambda_1 panel with both estimators' local slopes"
+grep -q "delay tau (time units)" "$work/analyze.svg" && grep -q "time units)" "$work/analyze.svg" \
+  && pass || fail "analyze --plot with dt: the mutual information is not against time"
 "$CHAOS" analyze "$work/walk.dat" --plot "$work/analyze_walk.svg" > /dev/null
 grep -q "not run: " "$work/analyze_walk.svg" && pass || fail "analyze --plot on a random walk: no 'not run' panel"
 expect_error 3 "^chaos: error \[invalid_parameter\]: .*png or .svg" -- analyze --plot "$work/analyze.jpg"

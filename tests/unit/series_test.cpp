@@ -59,6 +59,30 @@ TEST(ReadSeries, NumberFormats) {
 // A spreadsheet's CSV ("time,value" header, often after a UTF-8 byte-order
 // mark) failed with "'time' is not a number". The mark is skipped, a first data line with no
 // number on it is a header, and a column can be named by it; -x and -l count the rows after it.
+// pandas' to_csv of a series indexed by date-time writes "2020-01-01 00:00:00,1.5": split at the
+// blank too, the row had three columns under a header of two, so `-c value` read "00:00:00" and was
+// refused. A header of names with commas makes the file CSV: its lines split at commas only. The
+// expected values are the file's literal numbers.
+TEST(ReadSeries, CsvWithDateTimeColumnAndUnnamedIndex) {
+  const std::string csv = "time,value\n2020-01-01 00:00:00,1.5\n2020-01-01 00:00:01, 2.5\n\n2020-01-01 00:00:02,3.5 # c\n";
+  ReadOptions by_name;
+  by_name.column_name = "value";
+  const chaos::Series named = read(csv, by_name);
+  EXPECT_EQ(named.values, (std::vector<double>{1.5, 2.5, 3.5}));
+  EXPECT_EQ(named.column, 2u);
+  ReadOptions second;
+  second.column = 2;
+  EXPECT_EQ(read(csv, second).values, (std::vector<double>{1.5, 2.5, 3.5}));
+  // pandas' unnamed index: the header's first field is empty.
+  const std::string indexed = ",value\n2020-01-01 00:00:00,4\n2020-01-02 00:00:00,5\n";
+  EXPECT_EQ(read(indexed, by_name).values, (std::vector<double>{4, 5}));
+  // The date-time column itself is still not a number, and an empty field says so.
+  expect_refusal([&] { read(csv); }, ErrorCode::parse, {"input.dat:2", "'2020-01-01 00:00:00' is not a number"});
+  expect_refusal([&] { read("a,b\n1,\n", second); }, ErrorCode::parse, {"input.dat:2", "column 2 is empty"});
+  // Without a header the permissive split stays: blanks, tabs and commas mixed.
+  EXPECT_EQ(read("1, 10\t100\n2 20,200\n", second).values, (std::vector<double>{10, 20}));
+}
+
 TEST(ReadSeries, HeaderRowByteOrderMarkAndColumnNames) {
   const std::string csv = "\xEF\xBB\xBFtime,value\n0,1.5\n1,2.5\n2,3.5\n";
   EXPECT_EQ(read(csv).values, (std::vector<double>{0, 1, 2}));

@@ -241,6 +241,16 @@ void check_run_size(const Scene& scene);
 // The resolved scene as TOML, every key with its value (defaults included).
 std::string to_toml(const Scene& scene);
 
+// The keys whose values differ from the built-in scene's, as "dotted.key = value" in to_toml's order
+// and spelling (`--set dotted.key=value` sets each): with the built-in scene they determine the scene
+// in full, in a few lines where to_toml takes some 180. Empty for the built-in scene.
+std::vector<std::string> scene_differences(const Scene& scene);
+
+// The SI unit of a numeric scene key as its documentation (`mechanism scene --default`) states it
+// ("m" for joint.slider.clearance, "rpm" for driver.speed_rpm); empty for a key without one (a
+// coefficient, a tolerance, a choice) or a name that is no key.
+std::string scene_key_unit(const std::string& key);
+
 // Warnings a valid scene still deserves (mu_s < mu_k: LuGre without a stiction peak, ...).
 std::vector<std::string> scene_warnings(const Scene& scene);
 

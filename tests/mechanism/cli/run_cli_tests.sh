@@ -34,16 +34,25 @@ printf 'crank = [1,\n' > "$work/bad.toml"
 expect 3 "not valid TOML" -- scene "$work/bad.toml"
 expect 3 "is not a signal" -- simulate -q --set run.duration=0.001 --signals t,nonsense
 expect 2 "" -- simulate --no-such-flag
-# The seed's printed mu_s < mu_k is accepted with a warning.
-expect 0 "no stiction peak" -- scene
-# The warnings printed on every run; simulate -q silences them.
-expect 0 "no stiction peak" -- simulate --set run.duration=0.001 -o /dev/null
-expect 0 "" -- simulate -q --set run.duration=0.001 -o /dev/null
+# The built-in scene (the seed's printed mu_s = 0.1 < mu_k = 0.11, kept on purpose: scene.md) runs
+# without a warning; every run printed one about it.
+expect 0 "" -- scene
+[[ ! -s $work/err ]] || fail "the built-in scene warns: $(head -c 300 "$work/err")"
+expect 0 "" -- simulate --set run.duration=0.001 -o /dev/null
+[[ ! -s $work/err ]] || fail "a run of the built-in scene warns: $(head -c 300 "$work/err")"
+# Another pair with mu_s < mu_k warns on every run; simulate -q silences it.
+expect 0 "no stiction peak" -- simulate --set run.duration=0.001 --set joint.slider.friction.static_coefficient=0.05 -o /dev/null
+expect 0 "" -- simulate -q --set run.duration=0.001 --set joint.slider.friction.static_coefficient=0.05 -o /dev/null
 [[ ! -s $work/err ]] || fail "simulate -q still warns: $(head -c 300 "$work/err")"
 
 # A short run: the table's header holds the resolved scene; the JSON summary has its keys.
-"$m" simulate -q --set run.duration=0.002 --signals t,slider_y > "$work/run.tsv" 2> /dev/null || fail "simulate"
-grep -q '^# clearance = 5e-04' "$work/run.tsv" || fail "the table header lacks the resolved scene"
+# The header gives the scene as the keys that differ from the built-in one, each a line, and stays
+# short (it held all 180 lines of the resolved scene).
+"$m" simulate -q --set run.duration=0.002 --set joint.slider.clearance=2e-4 --signals t,slider_y > "$work/run.tsv" 2> /dev/null || fail "simulate"
+grep -q '^#   joint.slider.clearance = 2e-04$' "$work/run.tsv" || fail "the table header lacks the changed clearance"
+grep -q '^#   run.duration = ' "$work/run.tsv" || fail "the table header lacks the changed duration"
+grep -q 'young_modulus' "$work/run.tsv" && fail "the table header lists keys that kept their built-in values"
+(( $(grep -c '^#' "$work/run.tsv") <= 6 )) || fail "the table header has $(grep -c '^#' "$work/run.tsv") lines, expected at most 6"
 rows=$(grep -vc '^#' "$work/run.tsv")
 [[ $rows -eq 201 ]] || fail "expected 201 rows (0 to 2 ms every 10 us), got $rows"
 "$m" simulate -q --json --set run.duration=0.002 > "$work/run.json" 2> /dev/null || fail "simulate --json"
