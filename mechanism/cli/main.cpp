@@ -209,7 +209,9 @@ int run(int argc, char** argv) {
                        "renormalisations per crank period (the separations must stay small in between)")
       ->default_val(lyap.intervals_per_period);
   lyap_cmd->add_option("-k,--exponents", lyap.exponents, "leading exponents to compute (0: all)")->default_val(lyap.exponents);
-  lyap_cmd->add_option("--perturbation", lyap.perturbation, "separation relative to each coordinate's scale")
+  lyap_cmd->add_option("--perturbation", lyap.perturbation,
+                       "separation relative to each coordinate's scale (refused below the scene's floor, 1e3 x epsilon x "
+                       "steps per interval x the largest |coordinate| / scale)")
       ->default_val(lyap.perturbation);
   lyap_cmd->add_option("--seed", lyap.seed, "seed of the initial directions")->default_val(lyap.seed);
   check_output(lyap_cmd->add_option("-o,--output", lyap_out, "write the convergence table to FILE (default: standard output)"),
@@ -247,7 +249,9 @@ int run(int argc, char** argv) {
         *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
              << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
              << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
-             << number(r.perturbation) << ", largest separation " << number(r.largest_separation) << "\n";
+             << number(r.perturbation) << " (floor " << number(r.perturbation_floor) << ": 1e3 x epsilon x "
+             << r.steps_per_interval << " steps per interval x " << number(r.largest_scaled_coordinate) << ", "
+             << r.largest_scaled_name << "), largest separation " << number(r.largest_separation) << "\n";
         for (std::size_t j = 0; j < r.exponents.size(); ++j)
           *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";
