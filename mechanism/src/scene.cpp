@@ -101,7 +101,7 @@ std::array<std::string_view, N> names_from_to_string() {
 }
 template <>
 struct EnumNames<NormalContactLaw> {
-  static inline const auto names = names_from_to_string<NormalContactLaw, 6>();
+  static inline const auto names = names_from_to_string<NormalContactLaw, 7>();
 };
 template <>
 struct EnumNames<FrictionLaw> {
