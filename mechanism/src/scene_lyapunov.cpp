@@ -169,6 +169,9 @@ void assign_status(SceneLyapunov& r, const std::string& still, bool bristles) {
 
 SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& options) {
   options.validate();
+  if (scene.driver.free)
+    throw InvalidParameter("driver.free", "true",
+                           "has no crank-period map: the exponents are computed for a driven crank (driver.free = false)");
   const auto wall0 = std::chrono::steady_clock::now();
   const double period = scene.driver.period();
   const int m = options.intervals_per_period;

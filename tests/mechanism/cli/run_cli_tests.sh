@@ -114,6 +114,14 @@ expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
 
+# A free crank (the Flores-Leine-Glocker scene file) has no period: no stroboscopic rows, no period map.
+flg="$(dirname "$0")/../../../mechanism/scenes/flores_leine_glocker_free.toml"
+expect 3 "run.stroboscopic = true: needs a driven crank" -- simulate -q "$flg" --stroboscopic --set run.duration=0.001
+expect 3 "driver.free = true: has no crank-period map" -- lyapunov -q "$flg" --periods 10
+"$m" simulate -q "$flg" --set run.duration=0.01 --json -o /dev/null > "$work/flg.json" 2> "$work/err" ||
+  fail "simulate the free Flores-Leine-Glocker scene: $(head -c 300 "$work/err")"
+grep -q '"crank_angle"' "$work/flg.json" || fail "the free crank's angle is not a coordinate"
+
 # mechanism lyapunov: the exponents from the equations (docs/reference/mechanism/lyapunov.md). A short run of
 # the tilted, dissipative audit scene: JSON keys, one exponent per phase coordinate (conrod and
 # slider angles and their rates), the table's rows (one per period averaged), and refusals.
