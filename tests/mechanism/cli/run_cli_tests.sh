@@ -160,6 +160,13 @@ expect 3 "exponents = 9: must be between 1 and the phase-space dimension" -- lya
 code=$?
 [[ $code -eq 2 || $code -eq 3 ]] || fail "lyapunov --periods -1 exited $code: $(head -c 300 "$work/err")"
 
+# The closed-form benchmark prints one row per method; its periodic orbit's exponents agree.
+"$m" impact-oscillator --periods 200 > "$work/osc.tsv" 2> "$work/err" || fail "impact-oscillator: $(head -c 300 "$work/err")"
+for row in closed_form saltation finite_differences; do
+  grep -q "^$row	" "$work/osc.tsv" || fail "impact-oscillator: no $row row"
+done
+expect 3 "restitution = 0: must be in (0, 1]" -- impact-oscillator --restitution 0
+
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2
   exit 1
