@@ -96,6 +96,10 @@ void SweepSpec::validate() const {
   // have the signals asked for (the table is the same for every point of a sweep over numbers).
   for (std::size_t p = 0; p < grid.size(); ++p) {
     const mechanism::Scene scene = point_run_scene(*this, p);
+    // A sweep samples every point once per crank revolution; a free crank has no revolution period.
+    if (scene.driver.free)
+      throw StudyError("driver.free", "true",
+                       "point " + std::to_string(p) + ": a sweep needs a driven crank (its samples are stroboscopic)");
     if (p > 0) continue;
     const mechanism::SliderCrank system(scene);
     const auto table = mechanism::signal_table(system);
