@@ -2,7 +2,9 @@
 # Our free Flores-Leine-Glocker scene beside the same mechanism in Siconos (validation tier: it
 # installs Siconos's Python package, which nothing else in the project uses or links).
 # Usage: scripts/validation/siconos.sh [build-dir] [out-dir] [--duration S] [--siconos-step H] [--cases a,b]
-# Writes out-dir/summary.tsv and out-dir/siconos_comparison.png (docs/validation/mechanism/siconos.md).
+#        scripts/validation/siconos.sh [build-dir] [out-dir] --driven [--revolutions N]
+# Writes out-dir/summary.tsv and out-dir/siconos_comparison.png, or with --driven
+# out-dir/driven_summary.tsv and driven_phases.tsv (docs/validation/mechanism/siconos.md).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build}

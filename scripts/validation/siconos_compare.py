@@ -2,9 +2,16 @@
 """Our free Flores-Leine-Glocker scene (`mechanism simulate`) beside the same mechanism in Siconos
 (flg_siconos.py): trajectories, impact times, energy, and statistics over the run.
 
-Usage: siconos_compare.py MECHANISM_BINARY OUT_DIR [--duration 0.2]
-Writes OUT_DIR/summary.tsv and OUT_DIR/siconos_*.png; prints the summary. Run by
-scripts/validation/siconos.sh, which installs Siconos first.
+Usage: siconos_compare.py MECHANISM_BINARY OUT_DIR [--duration 0.2] [--siconos-step 1e-5] [--cases a,b]
+       siconos_compare.py MECHANISM_BINARY OUT_DIR --driven [--revolutions 120] [--cases a,b]
+Writes OUT_DIR/summary.tsv (driven: driven_summary.tsv) and OUT_DIR/siconos_*.png; prints the
+summary. Run by scripts/validation/siconos.sh, which installs Siconos first.
+
+--driven: the driven scene (crank at a constant 150 rad/s; in Siconos a crank of inertia 1e3 kg m^2
+stands in for the driver), 20 revolutions of transient, then stroboscopic samples of the slider's
+height at 16 phases of the revolution (both series interpolated linearly at t = (k + phase) T between
+their 1e-5 s samples): their means and spreads per phase (driven_phases.tsv), the largest difference
+of the means, and the fraction of time in contact.
 """
 import argparse
 import os
@@ -56,6 +63,53 @@ def ks_distance(a, b):
     return float(np.max(np.abs(fa - fb)))
 
 
+DRIVEN_SCENE = os.path.join(HERE, "..", "..", "mechanism", "scenes", "flores_leine_glocker_driven.toml")
+OMEGA = 150.0
+
+
+def driven(args, cases):
+    T = 2 * np.pi / OMEGA
+    transient = 20
+    duration = (transient + args.revolutions) * T + 1e-9
+    phases = np.arange(16) / 16.0
+    header = ["case", "revolutions", "largest_orbit_difference_mm", "at_phase", "largest_sd_ours_mm", "largest_sd_siconos_mm",
+              "contact_fraction_ours", "contact_fraction_siconos"]
+    rows, lines = [], []
+    for name, e, mu in cases:
+        friction = ['--set', 'joint.slider.friction.law="coulomb"', '--set', f'joint.slider.friction.kinetic_coefficient={mu}'] \
+            if mu > 0 else ['--set', 'joint.slider.friction.law="none"']
+        path = os.path.join(args.out, f"driven_ours_{name}.tsv")
+        subprocess.run([args.mechanism, "simulate", "-q", DRIVEN_SCENE, "--set", f"joint.slider.contact.restitution={e}",
+                        "--set", f"run.duration={duration}", *friction, "--signals",
+                        "t,slider_y,slider_vy,slider_penetration", "-o", path], check=True)
+        o = np.loadtxt(path, comments="#")
+        spath = os.path.join(args.out, f"driven_siconos_{name}.tsv")
+        subprocess.run([sys.executable, os.path.join(HERE, "flg_siconos.py"), spath, "--restitution", str(e),
+                        "--friction", str(mu), "--duration", str(duration), "--driven"], check=True)
+        d = np.loadtxt(spath, comments="#")
+        worst, worst_phase, sd_o, sd_s = 0.0, 0.0, 0.0, 0.0
+        for ph in phases:
+            times = T * (np.arange(transient, transient + args.revolutions) + ph)
+            yo = np.interp(times, o[:, 0], o[:, 1]) * 1e3
+            ys = np.interp(times, d[:, 0], d[:, 7]) * 1e3
+            lines.append(f"{name}\t{ph:.4f}\t{yo.mean():+.4f}\t{yo.std():.4f}\t{ys.mean():+.4f}\t{ys.std():.4f}")
+            if abs(yo.mean() - ys.mean()) > worst:
+                worst, worst_phase = abs(yo.mean() - ys.mean()), ph
+            sd_o, sd_s = max(sd_o, yo.std()), max(sd_s, ys.std())
+        after_o, after_s = o[:, 0] > transient * T, d[:, 0] > transient * T
+        rows.append([name, str(args.revolutions), f"{worst:.4f}", f"{worst_phase:.4f}", f"{sd_o:.4f}", f"{sd_s:.4f}",
+                     f"{(o[after_o, 3] > 0).mean():.3f}", f"{(d[after_s, 9] > 0).mean():.3f}"])
+    with open(os.path.join(args.out, "driven_summary.tsv"), "w") as f:
+        f.write("\t".join(header) + "\n")
+        for r in rows:
+            f.write("\t".join(r) + "\n")
+    with open(os.path.join(args.out, "driven_phases.tsv"), "w") as f:
+        f.write("case\tphase\tslider_y_ours_mm\tsd\tslider_y_siconos_mm\tsd\n" + "\n".join(lines) + "\n")
+    for r in rows:
+        print("\n".join(f"{h}: {v}" for h, v in zip(header, r)))
+        print()
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("mechanism")
@@ -63,8 +117,14 @@ def main():
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--siconos-step", type=float, default=1e-5, help="Moreau-Jean's step (the examples' 1e-5)")
     ap.add_argument("--cases", default=",".join(c[0] for c in CASES), help="comma-separated case names")
+    ap.add_argument("--driven", action="store_true", help="the driven scene's long-run statistics")
+    ap.add_argument("--revolutions", type=int, default=120, help="--driven: revolutions sampled after 20")
     args = ap.parse_args()
     cases = [c for c in CASES if c[0] in args.cases.split(",")]
+    os.makedirs(args.out, exist_ok=True)
+    if args.driven:
+        driven(args, cases)
+        return
     os.makedirs(args.out, exist_ok=True)
     import matplotlib
     matplotlib.use("Agg")
