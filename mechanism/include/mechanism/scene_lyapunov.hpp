@@ -52,11 +52,12 @@ struct SceneLyapunovOptions {
 // machine epsilon times its magnitude, and each integrator step rounds it again, so after the n steps
 // of one interval the rounding is at most n epsilon |x_i|. In scaled coordinates the floor is
 //   perturbation_digits x epsilon x n x max_i max_t |x_i(t)| / scale_i,
-// the maximum over the sampled period (each |x_i| / scale_i is at least 1, so the floor is never
-// below min_perturbation, which validate() refuses before any integration). scene_lyapunov
-// refuses a perturbation below the scene's floor (InvalidParameter naming it). Measured on the
-// built-in scene (docs/reference/mechanism/lyapunov.md): the floor is about 1e-10, and the
-// exponents drift upward below about 1e-9 as the rounding takes over.
+// the maximum over the sampled period, taken as at least 1 (for a coordinate that moves,
+// max |x_i| >= its root mean square >= its standard deviation anyway), so the floor is never below
+// min_perturbation, which validate() refuses before any integration. scene_lyapunov refuses a
+// perturbation below the scene's floor (InvalidParameter naming it). Measured on the built-in scene
+// (docs/reference/mechanism/lyapunov.md): the floor is 2.4e-10, and the exponents drift upward
+// below about 1e-9 as the rounding takes over.
 inline constexpr double perturbation_digits = 1e3;
 inline constexpr double min_perturbation = perturbation_digits * std::numeric_limits<double>::epsilon();
 
