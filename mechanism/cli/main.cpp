@@ -2,6 +2,7 @@
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
 //   mechanism lyapunov [scene.toml] [--set key=value]... [--periods N] [--exponents K] [-o FILE] [--json] [--plot FILE]
+//   mechanism impact-oscillator [--zeta Z] [--amplitude A] [--omega W] [--gap G] [--restitution R] [--periods N]
 // Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file
 // (refused before the run, or a write that failed: a full disk, /dev/full), 5 the integration could
 // not continue, or reached the end with its energy balance too far off to trust (status
@@ -29,6 +30,7 @@
 #include "progress_bar.hpp"
 #include "safe_output.hpp"
 #include "mechanism/error.hpp"
+#include "mechanism/impact_oscillator.hpp"
 #include "mechanism/scene.hpp"
 #include "mechanism/scene_lyapunov.hpp"
 #include "mechanism/signals.hpp"
@@ -217,7 +219,9 @@ int run(int argc, char** argv) {
                        "renormalisations per crank period (the separations must stay small in between)")
       ->default_val(lyap.intervals_per_period);
   lyap_cmd->add_option("-k,--exponents", lyap.exponents, "leading exponents to compute (0: all)")->default_val(lyap.exponents);
-  lyap_cmd->add_option("--perturbation", lyap.perturbation, "separation relative to each coordinate's scale")
+  lyap_cmd->add_option("--perturbation", lyap.perturbation,
+                       "separation relative to each coordinate's scale (refused below the scene's floor, 1e3 x epsilon x "
+                       "steps per interval x the largest |coordinate| / scale)")
       ->default_val(lyap.perturbation);
   lyap_cmd->add_option("--seed", lyap.seed, "seed of the initial directions")->default_val(lyap.seed);
   check_output(lyap_cmd->add_option("-o,--output", lyap_out, "write the convergence table to FILE (default: standard output)"),
@@ -226,6 +230,22 @@ int run(int argc, char** argv) {
   lyap_cmd->add_flag("-q,--quiet", lyap_opts.quiet, "no progress bar and no warnings about the scene");
   check_output(lyap_cmd->add_option("--plot", lyap_plot, "draw the running means to FILE.png or FILE.svg"), "--plot",
                lyap_cmd->get_option("scene"), true);
+  mechanism::ImpactOscillator osc;
+  mechanism::ImpactLyapunovOptions osc_opt;
+  osc_opt.perturbation = 1e-8;
+  auto* osc_cmd = app.add_subcommand(
+      "impact-oscillator",
+      "the closed-form benchmark: a forced linear oscillator against a rigid stop, its exponents three ways");
+  osc_cmd->add_option("--zeta", osc.zeta, "damping ratio, in [0, 1)")->default_val(osc.zeta);
+  osc_cmd->add_option("--amplitude", osc.amplitude, "forcing amplitude")->default_val(osc.amplitude);
+  osc_cmd->add_option("--omega", osc.omega, "forcing frequency (natural frequency 1)")->default_val(osc.omega);
+  osc_cmd->add_option("--gap", osc.gap, "the stop's position")->default_val(osc.gap);
+  osc_cmd->add_option("--restitution", osc.restitution, "Newton's restitution at the stop, in (0, 1]")
+      ->default_val(osc.restitution);
+  osc_cmd->add_option("--periods", osc_opt.periods, "forcing periods averaged (>= 10)")->default_val(osc_opt.periods);
+  osc_cmd->add_option("--transient-periods", osc_opt.transient, "periods before averaging")->default_val(osc_opt.transient);
+  osc_cmd->add_option("--perturbation", osc_opt.perturbation, "finite differences: the separation")
+      ->default_val(osc_opt.perturbation);
   cli_support::check_numeric_options(app);
   cli_support::one_value_per_occurrence(app);
   if (const std::string unknown = cli_support::unknown_subcommand(app, argc, argv); !unknown.empty()) {
@@ -243,6 +263,56 @@ int run(int argc, char** argv) {
       }
       return ok;
     }
+    if (osc_cmd->parsed()) {
+      try {
+        osc.validate();
+        osc_opt.validate();
+      } catch (const mechanism::InvalidParameter& e) {
+        std::cerr << "mechanism: impact-oscillator: " << e.what() << "\n";
+        return invalid_scene;
+      }
+      const double T = osc.period();
+      const auto orbits = mechanism::period_one_orbits(osc);
+      std::cout << "# mechanism impact-oscillator: x'' + 2 zeta x' + x = A cos(omega t) for x < gap, x' -> -r x' at the "
+                   "stop (docs/reference/mechanism/lyapunov.md, \"A closed-form benchmark\")\n"
+                << "# zeta " << number(osc.zeta) << ", A " << number(osc.amplitude) << ", omega " << number(osc.omega)
+                << ", gap " << number(osc.gap) << ", r " << number(osc.restitution) << "; T " << number(T) << "; "
+                << osc_opt.periods << " periods after " << osc_opt.transient << ", perturbation "
+                << number(osc_opt.perturbation) << "\n";
+      std::array<double, 2> start{osc.gap - osc.amplitude, 0.0};
+      const mechanism::PeriodOneOrbit* stable = nullptr;
+      for (const auto& o : orbits) {
+        std::cout << "# period-1 orbit: impact at t = " << number(o.impact_time) << " mod T, speed " << number(o.impact_velocity)
+                  << ", multipliers " << number(o.multipliers[0].real()) << (o.multipliers[0].imag() < 0 ? " - " : " + ")
+                  << number(std::abs(o.multipliers[0].imag())) << "i, " << number(o.multipliers[1].real())
+                  << (o.multipliers[1].imag() < 0 ? " - " : " + ") << number(std::abs(o.multipliers[1].imag())) << "i ("
+                  << (o.stable ? "stable" : "unstable") << ")\n";
+        if (o.stable && !stable) stable = &o;
+      }
+      if (orbits.empty()) std::cout << "# no period-1 impacting orbit\n";
+      // On the stable orbit when there is one (its state at t = T, which is its state at 0).
+      if (stable) start = mechanism::exact_flow(osc, stable->impact_time, {osc.gap, -osc.restitution * stable->impact_velocity}, T);
+      std::cout << "# start (x, x') = (" << number(start[0]) << ", " << number(start[1]) << ") at t = 0"
+                << (stable ? ", on the stable period-1 orbit" : "") << "\n";
+      std::cout << "method\tlambda_1\tse_1\tlambda_2\tse_2\n";
+      for (const auto& o : orbits)
+        std::cout << (o.stable ? "closed_form" : "closed_form_unstable") << "\t" << number(o.exponents[0]) << "\t0\t"
+                  << number(o.exponents[1]) << "\t0\n";
+      int code = ok;
+      for (int method = 0; method < 2; ++method) {
+        const mechanism::ImpactLyapunov r = method == 0 ? mechanism::saltation_lyapunov(osc, start, osc_opt)
+                                                        : mechanism::finite_difference_impact_lyapunov(osc, start, osc_opt);
+        const char* name = method == 0 ? "saltation" : "finite_differences";
+        if (r.status != "completed") {
+          std::cerr << "mechanism: " << name << ": " << r.message << "\n";
+          code = integration_failed;
+          continue;
+        }
+        std::cout << name << "\t" << number(r.exponents[0]) << "\t" << number(r.standard_error[0]) << "\t"
+                  << number(r.exponents[1]) << "\t" << number(r.standard_error[1]) << "\n";
+      }
+      return code;
+    }
     if (lyap_cmd->parsed()) {
       const mechanism::Scene scene = load_scene(lyap_opts);
       cli_support::ProgressBar bar(!lyap_opts.quiet && isatty(fileno(stderr)));
@@ -255,7 +325,9 @@ int run(int argc, char** argv) {
         *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
              << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
              << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
-             << number(r.perturbation) << ", largest separation " << number(r.largest_separation) << "\n";
+             << number(r.perturbation) << " (floor " << number(r.perturbation_floor) << ": 1e3 x epsilon x "
+             << r.steps_per_interval << " steps per interval x " << number(r.largest_scaled_coordinate) << ", "
+             << r.largest_scaled_name << "), largest separation " << number(r.largest_separation) << "\n";
         for (std::size_t j = 0; j < r.exponents.size(); ++j)
           *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";

@@ -30,6 +30,10 @@ nlohmann::ordered_json scene_lyapunov_json(const SceneLyapunov& r) {
   j["period"] = r.period;
   j["periods"] = r.periods;
   j["perturbation"] = r.perturbation;
+  j["perturbation_floor"] = r.perturbation_floor;
+  j["steps_per_interval"] = r.steps_per_interval;
+  j["largest_scaled_coordinate"] = r.largest_scaled_coordinate;
+  j["largest_scaled_name"] = r.largest_scaled_name;
   j["largest_separation"] = r.largest_separation;
   j["wall_seconds"] = r.wall_seconds;
   return j;

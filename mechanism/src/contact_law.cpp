@@ -15,13 +15,14 @@ using detail::text;
 
 namespace {
 
-constexpr std::array<std::pair<NormalContactLaw, std::string_view>, 6> kNames{{
+constexpr std::array<std::pair<NormalContactLaw, std::string_view>, 7> kNames{{
     {NormalContactLaw::hertz, "hertz"},
     {NormalContactLaw::hunt_crossley, "hunt_crossley"},
     {NormalContactLaw::lankarani_nikravesh, "lankarani_nikravesh"},
     {NormalContactLaw::flores, "flores"},
     {NormalContactLaw::hu_guo, "hu_guo"},
     {NormalContactLaw::gonthier, "gonthier"},
+    {NormalContactLaw::exact_restitution, "exact_restitution"},
 }};
 
 void check_restitution(double e) {
@@ -49,8 +50,25 @@ double hysteresis_factor(NormalContactLaw law, double restitution) {
     case NormalContactLaw::flores: return 8.0 * (1.0 - e) / (5.0 * e);
     case NormalContactLaw::hu_guo: return 3.0 * (1.0 - e) / (2.0 * e);
     case NormalContactLaw::gonthier: return (1.0 - e * e) / e;
+    case NormalContactLaw::exact_restitution: return exact_hysteresis_factor(e);
   }
   throw InvalidParameter("law", std::to_string(static_cast<int>(law)), "unknown NormalContactLaw");
+}
+
+double exact_hysteresis_factor(double restitution) {
+  check_restitution(restitution);
+  const double e = restitution;
+  if (e == 1.0) return 0.0;
+  // f(chi) = chi - ln(1 + chi) + chi e + ln(1 - chi e): f' = chi (1 / (1 + chi) - e^2 / (1 - chi e))
+  // vanishes at (1 - e) / e, where f is at its maximum (> 0); f -> -inf at 1 / e.
+  auto f = [e](double chi) { return chi - std::log1p(chi) + chi * e + std::log1p(-chi * e); };
+  double lo = (1.0 - e) / e, hi = 1.0 / e;
+  for (int i = 0; i < 200 && lo < hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    (f(mid) > 0.0 ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 double normal_force(const ContactLawParameters& p, double stiffness, double penetration,

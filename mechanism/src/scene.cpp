@@ -101,7 +101,7 @@ std::array<std::string_view, N> names_from_to_string() {
 }
 template <>
 struct EnumNames<NormalContactLaw> {
-  static inline const auto names = names_from_to_string<NormalContactLaw, 6>();
+  static inline const auto names = names_from_to_string<NormalContactLaw, 7>();
 };
 template <>
 struct EnumNames<FrictionLaw> {
@@ -193,8 +193,10 @@ void visit_fields(Visitor& v, Scene& s) {
   v.number("slider.height", s.slider.height, Rule::positive, "m, across the guide (H)");
   v.number("slider.width", s.slider.width, Rule::positive, "m, out of plane (W, for the contact area of Eq. 11)");
   visit_material(v, "slider.", s.slider.material);
-  v.number("driver.speed_rpm", s.driver.speed_rpm, Rule::positive, "constant crank speed, rpm");
+  v.number("driver.speed_rpm", s.driver.speed_rpm, Rule::positive, "constant crank speed, rpm (a free crank's initial speed)");
   v.number("driver.initial_angle", s.driver.initial_angle, Rule::finite, "crank angle at t = 0, rad");
+  v.flag("driver.free", s.driver.free,
+         "true: no driver, the crank angle is a coordinate starting at speed_rpm (no stroboscopic samples)");
   v.number("initial.slider_angle", s.initial.slider_angle, Rule::finite,
            "rad, the slider's angle at t = 0 (the seed's Eq. 29 starts it level: 0)");
   v.number("initial.slider_rate", s.initial.slider_rate, Rule::finite, "rad/s, the slider's angular rate at t = 0");
@@ -508,6 +510,9 @@ void check_consistency(const Scene& s) {
                                  "(integrator.bristles = \"exponential\" has no such limit)");
     }
   }
+  if (s.driver.free && s.run.stroboscopic)
+    throw InvalidParameter("run.stroboscopic", "true",
+                           "needs a driven crank: with driver.free = true the crank has no fixed period to sample at");
   if (s.integrator.method == IntegratorMethod::rk4 && s.integrator.step > s.driver.period()) {
     throw InvalidParameter("integrator.step", format_number(s.integrator.step),
                            "must not exceed the crank period, 60 / driver.speed_rpm = " +

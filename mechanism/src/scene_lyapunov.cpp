@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -62,6 +63,7 @@ class SceneTrajectory {
     }
     x_ = s.final_state;
     memory_ = sys.memory();
+    last_steps_ = s.steps;
     phase_ = (phase_ + 1) % systems_->size();
     return true;
   }
@@ -75,6 +77,7 @@ class SceneTrajectory {
     x_ = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
   }
   const std::string& failure() const { return failure_; }
+  std::size_t last_steps() const { return last_steps_; }  // accepted steps of the last advance()
 
  private:
   std::shared_ptr<std::vector<SliderCrank>> systems_;
@@ -82,6 +85,7 @@ class SceneTrajectory {
   State x_;
   std::vector<ContactMemory> memory_;
   std::string failure_;
+  std::size_t last_steps_ = 0;
 };
 static_assert(PerturbableTrajectory<SceneTrajectory>);
 
@@ -99,6 +103,15 @@ void SceneLyapunovOptions::validate() const {
   if (exponents < 0) detail::throw_invalid_option("exponents", exponents, "must be >= 0 (0: all)");
   if (!(perturbation > 0.0 && perturbation < 1.0))
     detail::throw_invalid_option("perturbation", perturbation, "must be in (0, 1) (relative to each coordinate's scale)");
+  if (perturbation < min_perturbation) {
+    char floor[32];
+    std::snprintf(floor, sizeof floor, "%.3g", min_perturbation);
+    detail::throw_invalid_option("perturbation", perturbation,
+                                 std::string("is below the floor ") + floor +
+                                     " that no state resolves (1e3 x machine epsilon: a separation must be a thousand "
+                                     "times the rounding of the coordinates; a scene's own floor is higher, see "
+                                     "docs/reference/mechanism/lyapunov.md)");
+  }
   if (intervals_per_period < 1 || intervals_per_period > 10000)
     detail::throw_invalid_option("intervals_per_period", intervals_per_period, "must be between 1 and 10000");
   if (periods < 10)
@@ -120,8 +133,45 @@ double kaplan_yorke_dimension(std::vector<double> exponents) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+void assign_status(SceneLyapunov& r, const std::string& still, bool bristles) {
+  r.status = "completed";
+  r.message.clear();
+  if (std::any_of(r.exponents.begin(), r.exponents.end(), [](double v) { return !std::isfinite(v); })) {
+    // Never `completed`: a non-finite exponent is not an estimate.
+    std::string which;
+    bool collapsed = false;
+    for (std::size_t j = 0; j < r.exponents.size(); ++j)
+      if (!std::isfinite(r.exponents[j])) {
+        which += (which.empty() ? "" : ", ") + std::string("lambda_") + std::to_string(j + 1);
+        collapsed = collapsed || (j < r.collapsed.size() && r.collapsed[j] > 0);
+      }
+    r.status = "not_finite";
+    r.message = which + " not finite";
+    if (collapsed)
+      r.message += std::string(": their directions collapsed to a zero separation within an interval; ") +
+                   (bristles ? "the LuGre bristle deflections reset to 0 when their contact opens, so the map is not "
+                               "invertible there and those exponents are -inf (a bound, not an estimate)"
+                             : "this scene has no bristles to reset, so the separation was lost in rounding: give a "
+                               "larger perturbation");
+  } else if (r.largest_separation > max_linear_separation) {
+    r.status = "nonlinear";
+    r.message = "a separation grew to " + std::to_string(r.largest_separation) +
+                " of its coordinate's scale within one interval: repeat with a smaller perturbation or more "
+                "intervals per period";
+  } else if (!still.empty()) {
+    r.status = "invariant_subspace";
+    r.message = still + " did not move over the sampled period: the orbit lies in an invariant subspace (a level "
+                        "slider without friction stays level), and the exponents describe that subspace, with the "
+                        "growth transverse to it, not an attractor off it; start it off the subspace (e.g. "
+                        "initial.slider_angle) to study that";
+  }
+}
+
 SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& options) {
   options.validate();
+  if (scene.driver.free)
+    throw InvalidParameter("driver.free", "true",
+                           "has no crank-period map: the exponents are computed for a driven crank (driver.free = false)");
   const auto wall0 = std::chrono::steady_clock::now();
   const double period = scene.driver.period();
   const int m = options.intervals_per_period;
@@ -153,12 +203,15 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   SimulationObserver sampler;
   SceneTrajectory probe = reference;
   sampler.sample = [&](double, const State& x, const Evaluation&) { samples.push_back(reference.system().phase_point(x)); };
+  samples.push_back(reference.phase_point());
+  std::size_t steps_per_interval = 1;
   for (int j = 0; j < m; ++j) {
     if (!probe.advance(sampler)) {
       out.status = "trajectory_failed";
       out.message = "the scale period could not be integrated: " + probe.failure();
       return out;
     }
+    steps_per_interval = std::max(steps_per_interval, probe.last_steps());
   }
   Eigen::VectorXd scale(d);
   std::string still;  // mechanical coordinates that did not move over the sampled period
@@ -173,6 +226,29 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
     if (!(spread > 0.0) && i < 2 * n) still += (still.empty() ? "" : ", ") + out.coordinates[static_cast<std::size_t>(i)];
   }
   out.scale.assign(scale.data(), scale.data() + d);
+
+  // The perturbation's floor (scene_lyapunov.hpp, perturbation_digits): what the state resolves
+  // after one interval's steps, in scaled coordinates.
+  double largest = 1.0;
+  Eigen::Index largest_at = 0;
+  for (const auto& p : samples)
+    for (Eigen::Index i = 0; i < d; ++i)
+      if (std::abs(p[i]) / scale[i] > largest) largest = std::abs(p[i]) / scale[i], largest_at = i;
+  out.steps_per_interval = steps_per_interval;
+  out.largest_scaled_coordinate = largest;
+  out.largest_scaled_name = out.coordinates[static_cast<std::size_t>(largest_at)];
+  out.perturbation_floor =
+      perturbation_digits * std::numeric_limits<double>::epsilon() * static_cast<double>(steps_per_interval) * largest;
+  if (options.perturbation < out.perturbation_floor) {
+    char why[400];
+    std::snprintf(why, sizeof why,
+                  "is below this scene's floor %.3g: 1e3 x machine epsilon %.3g x %zu integrator steps per interval x "
+                  "the largest |coordinate| / scale %.3g (%s); a separation below it is mostly rounding (give at "
+                  "least %.1g)",
+                  out.perturbation_floor, std::numeric_limits<double>::epsilon(), steps_per_interval, largest,
+                  out.largest_scaled_name.c_str(), std::pow(10.0, std::ceil(std::log10(out.perturbation_floor))));
+    detail::throw_invalid_option("perturbation", options.perturbation, why);
+  }
 
   FiniteDifferenceOptions fd;
   fd.exponents = options.exponents == 0 ? static_cast<int>(d) : options.exponents;
@@ -208,21 +284,11 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
     out.exponents_per_period.clear();
     out.standard_error.clear();
     out.kaplan_yorke = out.kaplan_yorke_section = std::numeric_limits<double>::quiet_NaN();
-  } else if (out.largest_separation > max_linear_separation) {
-    out.status = "nonlinear";
-    out.message = "a separation grew to " + std::to_string(out.largest_separation) +
-                  " of its coordinate's scale within one interval: repeat with a smaller perturbation or more "
-                  "intervals per period";
-  } else if (!still.empty()) {
-    out.status = "invariant_subspace";
-    out.message = still + " did not move over the sampled period: the orbit lies in an invariant subspace (a level "
-                          "slider without friction stays level), and the exponents describe that subspace, with the "
-                          "growth transverse to it, not an attractor off it; start it off the subspace (e.g. "
-                          "initial.slider_angle) to study that";
-  } else if (std::any_of(r.collapsed.begin(), r.collapsed.end(), [](std::size_t c) { return c > 0; })) {
-    // Not a failure: the map is not invertible there, and those exponents are -inf.
-    out.message = "some directions were annihilated within an interval (bristle deflections reset when their "
-                  "contact opens): their exponents are -inf";
+  } else {
+    bool bristles = false;
+    for (std::size_t i = 0; i < reference.system().site_count(); ++i)
+      bristles = bristles || reference.system().bristle_index(i) >= 0;
+    assign_status(out, still, bristles);
   }
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

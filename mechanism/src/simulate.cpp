@@ -297,6 +297,9 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     throw InvalidParameter("start state", std::to_string(start.size()) + " values",
                            "must have the system's state size " + std::to_string(system.state_size()));
   if (!start.allFinite()) throw InvalidParameter("start state", "non-finite values", "every value must be finite");
+  if (scene.driver.free && (observer.stroboscopic || scene.run.stroboscopic))
+    throw InvalidParameter("run.stroboscopic", "true",
+                           "needs a driven crank: with driver.free = true the crank has no fixed period to sample at");
   SimulationSummary sum;
   State x = start;
   const int n = system.coordinate_count();

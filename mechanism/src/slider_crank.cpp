@@ -44,6 +44,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     names_.emplace_back(name);
     return n_++;
   };
+  if (s.driver.free) idx_crank_angle_ = add("crank_angle");
   if (s.crank_ground.kind == JointKind::clearance) {
     idx_crank_pivot_ = add("crank_pivot_x");
     add("crank_pivot_y");
@@ -104,7 +105,8 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
   exponential_bristles_ = bristles_ > 0 && s.integrator.bristles == BristleUpdate::exponential;
   memory_.assign(sites_.size(), ContactMemory{});
   slider_sites_ = slider_clearance_ ? (scene_.slider_guide.model == SliderContactModel::corners ? 4 : 2) : 0;
-  seed_topology_ = slider_clearance_ && idx_crank_pivot_ < 0 && idx_conrod_pin_ < 0 && idx_slider_x_ < 0;
+  seed_topology_ = slider_clearance_ && idx_crank_angle_ < 0 && idx_crank_pivot_ < 0 && idx_conrod_pin_ < 0 &&
+                  idx_slider_x_ < 0;
   // Jets need n coordinate columns and the crank's; the narrowest width that fits is cheapest.
   jet_columns_ = n_ + 1 <= 3 ? 3 : (n_ + 1 <= 5 ? 5 : max_jet_columns);
 }
@@ -158,6 +160,7 @@ State SliderCrank::initial_state() const {
     x[i] = value;
     x[n_ + i] = rate;
   };
+  if (idx_crank_angle_ >= 0) set(idx_crank_angle_, th2, omega_);
   if (idx_crank_pivot_ >= 0) {
     set(idx_crank_pivot_, 0.0, 0.0);
     set(idx_crank_pivot_ + 1, 0.0, 0.0);
@@ -436,7 +439,10 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
   auto along = [](const P& p, const R& r, double ox) { return P{p.x + ox * r.c, p.y + ox * r.s}; };
 
   // Poses as jets, from the ground up; one sincos per angle.
-  const J th2 = J::coordinate(n, s.driver.initial_angle + omega_ * t, omega_);
+  // Column n of every jet is the driven crank angle; a free crank is coordinate idx_crank_angle_,
+  // and column n then stays empty (nothing is prescribed: no driving torque).
+  const J th2 = idx_crank_angle_ >= 0 ? coordinate(idx_crank_angle_)
+                                      : J::coordinate(n, s.driver.initial_angle + omega_ * t, omega_);
   const R crank_rotation(th2);
   const P pivot = idx_crank_pivot_ >= 0 ? P{coordinate(idx_crank_pivot_), coordinate(idx_crank_pivot_ + 1)} : P{zero, zero};
   const P crank_tip = along(pivot, crank_rotation, s.crank.length);
@@ -604,7 +610,7 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
   out.conrod_angle = th3.value;
   out.conrod_rate = th3.rate;
   out.driving_torque = torque;
-  out.drive_power = torque * omega_;
+  out.drive_power = idx_crank_angle_ >= 0 ? 0.0 : torque * omega_;
   out.contact_power = contact_power;
   out.kinetic_energy = kinetic;
   out.potential_energy = potential;

@@ -231,10 +231,11 @@ int run(int argc, char** argv) {
         }
       }
     // A Lyapunov run failed where a period could not be integrated; not_computed follows a failed
-    // simulation, already counted. nonlinear and invariant_subspace are answers with a warning.
+    // simulation, already counted; refused: the perturbation was below the point's floor. nonlinear,
+    // not_finite and invariant_subspace are answers with a warning.
     std::size_t lyapunov_failed = 0;
     if (spec.lyapunov)
-      for (const std::string& s : statuses("lyapunov.tsv")) lyapunov_failed += s == "trajectory_failed";
+      for (const std::string& s : statuses("lyapunov.tsv")) lyapunov_failed += s == "trajectory_failed" || s == "refused";
     nlohmann::json summary = {{"directory", store->dir().string()},
                               {"points", spec.grid.size()},
                               {"computed", computed},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "mechanism/error.hpp"
 #include "mechanism/signals.hpp"
 #include "mechanism/slider_crank.hpp"
 
@@ -70,7 +71,14 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
       const int dimension = system.phase_dimension();
       o.exponents = std::min(ls.exponents, dimension);
       o.start.assign(r.summary.final_state.data(), r.summary.final_state.data() + r.summary.final_state.size());
-      l = mechanism::scene_lyapunov(from_end, o);
+      try {
+        l = mechanism::scene_lyapunov(from_end, o);
+      } catch (const mechanism::InvalidParameter& e) {
+        // The perturbation's floor depends on the point's state: below it, this point has no answer.
+        l = {};
+        l.status = "refused";
+        l.message = e.what();
+      }
     } else {
       l.status = "not_computed";
       l.message = std::string("the simulation ended with ") + mechanism::to_string(r.summary.status);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "mechanism/error.hpp"
+#include "mechanism/scene_lyapunov.hpp"
 #include "mechanism/signals.hpp"
 #include "mechanism/slider_crank.hpp"
 #include "study/error.hpp"
@@ -83,8 +84,10 @@ void SweepSpec::validate() const {
     if (l.periods < 10)
       throw StudyError("--lyapunov-periods", std::to_string(l.periods), "must be >= 10 (10 block means give the error)");
     if (l.exponents < 1) throw StudyError("--lyapunov-exponents", std::to_string(l.exponents), "must be >= 1");
-    if (!(l.perturbation > 0.0 && l.perturbation < 1.0))
-      throw StudyError("--lyapunov-perturbation", exact(l.perturbation), "must be in (0, 1)");
+    if (!(l.perturbation >= mechanism::min_perturbation && l.perturbation < 1.0))
+      throw StudyError("--lyapunov-perturbation", exact(l.perturbation),
+                       "must be in [" + exact(mechanism::min_perturbation) +
+                           ", 1) (the lower end: 1e3 x machine epsilon; each point's own floor is higher)");
     if (l.intervals_per_period < 1 || l.intervals_per_period > 10000)
       throw StudyError("--lyapunov-intervals", std::to_string(l.intervals_per_period), "must be 1 .. 10000");
   }
@@ -93,6 +96,10 @@ void SweepSpec::validate() const {
   // have the signals asked for (the table is the same for every point of a sweep over numbers).
   for (std::size_t p = 0; p < grid.size(); ++p) {
     const mechanism::Scene scene = point_run_scene(*this, p);
+    // A sweep samples every point once per crank revolution; a free crank has no revolution period.
+    if (scene.driver.free)
+      throw StudyError("driver.free", "true",
+                       "point " + std::to_string(p) + ": a sweep needs a driven crank (its samples are stroboscopic)");
     if (p > 0) continue;
     const mechanism::SliderCrank system(scene);
     const auto table = mechanism::signal_table(system);

@@ -13,6 +13,12 @@
 //   flores               Flores et al. 2011                        chi = 8 (1 - e) / (5 e)
 //   hu_guo               Hu & Guo 2015                             chi = 3 (1 - e) / (2 e)
 //   gonthier             Gonthier et al. 2004                      chi = (1 - e^2) / e
+//   exact_restitution    the same force, chi solving                chi - ln(1 + chi) = -chi e - ln(1 - chi e)
+// The last is exact: integrating m v dv = -K d^n (1 + chi v / v0) dd over one free impact (v from
+// v0 to -e v0 while d goes from 0 and back to 0, so the right side integrates to 0) gives
+// int v / (1 + chi v / v0) dv = 0, whose primitive gives the relation above; it holds for every
+// exponent n, stiffness, mass and speed (above velocity_floor). The others approximate it (their
+// effective restitution drifts from e as e falls: docs/reference/mechanism/contact-and-friction.md).
 // Decisions (docs/reference/mechanism/contact-and-friction.md):
 //  - The force is clamped at 0: near release the dissipative term can exceed the elastic one
 //    (delta_rate < -delta_rate_impact / chi) and would pull the bodies together; contacts only push.
@@ -28,7 +34,7 @@
 
 namespace mechanism {
 
-enum class NormalContactLaw { hertz, hunt_crossley, lankarani_nikravesh, flores, hu_guo, gonthier };
+enum class NormalContactLaw { hertz, hunt_crossley, lankarani_nikravesh, flores, hu_guo, gonthier, exact_restitution };
 
 struct ContactLawParameters {
   NormalContactLaw law = NormalContactLaw::lankarani_nikravesh;  // the seed's Eq. (10)
@@ -43,6 +49,12 @@ struct ContactLawParameters {
 // chi in F = K d^n (1 + chi * d_rate / d_rate_impact) (table above); throws InvalidParameter
 // ("restitution") unless 0 < e <= 1. Every law gives chi = 0 at e = 1.
 double hysteresis_factor(NormalContactLaw law, double restitution);
+
+// The chi whose free impact rebounds with exactly e (exact_restitution above): the root of
+// chi - ln(1 + chi) + chi e + ln(1 - chi e) = 0 in ((1 - e) / e, 1 / e), where that function falls
+// from positive to -infinity (it rises on (0, (1 - e)/e), its only other zero being 0); bisection to
+// the last bit. 0 at e = 1. Throws InvalidParameter ("restitution") unless 0 < e <= 1.
+double exact_hysteresis_factor(double restitution);
 
 // Normal force magnitude (N) for penetration > 0 (m), penetration_rate (m/s, > 0 approaching) and
 // the impact velocity latched at contact onset (its magnitude, floored at velocity_floor).

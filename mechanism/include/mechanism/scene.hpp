@@ -44,9 +44,16 @@ struct Slider {
   Material material;
 };
 
+// The crank: driven at a constant speed (the seed), or free: its angle is then a coordinate that
+// starts at initial_angle with the rate speed_rpm, and no torque acts on it (Flores, Leine &
+// Glocker 2010's free mechanism, which starts from initial speeds and runs down under its contacts
+// and gravity). period() stays 60 / speed_rpm, the nominal revolution that fixes RK4's step; a free
+// crank has no stroboscopic section and no crank-period map (run.stroboscopic and
+// `mechanism lyapunov` refuse it).
 struct Driver {
-  double speed_rpm = 5000.0;  // constant crank speed
+  double speed_rpm = 5000.0;  // constant crank speed; a free crank's initial speed
   double initial_angle = 0.0;  // crank angle at t = 0
+  bool free = false;           // no driver: the crank angle is a coordinate
   double angular_speed() const;  // rad/s
   double period() const;         // s, one crank revolution
 };

@@ -31,7 +31,8 @@ namespace mechanism {
 
 struct SceneLyapunovOptions {
   int exponents = 0;                 // k leading exponents; 0: all of them (the phase-space dimension)
-  double perturbation = 1e-8;        // delta, relative to each coordinate's scale
+  // delta, relative to each coordinate's scale; at least the floor (perturbation_digits below)
+  double perturbation = 1e-8;
   std::size_t transient_periods = 20;  // periods that align the directions (after run.transient)
   std::size_t periods = 200;         // periods averaged
   // Renormalisations per crank period: the separations must stay small within one interval, and
@@ -46,13 +47,28 @@ struct SceneLyapunovOptions {
   void validate() const;             // throws InvalidParameter naming the option
 };
 
+// The perturbation's floor. A difference quotient keeps about three digits only where the
+// separation is a thousand times the rounding it is computed through: each coordinate is stored to
+// machine epsilon times its magnitude, and each integrator step rounds it again, so after the n steps
+// of one interval the rounding is at most n epsilon |x_i|. In scaled coordinates the floor is
+//   perturbation_digits x epsilon x n x max_i max_t |x_i(t)| / scale_i,
+// the maximum over the sampled period, taken as at least 1 (for a coordinate that moves,
+// max |x_i| >= its root mean square >= its standard deviation anyway), so the floor is never below
+// min_perturbation, which validate() refuses before any integration. scene_lyapunov refuses a
+// perturbation below the scene's floor (InvalidParameter naming it). Measured on the built-in scene
+// (docs/reference/mechanism/lyapunov.md): the floor is 2.4e-10, and the exponents drift upward
+// below about 1e-9 as the rounding takes over.
+inline constexpr double perturbation_digits = 1e3;
+inline constexpr double min_perturbation = perturbation_digits * std::numeric_limits<double>::epsilon();
+
 // A separation that grows beyond this (in scaled coordinates) within one interval has left the
 // linear range of most contacts: the result's status is then `nonlinear`.
 inline constexpr double max_linear_separation = 1e-3;
 
 struct SceneLyapunov {
-  // completed (message notes directions that collapsed: bristles reset at release make the map
-  // non-invertible, and those exponents are -inf); nonlinear (see max_linear_separation: repeat with
+  // completed (every exponent finite); not_finite (some exponent is -inf or NaN: a direction
+  // collapsed to zero within an interval, which the bristles' reset at release does, as the map is
+  // not invertible there; message names them and why); nonlinear (see max_linear_separation: repeat with
   // a smaller perturbation); invariant_subspace (a coordinate did not move: the orbit is confined to a subspace, such as a
   // level slider without friction, and the exponents are those of that set and of the growth
   // transverse to it); trajectory_failed (a period could not be integrated: message says why; no
@@ -64,6 +80,12 @@ struct SceneLyapunov {
   double period = 0.0;                   // s, one crank period (one iteration)
   std::size_t periods = 0;               // periods averaged
   double perturbation = 0.0;
+  // The floor the perturbation was checked against (perturbation_digits above), its parts: the
+  // most integrator steps in one interval and the largest |coordinate| / scale, with its name.
+  double perturbation_floor = 0.0;
+  std::size_t steps_per_interval = 0;
+  double largest_scaled_coordinate = 0.0;
+  std::string largest_scaled_name;
   double largest_separation = 0.0;       // delta times the largest growth within one interval
   std::vector<double> exponents;         // 1/s, lambda_j = mu_j / T, in QR order
   // 1/s: a direction that contracts faster than this loses all its digits within one interval
@@ -87,5 +109,13 @@ struct SceneLyapunov {
 double kaplan_yorke_dimension(std::vector<double> exponents);
 
 SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& options = {});
+
+// The status and message of a run that was not cut short, from its exponents, collapse counts and
+// largest separation (scene_lyapunov's last step, apart so that each rule can be tested): not_finite
+// when any exponent is -inf or NaN (before every other rule: such a run is never completed; the
+// message names the exponents, and blames the bristle reset only where the scene has bristles,
+// `bristles`), then nonlinear, then invariant_subspace (`still` names the coordinates that did not
+// move; empty: none), else completed.
+void assign_status(SceneLyapunov& result, const std::string& still, bool bristles);
 
 }  // namespace mechanism

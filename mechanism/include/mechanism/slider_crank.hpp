@@ -5,6 +5,7 @@
 // memory its laws need (the impact velocity latched at onset; the LuGre bristle deflection).
 //
 // Coordinates (when present, in this order):
+//   crank_angle                    theta_2, only when the crank is free (driver.free)
 //   crank_pivot_x, crank_pivot_y   crank-ground clearance: the crank's journal centre
 //   conrod_pin_x, conrod_pin_y     crank-conrod clearance: the conrod's bearing centre at its first pin
 //   conrod_angle                   theta_3; dependent (not a coordinate) when the slider is ideally
@@ -12,7 +13,7 @@
 //   slider_x, slider_y             conrod-slider clearance: the slider's centre (slider_y only when
 //                                  the translational joint has clearance)
 //   slider_angle                   translational clearance: theta_4
-// The crank turns at constant speed (its angle is prescribed). The seed's scene (translational
+// The crank turns at constant speed (its angle is prescribed), unless it is free. The seed's scene (translational
 // clearance only) integrates conrod_angle and slider_angle: seed Eq. 27.
 //
 // Continuous state x = (q, q_dot, W_drive, W_contact, z): W_drive and W_contact integrate the work
@@ -210,7 +211,7 @@ class SliderCrank {
 
   Scene scene_;
   int n_ = 0;
-  int idx_crank_pivot_ = -1, idx_conrod_pin_ = -1, idx_conrod_angle_ = -1;
+  int idx_crank_angle_ = -1, idx_crank_pivot_ = -1, idx_conrod_pin_ = -1, idx_conrod_angle_ = -1;
   int idx_slider_x_ = -1, idx_slider_y_ = -1, idx_slider_angle_ = -1;
   bool slider_clearance_ = false;
   double omega_ = 0.0;

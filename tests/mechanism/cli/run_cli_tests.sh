@@ -123,6 +123,14 @@ expect 3 "is a directory, not a scene file" -- simulate -q "$work"
 expect 2 "unknown command 'foo'; the commands are: scene, simulate" -- foo
 expect 2 "unknown command 'foo'" -- foo --help
 
+# A free crank (the Flores-Leine-Glocker scene file) has no period: no stroboscopic rows, no period map.
+flg="$(dirname "$0")/../../../mechanism/scenes/flores_leine_glocker_free.toml"
+expect 3 "run.stroboscopic = true: needs a driven crank" -- simulate -q "$flg" --stroboscopic --set run.duration=0.001
+expect 3 "driver.free = true: has no crank-period map" -- lyapunov -q "$flg" --periods 10
+"$m" simulate -q "$flg" --set run.duration=0.01 --json -o /dev/null > "$work/flg.json" 2> "$work/err" ||
+  fail "simulate the free Flores-Leine-Glocker scene: $(head -c 300 "$work/err")"
+grep -q '"crank_angle"' "$work/flg.json" || fail "the free crank's angle is not a coordinate"
+
 # mechanism lyapunov: the exponents from the equations (docs/reference/mechanism/lyapunov.md). A short run of
 # the tilted, dissipative audit scene: JSON keys, one exponent per phase coordinate (conrod and
 # slider angles and their rates), the table's rows (one per period averaged), and refusals.
@@ -131,7 +139,7 @@ tilted=(--set joint.slider.model=line --set joint.slider.friction.law=none --set
 "$m" lyapunov -q "${tilted[@]}" --periods 10 --transient-periods 2 --json > "$work/lyap.json" 2> "$work/err" ||
   fail "lyapunov --json: $(head -c 300 "$work/err")"
 for key in status exponents standard_error exponents_per_period resolution_limit kaplan_yorke kaplan_yorke_section collapsed coordinates \
-  scale period periods perturbation largest_separation wall_seconds; do
+  scale period periods perturbation perturbation_floor steps_per_interval largest_scaled_coordinate largest_separation wall_seconds; do
   grep -q "\"$key\":" "$work/lyap.json" || fail "lyapunov --json lacks $key"
 done
 grep -q '"status": "completed"' "$work/lyap.json" || fail "lyapunov: the tilted scene did not complete: $(head -c 300 "$work/lyap.json")"
@@ -148,11 +156,25 @@ grep -q '^# Kaplan-Yorke dimension: none' "$work/lyap.tsv" || fail "lyapunov -k 
 grep -qiw 'nan' "$work/lyap.tsv" && fail "lyapunov -k 1 printed NaN"
 expect 3 "periods = 5: must be >= 10" -- lyapunov -q --periods 5
 expect 3 "perturbation = 0: must be in (0, 1)" -- lyapunov -q --perturbation 0
+# Below what the state resolves: refused with the floor named. 1e-16 used to complete with every
+# exponent -inf; 1e-11 gave lambda_1 twice the default's. 1e3 epsilon bounds every floor (refused
+# before any integration); the built-in scene's floor (240 RK4 steps per interval, the largest
+# |coordinate| / scale about 4.5) is about 2.4e-10.
+expect 3 "perturbation = .*: is below the floor 2.22e-13" -- lyapunov -q --perturbation 1e-16
+expect 3 "perturbation = .*: is below this scene's floor 2.[0-9]*e-10: 1e3 x machine epsilon .* x 240 integrator steps per interval" -- \
+  lyapunov -q --periods 10 --transient-periods 2 --perturbation 1e-11
 expect 3 "rigid" -- lyapunov -q --set joint.slider.type=ideal
 expect 3 "exponents = 9: must be between 1 and the phase-space dimension" -- lyapunov -q --periods 10 -k 9
 "$m" lyapunov -q --periods -1 > /dev/null 2> "$work/err"
 code=$?
 [[ $code -eq 2 || $code -eq 3 ]] || fail "lyapunov --periods -1 exited $code: $(head -c 300 "$work/err")"
+
+# The closed-form benchmark prints one row per method; its periodic orbit's exponents agree.
+"$m" impact-oscillator --periods 200 > "$work/osc.tsv" 2> "$work/err" || fail "impact-oscillator: $(head -c 300 "$work/err")"
+for row in closed_form saltation finite_differences; do
+  grep -q "^$row	" "$work/osc.tsv" || fail "impact-oscillator: no $row row"
+done
+expect 3 "restitution = 0: must be in (0, 1]" -- impact-oscillator --restitution 0
 
 if ((failures > 0)); then
   echo "$failures mechanism command check(s) failed" >&2

@@ -10,10 +10,13 @@
 //  - The estimate does not depend on the perturbation inside its linear range.
 //  - A level slider without friction stays level: the method says the orbit is in an invariant
 //    subspace instead of reporting its transverse growth as the attractor's exponents.
+//  - A perturbation below what the state resolves is refused with the floor named, and a run whose
+//    exponents are not all finite is never `completed`.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -100,6 +103,84 @@ TEST(SceneLyapunov, RefusesARigidMechanismAndImpossibleOptions) {
   o = {};
   o.exponents = 99;
   EXPECT_THROW(scene_lyapunov(read_scene(""), o), InvalidParameter);
+}
+
+// The floor (scene_lyapunov.hpp, perturbation_digits) is 1e3 epsilon times the steps of one interval
+// times the largest |coordinate| / scale; its parts are recomputed here from the result. Below it the
+// run is refused and the message names the floor; 1e-16 (which used to complete with every exponent
+// -inf) is refused before any integration (1e3 epsilon = 2.2e-13 bounds every scene's floor).
+TEST(SceneLyapunov, RefusesAPerturbationBelowTheStateResolutionAndNamesTheFloor) {
+  const SceneLyapunov ok = run(tilted("0.5"));
+  ASSERT_EQ(ok.status, "completed") << ok.message;
+  // RK4 on the scene's fixed grid: 1e-6 s steps, T/50 = 2.4e-4 s per interval.
+  EXPECT_EQ(ok.steps_per_interval, 240u);
+  // The tilted slider's own coordinates move, so the largest ratio is a coordinate's, above 1.
+  EXPECT_GT(ok.largest_scaled_coordinate, 1.0);
+  EXPECT_FALSE(ok.largest_scaled_name.empty());
+  const double floor = 1e3 * std::numeric_limits<double>::epsilon() * 240.0 * ok.largest_scaled_coordinate;
+  EXPECT_DOUBLE_EQ(ok.perturbation_floor, floor);
+  EXPECT_LT(ok.perturbation_floor, 1e-8);  // the default stays above it
+  try {
+    run(tilted("0.5"), 0.5 * floor);
+    ADD_FAILURE() << "a perturbation of half the floor ran";
+  } catch (const InvalidParameter& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("perturbation"), std::string::npos) << m;
+    EXPECT_NE(m.find("below this scene's floor"), std::string::npos) << m;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", floor);
+    EXPECT_NE(m.find(text), std::string::npos) << m << " lacks " << text;
+    EXPECT_NE(m.find("240 integrator steps"), std::string::npos) << m;
+  }
+  for (double tiny : {1e-16, 1e-13}) {
+    try {
+      run(tilted("0.5"), tiny);
+      ADD_FAILURE() << "perturbation " << tiny << " ran";
+    } catch (const InvalidParameter& e) {
+      EXPECT_NE(std::string(e.what()).find("below the floor 2.22e-13"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The status rules on results made by hand (property: a run with a non-finite exponent is never
+// completed, whatever its other numbers; -inf is what a collapsed direction gives, NaN what a
+// failed mean would). The old rule reported -inf exponents as `completed` with a message blaming
+// the bristles even where the scene had none (a run at perturbation 1e-16 did).
+TEST(SceneLyapunov, ARunWithANonFiniteExponentIsNeverCompleted) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  SceneLyapunov r;
+  r.exponents = {734.0, -120.0};
+  r.collapsed = {0, 0};
+  assign_status(r, "", true);
+  EXPECT_EQ(r.status, "completed");
+  EXPECT_TRUE(r.message.empty()) << r.message;
+  for (const auto& [exponents, collapsed] :
+       {std::pair{std::vector<double>{-inf, -inf}, std::vector<std::size_t>{10, 10}},
+        std::pair{std::vector<double>{734.0, -inf}, std::vector<std::size_t>{0, 3}},
+        std::pair{std::vector<double>{nan, -120.0}, std::vector<std::size_t>{0, 0}}}) {
+    for (bool bristles : {true, false}) {
+      r = {};
+      r.exponents = exponents;
+      r.collapsed = collapsed;
+      r.largest_separation = 0.5;  // would be `nonlinear` too: not_finite comes first
+      assign_status(r, "slider_angle", bristles);
+      EXPECT_EQ(r.status, "not_finite") << r.message;
+      EXPECT_NE(r.message.find("not finite"), std::string::npos) << r.message;
+      const bool blames_bristles = r.message.find("bristle deflections reset") != std::string::npos;
+      EXPECT_EQ(blames_bristles, bristles && (collapsed[0] + collapsed[1]) > 0) << r.message;
+      if (!bristles && collapsed[1] > 0) {
+        EXPECT_NE(r.message.find("rounding"), std::string::npos) << r.message;
+      }
+    }
+  }
+  r = {};
+  r.exponents = {734.0, -120.0};
+  r.largest_separation = 2e-3;
+  assign_status(r, "", true);
+  EXPECT_EQ(r.status, "nonlinear");
+  r.largest_separation = 0.0;
+  assign_status(r, "slider_angle", false);
+  EXPECT_EQ(r.status, "invariant_subspace");
 }
 
 TEST(SceneLyapunov, KaplanYorkeDimension) {

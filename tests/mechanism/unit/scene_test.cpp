@@ -223,7 +223,8 @@ TEST(Scene, TiltedStartIsReadAndChecked) {
 TEST(Scene, AcceptsEveryLawByItsOwnName) {
   // The scene reads the law names from the law modules; every law must be reachable from a scene.
   for (auto law : {NormalContactLaw::hertz, NormalContactLaw::hunt_crossley, NormalContactLaw::lankarani_nikravesh,
-                   NormalContactLaw::flores, NormalContactLaw::hu_guo, NormalContactLaw::gonthier}) {
+                   NormalContactLaw::flores, NormalContactLaw::hu_guo, NormalContactLaw::gonthier,
+                   NormalContactLaw::exact_restitution}) {
     const Scene s = read_scene("", {"joint.slider.contact.law=" + std::string(to_string(law))});
     EXPECT_EQ(s.slider_guide.contact.law, law);
   }

@@ -407,6 +407,15 @@ TEST(Sweep, RefusesImpossibleSpecs) {
   spec.analyse = true;
   spec.analysis.periods = 10;
   EXPECT_THROW(spec.validate(), study::StudyError);
+  // A free crank has no revolution to sample at.
+  spec = short_spec();
+  spec.overrides.push_back("driver.free=true");
+  EXPECT_THROW(spec.validate(), study::StudyError);
+  // A Lyapunov perturbation below 1e3 machine epsilon: no scene resolves it.
+  spec = short_spec();
+  spec.lyapunov = true;
+  spec.lyapunov_options.perturbation = 1e-16;
+  EXPECT_THROW(spec.validate(), study::StudyError);
 }
 
 TEST(Sweep, AnalysisDimensionRange) {
