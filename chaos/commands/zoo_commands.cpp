@@ -214,7 +214,7 @@ ZooRun run_zoo(const ZooParams& params,
        << "times sum to " << num(sum, 4) << " s";
   }
   md << ".\n\n"
-     << "Bands, fixed before any run (zoo_suite.hpp): D2 within +-0.1 of the attractor's own D2 at the same N, "
+     << "Bands, fixed before any run (zoo_suite.hpp): D2 within 0.1 of the attractor's own D2 and its interval at the same N, "
      << "Theiler window and scales (the plateau of the full state's correlation sums from the equations, "
      << "zoo_state_d2.hpp), else within +-0.1 of a cited literature D2, else not above "
      << "D_KY + 0.1 (D_KY from the equations); lambda_1 within 10% of lambda_1 from the equations (`chaos spectrum`); "

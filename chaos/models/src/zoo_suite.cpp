@@ -342,8 +342,9 @@ ZooEstimate not_run(const std::string& why) {
 }
 
 // The D2 references of a row at N = n for each Theiler window: the plateau of the state's own
-// correlation sums over its first n samples (zoo_state_d2.hpp), with the band they give (+-0.1 of
-// the reference); where the state gives no value, the case's band from the literature or D_KY.
+// correlation sums over its first n samples (zoo_state_d2.hpp), with the band they give (within 0.1
+// of the reference's interval); where the state gives no value, the case's band from the literature
+// or D_KY.
 struct D2Reference {
   ZooEstimate reference;
   ZooBand band;
@@ -367,9 +368,12 @@ std::vector<D2Reference> d2_references(const std::vector<std::vector<double>>& s
       out[q].band.source = "the state shows no plateau (" + e.reason + "); " + fallback.source;
       continue;
     }
-    out[q].band.accepted = {Interval{*e.value - 0.1, *e.value + 0.1}};
-    out[q].band.source = "the state's own D2 = " + fmt(*e.value) + " (" + to_string(e.status) + ") at N = " +
-                         std::to_string(n) + ", w = " + std::to_string(windows[q]) + ", +-0.1";
+    // The reference is the plateau with its own interval: within 0.1 of that interval.
+    const Interval i = e.interval.value_or(Interval{*e.value, *e.value});
+    out[q].band.accepted = {Interval{i.low - 0.1, i.high + 0.1}};
+    out[q].band.source = "the state's own D2 = " + fmt(*e.value) + " [" + fmt(i.low) + ", " + fmt(i.high) + "] (" +
+                         to_string(e.status) + ") at N = " + std::to_string(n) + ", w = " + std::to_string(windows[q]) +
+                         ", +-0.1";
   }
   return out;
 }
