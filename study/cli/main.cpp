@@ -111,12 +111,9 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (root) app.exit(e);
     return e.get_exit_code() == 0 ? ok : usage_error;
-  } catch (const study::StudyIoError& e) {  // an output file refused while parsing (outputs.hpp)
+  } catch (const study::StudyError& e) {  // an output file refused while parsing is of kind io (outputs.hpp)
     if (root) std::cerr << "study: " << e.what() << "\n";
-    return io_error;
-  } catch (const study::StudyError& e) {
-    if (root) std::cerr << "study: " << e.what() << "\n";
-    return invalid_request;
+    return e.kind() == study::StudyError::Kind::io ? io_error : invalid_request;
   }
   try {
     if (pipeline_cmd->parsed()) {
@@ -154,7 +151,8 @@ int run(int argc, char** argv) {
         for (const auto& d : store->discarded()) std::cerr << "study: recomputing " << d << "\n";
         return true;
       } catch (const std::exception& e) {
-        if (dynamic_cast<const study::StudyIoError*>(&e)) store_failure = io_error;
+        if (const auto* s = dynamic_cast<const study::StudyError*>(&e); s && s->kind() == study::StudyError::Kind::io)
+          store_failure = io_error;
         std::cerr << "study: " << e.what() << "\n";
         return false;
       }
@@ -178,12 +176,9 @@ int run(int argc, char** argv) {
     study::SweepProgress progress;
     try {
       progress = study::run_sweep(spec, *store, exec);
-    } catch (const study::StudyIoError& e) {
-      std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
-      failure = io_error;
     } catch (const study::StudyError& e) {
       std::cerr << "study: rank " << mpi.rank() << ": " << e.what() << "\n";
-      failure = invalid_request;
+      failure = e.kind() == study::StudyError::Kind::io ? io_error : invalid_request;
     } catch (const std::exception& e) {
       std::cerr << "study: internal error on rank " << mpi.rank() << ": " << e.what() << "\n";
       failure = internal_error;
@@ -259,12 +254,9 @@ int run(int argc, char** argv) {
                 << "); --max-delay, --max-dimension and the analysed series (--analysis-periods, "
                    "--analysis-interval) decide what it needs\n";
     return failed || no_analysis ? points_failed : ok;
-  } catch (const study::StudyIoError& e) {
-    std::cerr << "study: " << e.what() << "\n";
-    return io_error;
   } catch (const study::StudyError& e) {
     std::cerr << "study: " << e.what() << "\n";
-    return invalid_request;
+    return e.kind() == study::StudyError::Kind::io ? io_error : invalid_request;
   } catch (const mechanism::InvalidParameter& e) {
     std::cerr << "study: invalid scene: " << e.what() << "\n";
     return invalid_request;

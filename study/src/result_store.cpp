@@ -134,7 +134,8 @@ int take_lock(const fs::path& dir) {
   if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size())) {
     const int error = errno ? errno : EIO;  // a short write sets none
     ::close(fd);
-    throw StudyIoError("-o", path.string(), std::string("cannot be written (") + std::strerror(error) + ")");
+    throw StudyError("-o", path.string(), std::string("cannot be written (") + std::strerror(error) + ")",
+                     StudyError::Kind::io);
   }
   return fd;
 }
@@ -145,7 +146,7 @@ void write_atomically(const fs::path& path, const std::string& text) {
   try {
     safe_output::write_file(path.string(), text);
   } catch (const safe_output::WriteError& e) {
-    throw StudyIoError(e.what());  // exit 4, as every input/output failure of the study
+    throw StudyError(e.what(), StudyError::Kind::io);  // exit 4, as every input/output failure of the study
   }
 }
 

@@ -1,24 +1,27 @@
 #pragma once
-// The exceptions of the study layer: a refused request, naming what was refused, the value and
-// the rule (as mechanism::InvalidParameter and chaos::InvalidInput do for their libraries), and
-// its kind for a result that could not be written (exit 4 in docs/reference/study.md, not 3).
+// The exception of the study layer: a refused request, naming what was refused, the value and
+// the rule (as mechanism::InvalidParameter and chaos::InvalidInput do for their libraries), or a
+// result that could not be written (exit 4 in docs/reference/study.md, not 3).
 
 #include <stdexcept>
 #include <string>
 
 namespace study {
 
+// The one exception type of the study layer; its kind tells a refused request (exit 3) from a
+// result that could not be written (exit 4).
 class StudyError : public std::invalid_argument {
  public:
-  StudyError(const std::string& what, const std::string& value, const std::string& rule)
-      : std::invalid_argument(what + " = " + value + ": " + rule) {}
+  enum class Kind { refused, io };
+  StudyError(const std::string& what, const std::string& value, const std::string& rule, Kind kind = Kind::refused)
+      : std::invalid_argument(what + " = " + value + ": " + rule), kind_(kind) {}
   // A message that names the option and the value itself (cli_support's output checks).
-  explicit StudyError(const std::string& message) : std::invalid_argument(message) {}
-};
+  explicit StudyError(const std::string& message, Kind kind = Kind::refused)
+      : std::invalid_argument(message), kind_(kind) {}
+  Kind kind() const noexcept { return kind_; }
 
-class StudyIoError : public StudyError {
- public:
-  using StudyError::StudyError;
+ private:
+  Kind kind_;
 };
 
 }  // namespace study

@@ -65,7 +65,7 @@ class ResultStore {
 };
 
 // Writes `text` to `path` atomically (safe_output::write_file: a temporary file in the same
-// directory, every write checked, then rename); a failure is a StudyIoError naming the path and why.
+// directory, every write checked, then rename); a failure is a StudyError of kind io naming the path and why.
 void write_atomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace study
