@@ -232,7 +232,7 @@ void run(AnalyzeArgs& args) {
       out << "not run\t[" << not_run << "]\n";
       return;
     }
-    const Estimate e = per_time ? scaled(l->fit.estimate, 1.0 / *l->dt) : l->fit.estimate;
+    const Estimate e = l->estimate_per_time();
     out << estimate_text(e, per) << "\t[" << l->options.steps << " steps, m = " << l->dimensions.front() << ".."
         << l->dimensions.back() << "; " << to_string(l->fit.status) << ": " << l->fit.explanation;
     if (e.status != EstimateStatus::confident && !e.reason.empty()) out << "; answer: " << e.reason;

@@ -406,7 +406,7 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
     c["status"] = to_string(check->fit.status);
     c["lambda"] = optional_json(per_time ? check->lambda_per_time : check->fit.lambda);
     c["explanation"] = check->fit.explanation;
-    c["estimate"] = estimate_json(per_time ? scaled(check->fit.estimate, 1.0 / *in.dt) : check->fit.estimate);
+    c["estimate"] = estimate_json(check->estimate_per_time());
     if (check->options.method == LyapunovMethod::kantz) c["radius"] = check->curve.radius;
   } else {
     j["cross_check"] = nullptr;
@@ -609,7 +609,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     j["lambda_1"] = estimate_json(Estimate{EstimateStatus::none, std::nullopt, std::nullopt, a.stopped});
   }
   const auto lambda_json = [&](const std::optional<LyapunovResult>& l, const std::string& prefix) {
-    j[prefix + "_estimate"] = l ? estimate_json(per_time ? scaled(l->fit.estimate, 1.0 / *l->dt) : l->fit.estimate)
+    j[prefix + "_estimate"] = l ? estimate_json(l->estimate_per_time())
                                 : nlohmann::ordered_json(nullptr);
     if (l) {
       j[prefix] = optional_json(per_time ? l->lambda_per_time : l->fit.lambda);

@@ -177,6 +177,9 @@ struct LyapunovResult {
   std::optional<Interval> lambda_per_time_interval;
   std::optional<Interval> fit_range_time;   // the fitted stretch in time units, when dt is known
   std::vector<std::size_t> dimensions;      // the embedding dimensions fitted together (fit.dimensions)
+
+  // The fit's answer (LyapunovFit::estimate) per time unit when dt is known, else per sample.
+  Estimate estimate_per_time() const { return dt ? scaled(fit.estimate, 1.0 / *dt) : fit.estimate; }
 };
 
 // The shortest series the curves of `dimensions` embedding dimensions m, m+1, ... can be computed
