@@ -7,7 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
+#include <map>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "chaos/automatic_analysis.hpp"
@@ -18,15 +22,21 @@
 
 namespace {
 
+// Lorenz x of chaos::generate (RK4 h = 0.001 sampled every dt = 0.01 unless overridden).
+chaos::Trajectory lorenz(std::size_t length, std::map<std::string, double> parameters = {}) {
+  chaos::GenerateRequest request;
+  request.system = chaos::SystemKind::lorenz;
+  request.length = length;
+  request.parameters = std::move(parameters);
+  return chaos::generate(request);
+}
+
 TEST(SeriesAnalysis, LorenzDimensionAndDelay) {
   // Lorenz x (RK4 h = 0.001 sampled every 0.01), the chaos library's reference series: D2 = 2.05
   // (Grassberger & Procaccia 1983) and a mutual-information minimum near 0.16 time units.
-  chaos::GenerateRequest request;
-  request.system = chaos::SystemKind::lorenz;
   // 2*10^4 samples: the halves check needs each half to saturate on its own, and at 8000 samples
   // (the length before the check) Lorenz's halves of 4000 do not (docs/notes/zoo-notes.md, section 2).
-  request.length = 20000;
-  const chaos::Trajectory t = chaos::generate(request);
+  const chaos::Trajectory t = lorenz(20000);
   study::AnalysisOptions options;
   options.max_dimension = 8;
   const study::SeriesAnalysis a = study::analyse_series_with_curves(t.components[0], t.dt, options);
@@ -50,10 +60,7 @@ TEST(SeriesAnalysis, ReportsWhatChaosAnalyzeReports) {
   // delay, Theiler window, embedding dimension and D2 as chaos::analyse_series with `chaos analyze`'s
   // defaults (the property under test is equality; Lyapunov exponents, which the study does not
   // compute, are left out of the reference run to keep it short).
-  chaos::GenerateRequest request;
-  request.system = chaos::SystemKind::lorenz;
-  request.length = 20000;
-  const chaos::Trajectory t = chaos::generate(request);
+  const chaos::Trajectory t = lorenz(20000);
   chaos::AutomaticAnalysisOptions o;
   o.rosenstein = o.kantz = o.local_maps = false;
   const chaos::AutomaticAnalysis reference = chaos::analyse_series(t.components[0], t.dt, o);
@@ -76,13 +83,8 @@ TEST(SeriesAnalysis, TheDelaySearchGoesOnWhereTheFirstFindsNoMinimum) {
   // goes on to two Theiler windows (the library's rule, tests/unit/choose_test.cpp), and
   // the delay it finds is the coarse series' in time, within 15% (the grid of 16 boxes moves the
   // minimum by a few samples). Before, the point stopped at "no mutual-information minimum".
-  chaos::GenerateRequest request;
-  request.system = chaos::SystemKind::lorenz;
-  request.length = 20000;
-  const chaos::Trajectory coarse = chaos::generate(request);
-  request.length = 40000;
-  request.parameters = {{"dt", 0.001}};
-  const chaos::Trajectory fine = chaos::generate(request);
+  const chaos::Trajectory coarse = lorenz(20000);
+  const chaos::Trajectory fine = lorenz(40000, {{"dt", 0.001}});
   ASSERT_DOUBLE_EQ(fine.dt, 0.001);
   study::AnalysisOptions options;
   options.max_dimension = 3;  // the delay is what is tested; a small m keeps the rest short
@@ -104,10 +106,7 @@ TEST(SeriesAnalysis, TheSurrogateTestRunsWhenAskedInCaosEmbedding) {
   // (Cao's m, the MI delay, its Theiler window) on the first test_length samples: on Lorenz x,
   // deterministic (Lorenz 1963), the data rank first of 20 (chaos's LorenzIsRejected). Without it
   // the test is "not asked"; on a constant series it did not run, and says so.
-  chaos::GenerateRequest request;
-  request.system = chaos::SystemKind::lorenz;
-  request.length = 20000;
-  const chaos::Trajectory t = chaos::generate(request);
+  const chaos::Trajectory t = lorenz(20000);
   study::AnalysisOptions options;
   options.max_dimension = 8;
   options.surrogates = 19;
