@@ -257,7 +257,11 @@ void run(AnalyzeArgs& args) {
   }
   if (nonlinear) {
     const std::size_t ties = nonlinear->test.ties;
-    out << "nonlinearity\t" << (nonlinear->test.rejected ? "rejected" : "not rejected") << ": rank "
+    out << "nonlinearity\t"
+        << (nonlinear->test.rejected
+                ? std::string("rejected (not ") + null_hypothesis(nonlinear->options.surrogate.method) + ")"
+                : std::string("not rejected"))
+        << ": rank "
         << nonlinear->test.rank << " of " << nonlinear->surrogate_statistics.size() + 1
         << (ties ? ", tied with " + std::to_string(ties) + " surrogates" : std::string()) << ", significance "
         << number(nonlinear->test.significance) << "\t[prediction error " << number(nonlinear->data_statistic)

@@ -48,7 +48,8 @@ void run(NonlinearityArgs& args) {
       << " (1 = lowest)\n# ties = " << t.ties << " (surrogate statistics within a relative "
       << number(rank_tie_relative) << " of the data's)\n# significance = " << number(t.significance) << "\n# rejected = ";
   if (t.rejected)
-    out << "true: the data's statistic lies beyond every surrogate's";
+    out << "true: the data's statistic lies beyond every surrogate's: the series is not "
+        << null_hypothesis(r.options.surrogate.method);
   else if (held_by_ties)
     out << "false: the data's statistic ties with " << t.ties << " of " << count << " surrogates: a tie cannot reject";
   else

@@ -191,6 +191,15 @@ const char* to_string(SurrogateMethod method) noexcept {
   return "unknown";
 }
 
+const char* null_hypothesis(SurrogateMethod method) noexcept {
+  switch (method) {
+    case SurrogateMethod::fourier: return "a linear Gaussian process";
+    case SurrogateMethod::aaft:
+    case SurrogateMethod::iaaft: return "a linear Gaussian process seen through a static monotone function";
+  }
+  return "unknown";
+}
+
 const char* to_string(SurrogateStatus status) noexcept {
   switch (status) {
     case SurrogateStatus::exact: return "exact";

@@ -33,6 +33,9 @@ namespace chaos {
 enum class SurrogateMethod { fourier, aaft, iaaft };
 
 const char* to_string(SurrogateMethod method) noexcept;
+// What the method's surrogates realise, in words: the process a rejection says the data are not
+// (Theiler et al. 1992; Schreiber & Schmitz 1996 for the amplitude-adjusted ones).
+const char* null_hypothesis(SurrogateMethod method) noexcept;
 
 struct SurrogateOptions {
   SurrogateMethod method = SurrogateMethod::iaaft;
