@@ -54,8 +54,10 @@ Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimens
         e.include(*d2.d2 + 2.0 * *d2.d2_standard_error);
       }
       const std::string checks = include_checks(e, d2);
-      e.reason = "a plateau shared by m = " + std::to_string(d2.saturation_dimensions_used.front()) + ".." +
-                 std::to_string(d2.saturation_dimensions_used.back()) +
+      const auto& used = d2.saturation_dimensions_used;
+      e.reason = (used.empty() ? std::string("a shared plateau")
+                               : "a plateau shared by m = " + std::to_string(used.front()) + ".." +
+                                     std::to_string(used.back())) +
                  (d2.scaling_region ? " over " + radii_text(*d2.scaling_region) : std::string()) +
                  (checks.empty() ? std::string() : " (reproduced: " + checks + ")");
       for (const auto& other : d2.other_plateaus)

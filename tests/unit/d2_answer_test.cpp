@@ -73,6 +73,10 @@ TEST(D2Answer, AWideIntervalAnotherPlateauOrTheEckmannRuelleLimitMakeItRough) {
   near.other_plateaus = {D2Plateau{Interval{0.005, 0.015}, 1.18, Interval{1.16, 1.2}}};  // within 0.1: not a rival
   EXPECT_EQ(chaos::d2_answer(near).status, EstimateStatus::confident);
 
+  CorrelationDimensionResult bare = saturated(2.0, Interval{1.95, 2.05});
+  bare.saturation_dimensions_used.clear();  // a result built by hand: still an answer, no crash
+  EXPECT_EQ(chaos::d2_answer(bare).status, EstimateStatus::confident);
+
   CorrelationDimensionResult high = saturated(2.0, Interval{1.95, 2.05});
   high.exceeds_eckmann_ruelle = true;
   EXPECT_EQ(chaos::d2_answer(high).status, EstimateStatus::rough);
