@@ -278,7 +278,8 @@ ZooEstimate d2_estimate(const CorrelationDimensionResult& r, const ZooBand& band
   return e;
 }
 
-ZooEstimate d2_answer_estimate(const Estimate& a, const ZooBand& band) {
+// An answer (estimate.hpp) judged: confident values against the band.
+ZooEstimate answer_estimate(const Estimate& a, const ZooBand& band) {
   ZooEstimate e;
   e.value = a.value;
   e.interval = a.interval;
@@ -297,15 +298,6 @@ ZooEstimate lambda_estimate(const LyapunovFit& fit, std::optional<double> dt, co
   return e;
 }
 
-ZooEstimate answer_estimate(const LyapunovAnswer& a, const ZooBand& band) {
-  ZooEstimate e;
-  const Estimate per_time = a.per_time();
-  e.value = per_time.value;
-  e.interval = per_time.interval;
-  e.status = to_string(per_time.status);
-  e.verdict = judge(e.value, per_time.status == EstimateStatus::confident, band);
-  return e;
-}
 
 ZooEstimate local_maps_estimate(const LocalMapResult& r, const ZooBand& band) {
   ZooEstimate e;
@@ -452,7 +444,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       base.d2_reference = references.front().reference;
       base.d2_band = references.front().band;
       base.d2 = a.d2 ? d2_estimate(*a.d2, base.d2_band) : not_run("not_run");
-      base.d2_answer = a.d2_estimate ? d2_answer_estimate(*a.d2_estimate, base.d2_band) : not_run("not_run");
+      base.d2_answer = a.d2_estimate ? answer_estimate(*a.d2_estimate, base.d2_band) : not_run("not_run");
       base.rosenstein = a.rosenstein ? lambda_estimate(a.rosenstein->fit, c.dt, c.lambda_band) : not_run("not_run");
       base.kantz = a.kantz ? lambda_estimate(a.kantz->fit, c.dt, c.lambda_band) : not_run("not_run");
       base.local_maps = a.local_maps                   ? local_maps_estimate(*a.local_maps, c.lambda_band)
@@ -460,7 +452,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
                                                         : not_run("not_run");
       if (a.local_maps && a.local_maps->variants.front().dimension != base.dimension)
         base.local_maps.dimension = a.local_maps->variants.front().dimension;
-      base.lyapunov = a.lyapunov ? answer_estimate(*a.lyapunov, c.lambda_band) : not_run("not_run");
+      base.lyapunov = a.lyapunov ? answer_estimate(a.lyapunov->per_time(), c.lambda_band) : not_run("not_run");
       result.rows.push_back(base);
       if (!grid_point) continue;
 
@@ -538,7 +530,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           row.d2_band = references[wi].band;
           const CorrelationDimensionResult d2 = d2_at(m);
           row.d2 = d2_estimate(d2, row.d2_band);
-          row.d2_answer = d2_answer_estimate(d2_answer(d2), row.d2_band);
+          row.d2_answer = answer_estimate(d2_answer(d2), row.d2_band);
           const std::size_t k = m - m0;
           const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) -> std::optional<LyapunovFit> {
             if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return std::nullopt;
@@ -562,7 +554,8 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
           row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run("not_run: " + maps.refusal);
           row.lyapunov = answer_estimate(combine_lyapunov(r ? &r->estimate : nullptr, q ? &q->estimate : nullptr,
-                                                          maps.result ? &*maps.result : nullptr, c.dt),
+                                                          maps.result ? &*maps.result : nullptr, c.dt)
+                                             .per_time(),
                                          c.lambda_band);
           result.rows.push_back(row);
         }
