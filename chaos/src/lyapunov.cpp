@@ -1,3 +1,6 @@
+// Divergence curves of a delay embedding (Rosenstein; Kantz), and runs of both methods that share one
+// embedding, kd-tree and reference order. The fit is lyapunov_fit.cpp, the checks lyapunov_checks.cpp.
+
 #include "chaos/lyapunov.hpp"
 
 #include <algorithm>
@@ -7,11 +10,9 @@
 #include <functional>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
-#include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
 #include "chaos/detail/parallel.hpp"
@@ -20,8 +21,6 @@
 namespace chaos {
 
 namespace {
-
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
 
 // Reference points are handled in blocks of this many, whatever the thread count; each block's
 // partial sums are added in block order, so the result does not depend on the threads. Blocks are
@@ -223,23 +222,14 @@ const char* to_string(LyapunovStatus status) noexcept {
 }
 
 void LyapunovOptions::validate() const {
-  if (dimension < 1) refuse("Lyapunov exponent: embedding dimension m must be at least 1 (got m = 0)");
-  if (delay < 1) refuse("Lyapunov exponent: delay tau must be at least 1 sample (got tau = 0)");
-  if (steps < 1) refuse("Lyapunov exponent: the divergence must be followed for at least 1 step (got steps = 0)");
-  if (threads < 1) refuse("Lyapunov exponent: threads must be at least 1 (got 0)");
+  if (dimension < 1) refuse_parameter("Lyapunov exponent: embedding dimension m must be at least 1 (got m = 0)");
+  if (delay < 1) refuse_parameter("Lyapunov exponent: delay tau must be at least 1 sample (got tau = 0)");
+  if (steps < 1) refuse_parameter("Lyapunov exponent: the divergence must be followed for at least 1 step (got steps = 0)");
+  if (threads < 1) refuse_parameter("Lyapunov exponent: threads must be at least 1 (got 0)");
   if (radius && !(std::isfinite(*radius) && *radius > 0.0))
-    refuse("Lyapunov exponent (Kantz): the neighbourhood radius eps must be positive and finite (got eps = " +
+    refuse_parameter("Lyapunov exponent (Kantz): the neighbourhood radius eps must be positive and finite (got eps = " +
            detail::format_number(*radius) + ")");
-  if (min_neighbours < 1) refuse("Lyapunov exponent (Kantz): min_neighbours must be at least 1 (got 0)");
-}
-
-void LyapunovFitOptions::validate() const {
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    refuse("Lyapunov fit: tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
-  if (min_steps == 1) refuse("Lyapunov fit: a linear region needs at least 2 steps (got min_steps = 1)");
-  if (dimensions < 1) refuse("Lyapunov fit: at least 1 embedding dimension must be fitted (got dimensions = 0)");
-  if (!(min_rise >= 0.0) || !std::isfinite(min_rise))
-    refuse("Lyapunov fit: the minimum rise must be finite and >= 0 (got " + detail::format_number(min_rise) + ")");
+  if (min_neighbours < 1) refuse_parameter("Lyapunov exponent (Kantz): min_neighbours must be at least 1 (got 0)");
 }
 
 namespace {
@@ -413,217 +403,6 @@ DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOption
   return curve_on(e, options);
 }
 
-LyapunovFit fit_divergence(const DivergenceCurve& curve, const LyapunovFitOptions& options) {
-  return fit_divergence(std::vector<DivergenceCurve>{curve}, options);
-}
-
-LyapunovFit fit_divergence(const std::vector<DivergenceCurve>& curves, const LyapunovFitOptions& options) {
-  options.validate();
-  if (curves.empty()) refuse("Lyapunov fit: no divergence curve to fit");
-  for (const auto& c : curves)
-    if (c.step != curves.front().step) refuse("Lyapunov fit: the curves of one fit must cover the same steps");
-  LyapunovFit fit;
-  const DivergenceCurve& curve = curves.front();
-  const std::size_t last = curve.step.empty() ? 0 : curve.step.back();
-  // Each local slope spans at least one whole oscillation period, so a rotating flow's periodic
-  // modulation of the divergence averages out instead of breaking the tolerance.
-  const bool secants = options.period > 1 && options.half_width == 0;
-  fit.half_width = options.half_width != 0 ? options.half_width
-                   : secants               ? (options.period + 1) / 2
-                                           : std::max<std::size_t>(2, last / 25);
-  fit.min_steps = options.min_steps != 0 ? options.min_steps : std::max(3 * fit.half_width + 1, options.period + 1);
-  const ScalingRegionOptions region_options{options.tolerance, true, fit.min_steps, fit.half_width};
-  std::vector<double> x(curve.step.size());
-  for (std::size_t k = 0; k < x.size(); ++k) x[k] = static_cast<double>(curve.step[k]);
-  std::vector<std::vector<std::optional<double>>> slopes;
-  for (const auto& c : curves) {
-    if (secants) {
-      // Over a whole period the periodic part of the curve returns to its value, so the secant
-      // (y[k+after] - y[k-before]) / P with before + after = P (the mean of the short local slopes
-      // over the period) cancels it exactly; a least-squares line over the same window would not.
-      const std::size_t before = options.period / 2, after = options.period - before;
-      std::vector<std::optional<double>> secant(x.size());
-      for (std::size_t k = before; k + after < x.size(); ++k)
-        if (c.divergence[k - before] && c.divergence[k + after])
-          secant[k] = (*c.divergence[k + after] - *c.divergence[k - before]) / (x[k + after] - x[k - before]);
-      slopes.push_back(std::move(secant));
-    } else {
-      slopes.push_back(local_slopes(x, c.divergence, fit.half_width));
-    }
-  }
-  fit.local_slope = slopes.front();
-  std::ostringstream why;
-  for (const auto& c : curves)
-    if (c.references_used == 0) {
-      fit.status = LyapunovStatus::no_neighbours;
-      why << "none of the " << c.reference_points << " reference points has a neighbour"
-          << (c.method == LyapunovMethod::kantz ? " within eps" : "") << " outside the Theiler window";
-      fit.explanation = why.str();
-      fit.estimate.reason = fit.explanation;
-      return fit;
-    }
-  // Only a rising curve carries a positive exponent, and these methods estimate nothing else: the
-  // straight stretch is searched among steps with a positive local slope. (A saturated plateau
-  // whose slopes were exactly 0 would otherwise count as perfectly straight.)
-  std::vector<std::vector<std::optional<double>>> rising(slopes.size(), std::vector<std::optional<double>>(x.size()));
-  bool rises = false;
-  for (std::size_t c = 0; c < slopes.size(); ++c)
-    for (std::size_t k = 0; k < x.size(); ++k)
-      if (slopes[c][k] && *slopes[c][k] > 0.0) {
-        rising[c][k] = slopes[c][k];
-        rises = true;
-      }
-  if (!rises) {
-    fit.status = LyapunovStatus::not_diverging;
-    why << "no local slope of the divergence curve is positive: no exponential divergence";
-    fit.explanation = why.str();
-    fit.estimate.reason = fit.explanation;
-    return fit;
-  }
-  // Among the straight stretches, the one across which the curve rises most wins, and it must rise
-  // by min_rise: the growth of the separation is the evidence for an exponential divergence.
-  std::vector<double> level(x.size(), 0.0);
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    std::size_t n = 0;
-    for (const auto& c : curves)
-      if (c.divergence[k]) {
-        level[k] += *c.divergence[k];
-        ++n;
-      }
-    if (n > 0) level[k] /= static_cast<double>(n);
-  }
-  const auto search = [&](double tolerance, double min_rise) {
-    ScalingRegionOptions o = region_options;
-    o.tolerance = tolerance;
-    o.min_support_gain = min_rise;
-    return find_scaling_region(x, rising, o, level);
-  };
-  // The least-squares slope of each curve over steps [first, last] (indices into the curve).
-  const auto slopes_over = [&](std::size_t from, std::size_t to, double fallback) {
-    std::vector<double> out;
-    for (const auto& c : curves) out.push_back(fit_slope(x, c.divergence, from, to).value_or(fallback));
-    return out;
-  };
-  // The estimate from a stretch: the mean of the curves' slopes; the interval spans every curve's
-  // slope over the stretch and over each half of it (where the curve bends, the halves differ).
-  const auto estimate_over = [&](const ScalingRegion& r, EstimateStatus status, const std::string& reason) {
-    Estimate e;
-    const std::vector<double> whole = slopes_over(r.first, r.last, r.slope);
-    double sum = 0.0;
-    for (const double s : whole) sum += s;
-    const double value = sum / static_cast<double>(whole.size());
-    if (!(value > 0.0)) {
-      e.reason = "the straightest rising stretch (steps " + std::to_string(curve.step[r.first]) + ".." +
-                 std::to_string(curve.step[r.last]) + ") has a least-squares slope <= 0: no exponential divergence";
-      return e;
-    }
-    e.value = value;
-    for (const double s : whole) e.include(s);
-    const std::size_t mid = r.first + (r.last - r.first) / 2;
-    if (mid - r.first >= 2 && r.last - mid >= 2)
-      for (const auto& part : {std::pair{r.first, mid}, std::pair{mid, r.last}})
-        for (const double s : slopes_over(part.first, part.second, value)) e.include(s);
-    e.status = status;
-    e.reason = reason;
-    if (status == EstimateStatus::confident && e.relative_half_width() > 0.1) {
-      e.status = EstimateStatus::rough;
-      e.reason += "; the slopes over the stretch, its halves and the embedding dimensions spread by more than 10%";
-    }
-    return e;
-  };
-  // Where the strict rule finds no linear region, the answer comes from the loosest rung that has one.
-  const double loose_rise = std::min(1.0, options.min_rise);
-  const auto loose_estimate = [&](const std::string& strict_verdict) {
-    const struct {
-      double tolerance;
-      EstimateStatus status;
-    } rungs[] = {{options.tolerance, EstimateStatus::confident},
-                 {2 * options.tolerance, EstimateStatus::rough},
-                 {3 * options.tolerance, EstimateStatus::rough}};
-    for (const auto& rung : rungs)
-      if (const auto r = search(rung.tolerance, loose_rise)) {
-        std::ostringstream s;
-        s << "local slopes within " << rung.tolerance * 100 << "% over steps " << curve.step[r->first] << ".."
-          << curve.step[r->last] << ", rising by " << loose_rise << " e-fold or more (" << strict_verdict << ")";
-        fit.estimate = estimate_over(*r, rung.status, s.str());
-        if (fit.estimate.value) return;
-      }
-    fit.estimate = Estimate{};
-    fit.estimate.reason = strict_verdict + "; no stretch rising by " + format_number(loose_rise, Precision::title) +
-                          " e-fold has local slopes within " + format_number(300 * options.tolerance, Precision::title) +
-                          "% of their mean either";
-  };
-  const auto region = search(options.tolerance, options.min_rise);
-  if (!region) {
-    fit.status = LyapunovStatus::no_linear_region;
-    why << "no stretch of at least " << fit.min_steps << " steps rising by " << options.min_rise
-        << " e-folds or more has positive local slopes within " << options.tolerance * 100 << "% of their mean";
-    if (curves.size() > 1) why << " in all " << curves.size() << " embedding dimensions at once";
-    why << ": the divergence curve has no linear region";
-    if (curves.size() > 1) why << " that does not depend on m";
-    fit.explanation = why.str();
-    loose_estimate(std::string("strictly, ") + to_string(fit.status));
-    return fit;
-  }
-  fit.first_step = curve.step[region->first];
-  fit.last_step = curve.step[region->last];
-  double sum = 0.0, lo = region->slope_min, hi = region->slope_max, low_fit = INFINITY, high_fit = -INFINITY;
-  for (const double slope : slopes_over(region->first, region->last, region->slope)) {
-    fit.lambda_by_curve.push_back(slope);
-    sum += slope;
-    low_fit = std::min(low_fit, slope);
-    high_fit = std::max(high_fit, slope);
-  }
-  const double slope = sum / static_cast<double>(curves.size());
-  if (!(low_fit > 0.0)) {  // local slopes all positive but a least-squares line is not: refuse to guess
-    fit.status = LyapunovStatus::not_diverging;
-    why << "the straightest stretch (steps " << *fit.first_step << ".." << *fit.last_step << ") has slope "
-        << low_fit << " <= 0: no exponential divergence";
-    fit.first_step.reset();
-    fit.last_step.reset();
-    fit.lambda_by_curve.clear();
-    fit.explanation = why.str();
-    fit.estimate.reason = fit.explanation;
-    return fit;
-  }
-  if (high_fit - low_fit > options.tolerance * slope) {  // the dimensions disagree on the slope itself
-    fit.status = LyapunovStatus::no_linear_region;
-    why << "the embedding dimensions disagree on the slope over steps " << *fit.first_step << ".." << *fit.last_step
-        << " (" << low_fit << " to " << high_fit << " per sample, more than " << options.tolerance * 100
-        << "% apart)";
-    fit.first_step.reset();
-    fit.last_step.reset();
-    fit.lambda_by_curve.clear();
-    fit.explanation = why.str();
-    fit.estimate = estimate_over(*region, EstimateStatus::rough, "strictly, no_linear_region: " + fit.explanation);
-    return fit;
-  }
-  const double rise = slope * (x[region->last] - x[region->first]);
-  if (rise < options.min_rise) {
-    fit.status = LyapunovStatus::no_linear_region;
-    why << "the straightest stretch (steps " << *fit.first_step << ".." << *fit.last_step << ", slope " << slope
-        << " per sample) rises by only " << rise << " e-folds, fewer than the " << options.min_rise
-        << " needed to identify an exponential divergence (follow the curve longer with more steps, or it is "
-        << "a piece of the initial transient)";
-    fit.first_step.reset();
-    fit.last_step.reset();
-    fit.lambda_by_curve.clear();
-    fit.explanation = why.str();
-    loose_estimate(std::string("strictly, ") + to_string(fit.status));
-    return fit;
-  }
-  fit.status = LyapunovStatus::linear_region;
-  fit.lambda = slope;
-  fit.lambda_interval = Interval{std::min({lo, low_fit}), std::max({hi, high_fit})};
-  why << "local slopes agree within " << options.tolerance * 100 << "% over steps " << *fit.first_step << ".."
-      << *fit.last_step;
-  if (curves.size() > 1) why << " in " << curves.size() << " embedding dimensions";
-  if (options.period > 1) why << " (local slopes over " << 2 * fit.half_width + 1 << " steps: a whole oscillation period)";
-  fit.explanation = why.str();
-  fit.estimate = estimate_over(*region, EstimateStatus::confident, fit.explanation);
-  return fit;
-}
-
 std::size_t minimum_length(const LyapunovOptions& options, std::size_t dimensions) {
   const std::size_t highest = detail::add_sat(options.dimension, dimensions > 0 ? dimensions - 1 : 0);
   const std::size_t span = detail::mul_sat(highest > 0 ? highest - 1 : 0, options.delay);
@@ -643,14 +422,14 @@ bool same_embedding(const LyapunovOptions& a, const LyapunovOptions& b) {
 std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, const std::vector<LyapunovOptions>& runs,
                                                   const LyapunovFitOptions& fit, std::optional<double> dt) {
   if (dt && !(std::isfinite(*dt) && *dt > 0.0))
-    refuse("Lyapunov exponent: the sampling interval dt must be positive and finite (got dt = " +
+    refuse_parameter("Lyapunov exponent: the sampling interval dt must be positive and finite (got dt = " +
            detail::format_number(*dt) + ")");
   fit.validate();
   if (runs.empty()) return {};
   for (const LyapunovOptions& o : runs) {
     o.validate();
     if (!same_embedding(o, runs.front()))
-      refuse("Lyapunov exponent: runs that share their embeddings need the same m, delay, Theiler window, steps, norm "
+      refuse_parameter("Lyapunov exponent: runs that share their embeddings need the same m, delay, Theiler window, steps, norm "
              "and reference points");
   }
   const LyapunovOptions& options = runs.front();
@@ -709,217 +488,6 @@ LyapunovResult largest_lyapunov(std::span<const double> x, const LyapunovOptions
   return std::move(largest_lyapunov_runs(x, std::vector<LyapunovOptions>{options}, fit, dt).front());
 }
 
-namespace {
-
-std::string verdict(const char* name, const LyapunovFit& fit) {
-  std::ostringstream s;
-  s << name << " ";
-  if (fit.lambda)
-    s << "gives " << format_number(*fit.lambda, Precision::title) << " per sample (steps " << *fit.first_step << ".."
-      << *fit.last_step << ")";
-  else
-    s << "has " << to_string(fit.status);
-  return s.str();
-}
-
-void withdraw(LyapunovFit& fit, const std::string& why, LyapunovStatus status = LyapunovStatus::unconfirmed) {
-  fit.status = status;
-  fit.explanation = why + " (the estimate alone: " + fit.explanation + ")";
-  fit.lambda.reset();
-  fit.lambda_interval.reset();
-  fit.first_step.reset();
-  fit.last_step.reset();
-  fit.lambda_by_curve.clear();
-}
-
-void require_cross_check_tolerance(double tolerance) {
-  if (!(std::isfinite(tolerance) && tolerance > 0.0))
-    refuse("Lyapunov cross-check: the tolerance must be positive and finite (got " + detail::format_number(tolerance) + ")");
-}
-
-// Two exponents agree when they differ by at most `tolerance` times their mean.
-bool agree(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance * 0.5 * (a + b); }
-
-// The answers of two estimators of one series checked against each other: an answer the other does
-// not share (no value, or more than the tolerance apart) is rough. The intervals stay each
-// estimator's own; combine_lyapunov spans both.
-void check_estimates(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
-  Estimate& a = rosenstein.estimate;
-  Estimate& b = kantz.estimate;
-  if (!a.value && !b.value) return;
-  if (a.value && b.value) {
-    const double va = *a.value, vb = *b.value;
-    if (agree(va, vb, tolerance)) return;
-    const std::string why = "Rosenstein gives " + format_number(va, Precision::title) + " and Kantz " +
-                            format_number(vb, Precision::title) + " per sample, more than " +
-                            format_number(tolerance * 100, Precision::title) + "% apart";
-    a.downgrade(why);
-    b.downgrade(why);
-    return;
-  }
-  (a.value ? a : b).downgrade(std::string(a.value ? "Kantz" : "Rosenstein") + " finds no value (" +
-                              to_string((a.value ? kantz : rosenstein).status) + ")");
-}
-
-// An answer checked against the local-map exponent, the independent estimate: rough beside maps
-// that find the data not deterministic or not diverging, or whose value (consistent) or base
-// estimate (inconsistent) lies more than the tolerance away.
-void check_estimate(Estimate& e, const LocalMapResult& maps, double tolerance) {
-  if (!e.value) return;
-  const std::string name = "the local linear maps ";
-  switch (maps.status) {
-    case LocalMapStatus::not_deterministic:
-      e.downgrade(name + "leave " + format_number(maps.base.median_residual * 100, Precision::title) +
-                  "% of the neighbourhoods' image spread unexplained: not deterministic at the neighbours' scale, "
-                  "where noise slows the divergence");
-      return;
-    case LocalMapStatus::not_positive:
-      e.downgrade(name + "find no exponential divergence at the neighbourhoods' scale");
-      return;
-    case LocalMapStatus::consistent:
-      if (maps.lambda && !agree(*e.value, *maps.lambda, tolerance))
-        e.downgrade(name + "give " + format_number(*maps.lambda, Precision::title) + " per sample, more than " +
-                    format_number(tolerance * 100, Precision::title) + "% away");
-      return;
-    case LocalMapStatus::inconsistent:
-      // The variants spread, so their base estimate is only a rough third opinion: an answer it
-      // puts more than the tolerance away is rough (Ueda x at N = 10^5: Rosenstein and Kantz agree
-      // on 0.078, 24% below lambda_1, where the maps' base reads 0.095).
-      if (maps.base.maps > 0 && !agree(*e.value, maps.base.lambda, tolerance))
-        e.downgrade("the local linear maps' base estimate (their variants disagree) gives " +
-                    format_number(maps.base.lambda, Precision::title) + " per sample, more than " +
-                    format_number(tolerance * 100, Precision::title) + "% away");
-      return;
-  }
-}
-
-// A result whose fit was withdrawn loses its per-time values too.
-void withdraw_per_time(LyapunovResult& r) {
-  if (r.fit.lambda) return;
-  r.lambda_per_time.reset();
-  r.lambda_per_time_interval.reset();
-  r.fit_range_time.reset();
-}
-
-}  // namespace
-
-void cross_check(LyapunovFit& rosenstein, LyapunovFit& kantz, double tolerance) {
-  require_cross_check_tolerance(tolerance);
-  check_estimates(rosenstein, kantz, tolerance);
-  const bool r = rosenstein.status == LyapunovStatus::linear_region, k = kantz.status == LyapunovStatus::linear_region;
-  if (!r && !k) return;
-  if (r && k) {
-    if (agree(*rosenstein.lambda, *kantz.lambda, tolerance)) return;
-  }
-  std::ostringstream why;
-  why << "the two estimators disagree: " << verdict("Rosenstein", rosenstein) << ", " << verdict("Kantz", kantz);
-  if (r && k) why << ", more than " << tolerance * 100 << "% apart";
-  why << "; a slope only one estimator supports is not trusted";
-  if (r) withdraw(rosenstein, why.str());
-  if (k) withdraw(kantz, why.str());
-}
-
-void cross_check(LyapunovResult& rosenstein, LyapunovResult& kantz, double tolerance) {
-  cross_check(rosenstein.fit, kantz.fit, tolerance);
-  withdraw_per_time(rosenstein);
-  withdraw_per_time(kantz);
-}
-
-void cross_check(LyapunovFit& fit, LyapunovMethod method, const LocalMapResult& local_maps, double tolerance) {
-  require_cross_check_tolerance(tolerance);
-  check_estimate(fit.estimate, local_maps, tolerance);
-  if (fit.status != LyapunovStatus::linear_region) return;
-  const std::string name = method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz";
-  std::ostringstream why;
-  if (local_maps.status == LocalMapStatus::not_deterministic) {
-    // The nearest neighbours the divergence curves start from are the neighbourhoods the maps fit.
-    why << "the local linear maps leave " << format_number(local_maps.base.median_residual * 100, Precision::title)
-        << "% of their neighbourhoods' image spread unexplained (not_deterministic): at the scale of the nearest "
-        << "neighbours the data are not deterministic (measurement noise), and there the divergence curve "
-        << "rises more slowly than lambda_1 before it bends into saturation (" << verdict(name.c_str(), fit)
-        << "; Henon x with 1% noise reads 15% low by both Rosenstein and Kantz, which agree with each other)";
-    withdraw(fit, why.str());
-    return;
-  }
-  if (local_maps.status != LocalMapStatus::consistent || !local_maps.lambda) {
-    // Rosenstein and Kantz can agree with each other and both be wrong (both start from the same
-    // nearest neighbours): Sprott F x with 1% noise, m = 6, reads 15% low by both, halves agreeing,
-    // beside maps whose variants disagree (docs/notes/zoo-notes.md, section 4). So a slope needs the
-    // independent estimate's positive confirmation, not only the absence of a contradiction.
-    why << "the local linear maps do not confirm this slope: they are " << to_string(local_maps.status)
-        << (local_maps.status == LocalMapStatus::not_positive ? " (no exponential divergence at the neighbourhoods' scale)"
-                                                              : " (their variants disagree, so they give no value)")
-        << "; a divergence-curve slope is trusted only where the local-map exponent, consistent over its variants, "
-        << "agrees with it (" << verdict(name.c_str(), fit) << ")";
-    withdraw(fit, why.str());
-    return;
-  }
-  if (agree(*fit.lambda, *local_maps.lambda, tolerance)) return;
-  why << "the local-map exponent contradicts this slope: " << verdict(name.c_str(), fit) << ", local maps give "
-      << format_number(*local_maps.lambda, Precision::title) << " per sample (consistent over their variants), more than "
-      << format_number(tolerance * 100, Precision::title)
-      << "% apart; a divergence-curve slope that the local maps contradict is not trusted";
-  withdraw(fit, why.str());
-}
-
-void cross_check(LyapunovResult& result, const LocalMapResult& local_maps, double tolerance) {
-  cross_check(result.fit, result.options.method, local_maps, tolerance);
-  withdraw_per_time(result);
-}
-
-void cross_check_without_local_maps(LyapunovFit& fit, LyapunovMethod method, const std::string& refusal) {
-  if (fit.estimate.value) fit.estimate.downgrade("the local linear maps could not confirm it: " + refusal);
-  if (fit.status != LyapunovStatus::linear_region) return;
-  withdraw(fit, std::string("no local-map exponent to confirm this slope (") +
-                    (method == LyapunovMethod::rosenstein ? "Rosenstein" : "Kantz") +
-                    "): the local linear maps were not run: " + refusal +
-                    "; a divergence-curve slope is trusted only where the local maps confirm it");
-}
-
-void cross_check_without_local_maps(LyapunovResult& result, const std::string& refusal) {
-  cross_check_without_local_maps(result.fit, result.options.method, refusal);
-  withdraw_per_time(result);
-}
-
-void require_reproduced_by_halves(LyapunovFit& full, const LyapunovFit& first, const LyapunovFit& second,
-                                  double tolerance) {
-  require_cross_check_tolerance(tolerance);
-  if (full.estimate.value) {
-    // An answer that neither half gives, or that a half puts more than twice the tolerance away, is
-    // rough. A half is a record of half the length, whose value scatters more than the whole's: it
-    // checks the answer, and does not widen its interval.
-    const double value = *full.estimate.value;
-    bool some = false, apart = false;
-    for (const LyapunovFit* half : {&first, &second})
-      if (half->estimate.value) {
-        some = true;
-        apart = apart || !agree(value, *half->estimate.value, 2 * tolerance);
-      }
-    if (!some)
-      full.estimate.downgrade("neither half of the record gives a value");
-    else if (apart)
-      full.estimate.downgrade("a half of the record gives a value more than " +
-                              format_number(200 * tolerance, Precision::title) + "% away");
-  }
-  if (full.status != LyapunovStatus::linear_region) return;
-  const bool a = first.status == LyapunovStatus::linear_region, b = second.status == LyapunovStatus::linear_region;
-  const bool contradicted = (a && !agree(*full.lambda, *first.lambda, tolerance)) ||
-                            (b && !agree(*full.lambda, *second.lambda, tolerance));
-  if ((a || b) && !contradicted) return;
-  std::ostringstream why;
-  why << "the halves of the record do not reproduce this slope: " << verdict("the first half", first) << ", "
-      << verdict("the second half", second);
-  if (contradicted) why << ", more than " << tolerance * 100 << "% from the whole record's";
-  why << "; a straight stretch that no part of the record shows on its own is not trusted (a longer record may "
-      << "settle it)";
-  withdraw(full, why.str(), LyapunovStatus::not_reproduced);
-}
-
-void require_reproduced_by_halves(LyapunovResult& full, const LyapunovResult& first, const LyapunovResult& second,
-                                  double tolerance) {
-  require_reproduced_by_halves(full.fit, first.fit, second.fit, tolerance);
-  withdraw_per_time(full);
-}
 
 LyapunovResult largest_lyapunov_rosenstein(std::span<const double> x, LyapunovOptions options,
                                            const LyapunovFitOptions& fit, std::optional<double> dt) {

@@ -20,8 +20,6 @@ namespace chaos {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
-
 // The chain's maps are fitted in rounds of this many (in parallel, each map on its own), then the
 // tangent vector goes through them in order on one thread: the fits do not depend on the thread
 // count and the product is sequential, so the result is the same for any thread count. A round
@@ -96,18 +94,18 @@ const char* to_string(LocalMapStatus status) noexcept {
 }
 
 void LocalMapOptions::validate() const {
-  if (dimension < 1) refuse("Lyapunov exponent (local maps): embedding dimension m must be at least 1 (got m = 0)");
-  if (delay < 1) refuse("Lyapunov exponent (local maps): delay tau must be at least 1 sample (got tau = 0)");
-  if (threads < 1) refuse("Lyapunov exponent (local maps): threads must be at least 1 (got 0)");
+  if (dimension < 1) refuse_parameter("Lyapunov exponent (local maps): embedding dimension m must be at least 1 (got m = 0)");
+  if (delay < 1) refuse_parameter("Lyapunov exponent (local maps): delay tau must be at least 1 sample (got tau = 0)");
+  if (threads < 1) refuse_parameter("Lyapunov exponent (local maps): threads must be at least 1 (got 0)");
   if (neighbours != 0 && neighbours < detail::add_sat(dimension, 1))
-    refuse("Lyapunov exponent (local maps): an affine map in m = " + std::to_string(dimension) +
+    refuse_parameter("Lyapunov exponent (local maps): an affine map in m = " + std::to_string(dimension) +
            " dimensions needs at least m + 1 = " + std::to_string(dimension + 1) + " neighbours (got k = " +
            std::to_string(neighbours) + ")");
   if (!(max_residual > 0.0 && max_residual <= 1.0))
-    refuse("Lyapunov exponent (local maps): the residual threshold must lie in (0, 1] (got " +
+    refuse_parameter("Lyapunov exponent (local maps): the residual threshold must lie in (0, 1] (got " +
            detail::format_number(max_residual) + ")");
   if (!(cutoff > 0.0 && cutoff < 1.0))
-    refuse("Lyapunov exponent (local maps): the singular-value cutoff must lie in (0, 1) (got " +
+    refuse_parameter("Lyapunov exponent (local maps): the singular-value cutoff must lie in (0, 1) (got " +
            detail::format_number(cutoff) + ")");
 }
 
@@ -333,10 +331,10 @@ LocalMapResult local_maps_run(std::span<const double> x, const LocalMapOptions& 
                               double tolerance, const LocalMapEstimate* known_base,
                               std::optional<LocalMapEstimate>* next_dimension_base) {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    refuse("Lyapunov exponent (local maps): the agreement tolerance must be positive and finite (got " +
+    refuse_parameter("Lyapunov exponent (local maps): the agreement tolerance must be positive and finite (got " +
            detail::format_number(tolerance) + ")");
   if (dt && !(std::isfinite(*dt) && *dt > 0.0))
-    refuse("Lyapunov exponent (local maps): the sampling interval must be positive and finite (got " +
+    refuse_parameter("Lyapunov exponent (local maps): the sampling interval must be positive and finite (got " +
            detail::format_number(*dt) + ")");
   LocalMapResult result;
   result.dt = dt;

@@ -15,8 +15,6 @@ namespace chaos {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
-
 // Points whose future lies inside the series.
 std::size_t predicted_points(std::size_t n, const PredictionErrorOptions& o) {
   const std::size_t span = (o.dimension - 1) * o.delay + o.horizon;
@@ -117,12 +115,12 @@ const char* to_string(Alternative alternative) noexcept {
 }
 
 void PredictionErrorOptions::validate() const {
-  if (dimension < 1) refuse("prediction error: dimension must be at least 1 (got 0)");
-  if (delay < 1) refuse("prediction error: delay must be at least 1 sample (got 0)");
-  if (horizon < 1) refuse("prediction error: horizon must be at least 1 sample (got 0)");
-  if (neighbours < 1) refuse("prediction error: neighbours must be at least 1 (got 0)");
+  if (dimension < 1) refuse_parameter("prediction error: dimension must be at least 1 (got 0)");
+  if (delay < 1) refuse_parameter("prediction error: delay must be at least 1 sample (got 0)");
+  if (horizon < 1) refuse_parameter("prediction error: horizon must be at least 1 sample (got 0)");
+  if (neighbours < 1) refuse_parameter("prediction error: neighbours must be at least 1 (got 0)");
   if (norm != Norm::max && norm != Norm::euclidean)
-    refuse("prediction error: unknown norm " + std::to_string(static_cast<int>(norm)));
+    refuse_parameter("prediction error: unknown norm " + std::to_string(static_cast<int>(norm)));
 }
 
 double prediction_error(std::span<const double> x, const PredictionErrorOptions& o) {
@@ -154,7 +152,7 @@ double prediction_error(std::span<const double> x, const PredictionErrorOptions&
 
 double time_reversal_asymmetry(std::span<const double> x, std::size_t delay) {
   const std::string what = "time reversal asymmetry";
-  if (delay < 1) refuse(what + ": delay must be at least 1 sample (got 0)");
+  if (delay < 1) refuse_parameter(what + ": delay must be at least 1 sample (got 0)");
   require_length(x, delay + 1, what, "delay = " + std::to_string(delay) + " needs N > delay, so one increment exists");
   require_finite(x, what);
   double s2 = 0.0, s3 = 0.0;
@@ -171,28 +169,28 @@ double time_reversal_asymmetry(std::span<const double> x, std::size_t delay) {
 void NonlinearityTestOptions::validate() const {
   if (statistic != NonlinearityStatistic::time_reversal_asymmetry &&
       statistic != NonlinearityStatistic::prediction_error)
-    refuse("nonlinearity test: unknown statistic " + std::to_string(static_cast<int>(statistic)));
+    refuse_parameter("nonlinearity test: unknown statistic " + std::to_string(static_cast<int>(statistic)));
   if (alternative != Alternative::two_sided && alternative != Alternative::smaller &&
       alternative != Alternative::larger)
-    refuse("nonlinearity test: unknown alternative " + std::to_string(static_cast<int>(alternative)));
-  if (surrogates < 1) refuse("nonlinearity test: at least 1 surrogate is needed (got 0)");
+    refuse_parameter("nonlinearity test: unknown alternative " + std::to_string(static_cast<int>(alternative)));
+  if (surrogates < 1) refuse_parameter("nonlinearity test: at least 1 surrogate is needed (got 0)");
   if (alternative == Alternative::two_sided && surrogates < 2)
-    refuse("nonlinearity test: a two-sided test needs at least 2 surrogates (got 1): with one, the data's value lies "
+    refuse_parameter("nonlinearity test: a two-sided test needs at least 2 surrogates (got 1): with one, the data's value lies "
            "below or above it unless they tie, so every series would be rejected (size 2/(K+1) = 1)");
   if (surrogates > max_surrogates)
-    refuse("nonlinearity test: at most " + std::to_string(max_surrogates) + " surrogates (got " +
+    refuse_parameter("nonlinearity test: at most " + std::to_string(max_surrogates) + " surrogates (got " +
            std::to_string(surrogates) + ")");
-  if (time_reversal_delay < 1) refuse("nonlinearity test: time_reversal_delay must be at least 1 sample (got 0)");
+  if (time_reversal_delay < 1) refuse_parameter("nonlinearity test: time_reversal_delay must be at least 1 sample (got 0)");
   surrogate.validate();
   prediction.validate();
 }
 
 RankTest rank_test(double data_statistic, std::span<const double> surrogate_statistics, Alternative alternative) {
-  if (surrogate_statistics.empty()) refuse("rank test: no surrogate statistics given");
-  if (std::isnan(data_statistic)) refuse("rank test: the data's statistic is NaN");
+  if (surrogate_statistics.empty()) refuse_parameter("rank test: no surrogate statistics given");
+  if (std::isnan(data_statistic)) refuse_parameter("rank test: the data's statistic is NaN");
   for (std::size_t k = 0; k < surrogate_statistics.size(); ++k)
     if (std::isnan(surrogate_statistics[k]))
-      refuse("rank test: the statistic of surrogate " + std::to_string(k) + " is NaN");
+      refuse_parameter("rank test: the statistic of surrogate " + std::to_string(k) + " is NaN");
   RankTest r;
   for (const double s : surrogate_statistics) {
     // The header's tie rule; equal infinities tie, an infinity and a finite value do not.
@@ -209,7 +207,7 @@ RankTest rank_test(double data_statistic, std::span<const double> surrogate_stat
   // With one surrogate every untied rank is extreme on one side or the other: a two-sided test
   // that rejects every series, whatever it is (size 2/(K+1) = 1).
   if (alternative == Alternative::two_sided && k < 2)
-    refuse("rank test: a two-sided test needs at least 2 surrogate statistics (got 1): with one it rejects every "
+    refuse_parameter("rank test: a two-sided test needs at least 2 surrogate statistics (got 1): with one it rejects every "
            "untied series (size 2/(K+1) = 1)");
   r.rank = r.below + 1;
   const double sides = alternative == Alternative::two_sided ? 2.0 : 1.0;

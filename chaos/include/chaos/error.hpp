@@ -31,4 +31,9 @@ class InvalidInput : public std::invalid_argument {
   ErrorCode code_;
 };
 
+// Throws InvalidInput with ErrorCode::invalid_parameter: a parameter outside its domain.
+[[noreturn]] inline void refuse_parameter(const std::string& message) {
+  throw InvalidInput(ErrorCode::invalid_parameter, message);
+}
+
 }  // namespace chaos
