@@ -412,6 +412,7 @@ ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& 
 struct ZooParams {
   bool fast = false;                // the CI subset
   bool grid = true;                 // chaotic systems over the neighbourhood grid
+  std::size_t grid_points = 2;      // grid points per system at N = 10^5, 1..12 (ZooSuiteOptions)
   std::vector<std::string> only;    // these cases (empty: every case)
   std::size_t threads = 1;          // cases run in parallel (the report does not depend on it)
   std::string checkpoint;           // append each finished case here and skip those it holds (zoo_checkpoint.hpp)

@@ -16,7 +16,7 @@ namespace chaos::cli {
 
 namespace {
 
-constexpr int checkpoint_format = 2;
+constexpr int checkpoint_format = 3;
 
 // A double as JSON: a number when finite (nlohmann writes the shortest text that reads back to the
 // same double), else "inf", "-inf" or "nan", which JSON numbers cannot hold.
@@ -76,14 +76,14 @@ ZooBand band_from_json(const nlohmann::ordered_json& j) {
 }
 
 // The first line: what the file's results depend on besides the case.
-nlohmann::ordered_json checkpoint_header(bool fast, bool grid) {
-  return {{"zoo_checkpoint", checkpoint_format}, {"build", zoo_build_fingerprint()}, {"fast", fast}, {"grid", grid}};
+nlohmann::ordered_json checkpoint_header(bool fast, std::size_t grid_points) {
+  return {{"zoo_checkpoint", checkpoint_format}, {"build", zoo_build_fingerprint()}, {"fast", fast}, {"grid_points", grid_points}};
 }
 
 std::string options_text(const nlohmann::ordered_json& h) {
   std::ostringstream s;
-  s << std::boolalpha << "build " << h.value("build", std::string("?")) << ", fast " << h.value("fast", false) << ", grid "
-    << h.value("grid", true);
+  s << std::boolalpha << "build " << h.value("build", std::string("?")) << ", fast " << h.value("fast", false)
+    << ", grid points " << h.value("grid_points", std::size_t{0});
   return s.str();
 }
 
@@ -156,8 +156,8 @@ ZooCaseResult zoo_result_from_json(const nlohmann::ordered_json& j) {
   return result;
 }
 
-ZooCheckpoint::ZooCheckpoint(const std::string& path, bool fast, bool grid) : path_(path) {
-  const nlohmann::ordered_json expected = checkpoint_header(fast, grid);
+ZooCheckpoint::ZooCheckpoint(const std::string& path, bool fast, std::size_t grid_points) : path_(path) {
+  const nlohmann::ordered_json expected = checkpoint_header(fast, grid_points);
   std::uintmax_t keep = 0;  // bytes of whole lines to keep: a run killed while writing leaves a cut line
   bool has_header = false;
   if (std::filesystem::exists(path)) {

@@ -1,10 +1,10 @@
 #pragma once
 // A zoo run's checkpoint (`chaos zoo --checkpoint FILE`): every finished case is appended to FILE as
 // one line of JSON and flushed, so that a run stopped part way (a session's end, Ctrl-C, a killed
-// job) resumes with the cases it has not yet run. The full suite takes about two hours of two
-// cores; without a checkpoint nothing of a stopped run is left.
+// job) resumes with the cases it has not yet run; without a checkpoint nothing of a stopped run is
+// left.
 //
-// A checkpoint belongs to one build and one choice of --fast and --no-grid. Its first line records
+// A checkpoint belongs to one build and one choice of --fast, --no-grid and --grid-points. Its first line records
 // them: the build as a hash of the executable or Python module that holds the suite, so that no
 // report mixes results of two versions of the code. A run that differs refuses the file instead of
 // discarding it or merging it. One run at a time per file: two processes appending to one file
@@ -28,7 +28,8 @@ class ZooCheckpoint {
   // opens it for appending, writing the first line if it is new or empty. Throws InvalidInput:
   // io when the file cannot be read or written, invalid_parameter when it was written by another
   // build or with other options, or a line is not a case result.
-  ZooCheckpoint(const std::string& path, bool fast, bool grid);
+  // grid_points: the grid points per system at N = 10^5 (ZooSuiteOptions), 0 for a run without the grid.
+  ZooCheckpoint(const std::string& path, bool fast, std::size_t grid_points);
 
   // The finished cases it holds, by case name (case_index as stored: the caller renumbers).
   const std::map<std::string, ZooCaseResult>& results() const { return results_; }

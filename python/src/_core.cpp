@@ -528,6 +528,7 @@ py::object zoo_run(const py::dict& p, py::object progress) {
   ZooParams params;
   get(p, "fast", params.fast);
   get(p, "grid", params.grid);
+  get(p, "grid_points", params.grid_points);
   get(p, "threads", params.threads);
   get(p, "checkpoint", params.checkpoint);
   if (has(p, "only"))

@@ -127,7 +127,7 @@ TEST(ZooCheckpoint, RandomDoublesReadBackExactly) {
 TEST(ZooCheckpoint, CutLastLineIsDroppedAndOthersKept) {
   const auto path = fresh_path("zoo_checkpoint_cut");
   {
-    ZooCheckpoint c(path.string(), true, false);
+    ZooCheckpoint c(path.string(), true, 0);
     c.append("first", awkward_result());
   }
   const std::string whole = contents(path);
@@ -135,26 +135,28 @@ TEST(ZooCheckpoint, CutLastLineIsDroppedAndOthersKept) {
     std::ofstream out(path, std::ios::binary | std::ios::app);
     out << R"({"case": "second", "result": {"case_index": 3, "ro)";  // a run killed while writing
   }
-  ZooCheckpoint c(path.string(), true, false);
+  ZooCheckpoint c(path.string(), true, 0);
   ASSERT_EQ(c.results().size(), 1u);
   EXPECT_EQ(c.results().begin()->first, "first");
   EXPECT_EQ(contents(path), whole);  // the cut line is gone, so the next append starts a line
   c.append("second", ZooCaseResult{});
-  EXPECT_EQ(ZooCheckpoint(path.string(), true, false).results().size(), 2u);
+  EXPECT_EQ(ZooCheckpoint(path.string(), true, 0).results().size(), 2u);
   std::filesystem::remove(path);
 }
 
 TEST(ZooCheckpoint, OtherOptionsOrForeignFilesAreRefusedAndLeftAlone) {
   const auto path = fresh_path("zoo_checkpoint_refuse");
-  { ZooCheckpoint(path.string(), true, false).append("first", awkward_result()); }
+  { ZooCheckpoint(path.string(), true, 0).append("first", awkward_result()); }
   const std::string whole = contents(path);
   try {
-    ZooCheckpoint(path.string(), false, false);
+    ZooCheckpoint(path.string(), false, 0);
     FAIL() << "a checkpoint of --fast was accepted by a full run";
   } catch (const chaos::InvalidInput& e) {
     EXPECT_EQ(e.code(), chaos::ErrorCode::invalid_parameter);
     EXPECT_NE(std::string(e.what()).find("another build or with other options"), std::string::npos) << e.what();
   }
+  EXPECT_EQ(contents(path), whole);
+  EXPECT_THROW(ZooCheckpoint(path.string(), true, 2), chaos::InvalidInput);  // another grid sample
   EXPECT_EQ(contents(path), whole);
 
   // A different build: the same first line with another fingerprint.
@@ -163,12 +165,12 @@ TEST(ZooCheckpoint, OtherOptionsOrForeignFilesAreRefusedAndLeftAlone) {
   ASSERT_EQ(fingerprint.size(), 16u);
   other.replace(other.find(fingerprint), 16, std::string(16, fingerprint[0] == '0' ? '1' : '0'));
   { std::ofstream(path, std::ios::binary) << other; }
-  EXPECT_THROW(ZooCheckpoint(path.string(), true, false), chaos::InvalidInput);
+  EXPECT_THROW(ZooCheckpoint(path.string(), true, 0), chaos::InvalidInput);
   EXPECT_EQ(contents(path), other);
 
   // Not a checkpoint: a text file of one line without a newline is not mistaken for a cut line.
   { std::ofstream(path, std::ios::binary) << "1.0 2.0 3.0"; }
-  EXPECT_THROW(ZooCheckpoint(path.string(), true, false), chaos::InvalidInput);
+  EXPECT_THROW(ZooCheckpoint(path.string(), true, 0), chaos::InvalidInput);
   EXPECT_EQ(contents(path), "1.0 2.0 3.0");
   std::filesystem::remove(path);
 }
@@ -207,7 +209,7 @@ TEST(ZooCheckpoint, ResumedRunEqualsUninterruptedRun) {
   EXPECT_EQ(resumed.wrong, whole.wrong);
   EXPECT_NE(resumed.markdown.find("the other 1 were read from a checkpoint"), std::string::npos);
   // The read case carries the time it took when it ran.
-  const ZooCheckpoint stored(path.string(), true, false);
+  const ZooCheckpoint stored(path.string(), true, 0);
   EXPECT_TRUE(same_bits(stored.results().at("random_walk").seconds, first.results.front().seconds));
   std::filesystem::remove(path);
 }

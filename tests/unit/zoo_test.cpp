@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -14,6 +15,7 @@
 #include "chaos/models/lyapunov_spectrum.hpp"
 #include "chaos/random.hpp"
 #include "chaos/models/zoo.hpp"
+#include "chaos/models/zoo_suite.hpp"
 
 namespace {
 
@@ -257,6 +259,43 @@ void expect_invalid(const std::function<void()>& f, const std::string& fragment)
   } catch (const chaos::InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
+}
+
+// The sampled grid (chaos zoo --grid-points): properties of the rule, no stored expectation.
+TEST(ZooGrid, ShortRecordsRunTheWholeGridAndLongOnesASampleThatCoversItOverTheZoo) {
+  // N = 10^4, or a sample of 12: all 12 points, each (window, extra) once.
+  for (const std::size_t sample : {1u, 2u, 12u}) {
+    const auto points = chaos::zoo_grid_points(10000, "lorenz", sample);
+    ASSERT_EQ(points.size(), 12u);
+    std::set<std::pair<std::size_t, std::size_t>> distinct;
+    for (const auto& p : points) {
+      EXPECT_LT(p.window, 3u);
+      EXPECT_LT(p.extra, 4u);
+      distinct.insert({p.window, p.extra});
+    }
+    EXPECT_EQ(distinct.size(), 12u);
+  }
+  EXPECT_EQ(chaos::zoo_grid_points(100000, "lorenz", 12).size(), 12u);
+  // N = 10^5: `sample` distinct points, the same for a name whatever else is run; over the zoo's
+  // systems two points each cover every point of the grid.
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> runs;
+  for (const ZooEntry& e : chaos::zoo_systems()) {
+    for (const std::size_t sample : {1u, 2u, 3u, 5u}) {
+      const auto points = chaos::zoo_grid_points(100000, e.name, sample);
+      std::set<std::pair<std::size_t, std::size_t>> distinct;
+      for (const auto& p : points) distinct.insert({p.window, p.extra});
+      EXPECT_EQ(distinct.size(), sample) << e.name;
+    }
+    const auto two = chaos::zoo_grid_points(100000, e.name, 2);
+    const auto again = chaos::zoo_grid_points(100000, e.name, 2);
+    ASSERT_EQ(two.size(), again.size());
+    for (std::size_t k = 0; k < two.size(); ++k) {
+      EXPECT_EQ(two[k].window, again[k].window);
+      EXPECT_EQ(two[k].extra, again[k].extra);
+      ++runs[{two[k].window, two[k].extra}];
+    }
+  }
+  EXPECT_EQ(runs.size(), 12u) << "some grid point is run by no system";
 }
 
 TEST(Zoo, BadInputIsRefusedWithTheRuleAndTheNumbers) {

@@ -1,7 +1,9 @@
 #include "chaos/models/zoo_suite.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <exception>
+#include <map>
 #include <utility>
 #include <chrono>
 #include <numbers>
@@ -416,6 +418,23 @@ class SumsOverWindows {
 
 }  // namespace
 
+std::vector<ZooGridPoint> zoo_grid_points(std::size_t n, const std::string& name, std::size_t sample) {
+  constexpr std::size_t windows = 3, extras = 4, all = windows * extras;
+  std::vector<std::size_t> chosen;
+  if (n <= 10000 || sample >= all) {
+    for (std::size_t p = 0; p < all; ++p) chosen.push_back(p);
+  } else {
+    std::uint64_t hash = 14695981039346656037ull;
+    for (const unsigned char ch : name) hash = (hash ^ ch) * 1099511628211ull;
+    for (std::size_t j = 0; j < sample; ++j) chosen.push_back((hash % all + j * all / sample) % all);
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  }
+  std::vector<ZooGridPoint> points;
+  for (const std::size_t p : chosen) points.push_back(ZooGridPoint{p / extras, p % extras});
+  return points;
+}
+
 ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSuiteOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   ZooCaseResult result;
@@ -437,10 +456,22 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       base.note = a.stopped;
       const std::vector<std::size_t> windows{a.theiler, 2 * a.theiler, 3 * a.theiler};
       const bool grid_point = grid && a.dimension && a.delay;
+      const std::vector<ZooGridPoint> points =
+          grid_point ? zoo_grid_points(n, c.name, options.grid_points) : std::vector<ZooGridPoint>{};
+      // The windows the rows need: the automatic one first (the base row's reference), then those of
+      // the grid points run at this length.
+      std::vector<std::size_t> used{0};
+      for (const ZooGridPoint& g : points)
+        if (std::find(used.begin(), used.end(), g.window) == used.end()) used.push_back(g.window);
+      std::vector<std::size_t> used_windows;
+      for (const std::size_t wi : used) used_windows.push_back(windows[wi]);
+      const auto slot = [&](std::size_t wi) {
+        return static_cast<std::size_t>(std::find(used.begin(), used.end(), wi) - used.begin());
+      };
       const std::vector<D2Reference> references =
           c.kind == ZooCaseKind::chaotic
-              ? d2_references(state, n, grid_point ? windows : std::vector<std::size_t>{a.theiler}, c.d2_band)
-              : std::vector<D2Reference>(3, D2Reference{not_run("none: not a chaotic system"), c.d2_band});
+              ? d2_references(state, n, used_windows, c.d2_band)
+              : std::vector<D2Reference>(used.size(), D2Reference{not_run("none: not a chaotic system"), c.d2_band});
       base.d2_reference = references.front().reference;
       base.d2_band = references.front().band;
       base.d2 = a.d2 ? d2_estimate(*a.d2, base.d2_band) : not_run("not_run");
@@ -458,13 +489,24 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
 
       const std::size_t m0 = *a.dimension;
       const CorrelationSumOptions sum_options = choose_correlation_sum_options(x, *a.delay, a.theiler, m0 + 3);
-      SumsOverWindows whole(x, sum_options, windows);
+      SumsOverWindows whole(x, sum_options, used_windows);
       const auto [first_half, second_half] = record_halves(x);
-      SumsOverWindows first_sums(first_half, sum_options, windows), second_sums(second_half, sum_options, windows);
-      for (std::size_t wi = 0; wi < windows.size(); ++wi) {
+      SumsOverWindows first_sums(first_half, sum_options, used_windows), second_sums(second_half, sum_options, used_windows);
+      const LyapunovFitOptions fit = choose_lyapunov_fit(a.scales);
+      // Divergence curves for m0 .. m0 + 5 at each window, and the same on each half of the record,
+      // computed the first time a grid point needs them: the fit at grid dimension m uses m, m+1, m+2.
+      using HalfCurves = std::pair<DivergenceCurve, DivergenceCurve>;
+      struct Curves {
+        std::vector<std::optional<DivergenceCurve>> whole = std::vector<std::optional<DivergenceCurve>>(6);
+        std::vector<std::optional<HalfCurves>> halves = std::vector<std::optional<HalfCurves>>(6);
+      };
+      std::map<std::pair<std::size_t, LyapunovMethod>, Curves> curves;
+      std::string curve_error;
+      for (const ZooGridPoint& point : points) {
+        const std::size_t wi = point.window, ws = slot(wi);
         const double factor = static_cast<double>(wi + 1);
         const std::size_t w = windows[wi];
-        const CorrelationSumResult sums = whole.at(wi);
+        const CorrelationSumResult sums = whole.at(ws);
         // The halves check, as in the pipeline (automatic_correlation_dimension), counted only when
         // some dimension saturates.
         std::optional<std::pair<CorrelationSumResult, CorrelationSumResult>> halves;
@@ -472,7 +514,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           CorrelationDimensionResult d2 = correlation_dimension(truncated(sums, m));
           if (d2.status != D2Status::saturated) return d2;
           try {
-            if (!halves) halves.emplace(first_sums.at(wi), second_sums.at(wi));
+            if (!halves) halves.emplace(first_sums.at(ws), second_sums.at(ws));
             require_reproduced_by_halves(d2, correlation_dimension(truncated(halves->first, m)),
                                          correlation_dimension(truncated(halves->second, m)));
           } catch (const InvalidInput&) {
@@ -480,27 +522,21 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           }
           return d2;
         };
-        // Curves for m0 .. m0 + 5: the fit at grid dimension m uses m, m+1, m+2.
-        std::vector<std::optional<DivergenceCurve>> rosenstein(6), kantz(6);
-        std::string curve_error;
-        for (std::size_t k = 0; k < 6; ++k) {
-          try {
-            rosenstein[k] = divergence_curve(
-                x, choose_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::rosenstein));
-            kantz[k] = divergence_curve(
-                x, choose_lyapunov_options(a.scales, n, m0 + k, *a.delay, w, LyapunovMethod::kantz));
-          } catch (const InvalidInput& e) {
-            curve_error = e.what();
+        const auto curve = [&](LyapunovMethod method, std::size_t j) -> const std::optional<DivergenceCurve>& {
+          std::optional<DivergenceCurve>& c = curves[{wi, method}].whole[j];
+          if (!c) {
+            try {
+              c = divergence_curve(x, choose_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method));
+            } catch (const InvalidInput& e) {
+              curve_error = e.what();
+            }
           }
-        }
-        const LyapunovFitOptions fit = choose_lyapunov_fit(a.scales);
-        // The halves check of a linear region, as in the pipeline (check_record_halves): the same
-        // curves on each half of the record, computed the first time a fit needs them.
-        using HalfCurves = std::pair<DivergenceCurve, DivergenceCurve>;
-        std::vector<std::optional<HalfCurves>> rosenstein_halves(6), kantz_halves(6);
+          return c;
+        };
+        // The halves check of a linear region, as in the pipeline (check_record_halves).
         const auto check_halves = [&](LyapunovFit& f, LyapunovMethod method, std::size_t k) {
           if (f.status != LyapunovStatus::linear_region) return;
-          auto& cache = method == LyapunovMethod::rosenstein ? rosenstein_halves : kantz_halves;
+          auto& cache = curves[{wi, method}].halves;
           const auto [first, second] = record_halves(x);
           try {
             std::vector<DivergenceCurve> one, two;
@@ -518,47 +554,49 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
             f.explanation += std::string(" (a half cannot be analysed: ") + e.what() + ")";
           }
         };
-        for (std::size_t m = m0; m <= m0 + 3; ++m) {
-          ZooRow row;
-          row.n = n;
-          row.theiler_factor = factor;
-          row.theiler = w;
-          row.delay = *a.delay;
-          row.dimension = m;
-          row.automatic = false;
-          row.d2_reference = references[wi].reference;
-          row.d2_band = references[wi].band;
-          const CorrelationDimensionResult d2 = d2_at(m);
-          row.d2 = d2_estimate(d2, row.d2_band);
-          row.d2_answer = answer_estimate(d2_answer(d2), row.d2_band);
-          const std::size_t k = m - m0;
-          const auto fit_of = [&](const std::vector<std::optional<DivergenceCurve>>& curves) -> std::optional<LyapunovFit> {
-            if (!curves[k] || !curves[k + 1] || !curves[k + 2]) return std::nullopt;
-            return fit_divergence(std::vector<DivergenceCurve>{*curves[k], *curves[k + 1], *curves[k + 2]}, fit);
-          };
-          // As in the pipeline: each fit is checked against the record's halves, against the other
-          // fit and against a consistent local-map exponent (cross_check).
-          std::optional<LyapunovFit> r = fit_of(rosenstein), q = fit_of(kantz);
-          if (r) check_halves(*r, LyapunovMethod::rosenstein, k);
-          if (q) check_halves(*q, LyapunovMethod::kantz, k);
-          if (r && q) cross_check(*r, *q, fit.tolerance);
-          const LocalMaps maps = local_maps_at(x, m, *a.delay, w, c.dt);
-          if (maps.result) {
-            if (r) cross_check(*r, LyapunovMethod::rosenstein, *maps.result, fit.tolerance);
-            if (q) cross_check(*q, LyapunovMethod::kantz, *maps.result, fit.tolerance);
-          } else {
-            if (r) cross_check_without_local_maps(*r, LyapunovMethod::rosenstein, maps.refusal);
-            if (q) cross_check_without_local_maps(*q, LyapunovMethod::kantz, maps.refusal);
-          }
-          row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
-          row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
-          row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run("not_run: " + maps.refusal);
-          row.lyapunov = answer_estimate(combine_lyapunov(r ? &r->estimate : nullptr, q ? &q->estimate : nullptr,
-                                                          maps.result ? &*maps.result : nullptr, c.dt)
-                                             .per_time(),
-                                         c.lambda_band);
-          result.rows.push_back(row);
+        const std::size_t m = m0 + point.extra;
+        ZooRow row;
+        row.n = n;
+        row.theiler_factor = factor;
+        row.theiler = w;
+        row.delay = *a.delay;
+        row.dimension = m;
+        row.automatic = false;
+        row.d2_reference = references[ws].reference;
+        row.d2_band = references[ws].band;
+        const CorrelationDimensionResult d2 = d2_at(m);
+        row.d2 = d2_estimate(d2, row.d2_band);
+        row.d2_answer = answer_estimate(d2_answer(d2), row.d2_band);
+        const std::size_t k = m - m0;
+        const auto fit_of = [&](LyapunovMethod method) -> std::optional<LyapunovFit> {
+          std::vector<DivergenceCurve> three;
+          for (std::size_t j = k; j < k + 3; ++j)
+            if (const auto& curve_j = curve(method, j)) three.push_back(*curve_j);
+          if (three.size() < 3) return std::nullopt;
+          return fit_divergence(three, fit);
+        };
+        // As in the pipeline: each fit is checked against the record's halves, against the other
+        // fit and against a consistent local-map exponent (cross_check).
+        std::optional<LyapunovFit> r = fit_of(LyapunovMethod::rosenstein), q = fit_of(LyapunovMethod::kantz);
+        if (r) check_halves(*r, LyapunovMethod::rosenstein, k);
+        if (q) check_halves(*q, LyapunovMethod::kantz, k);
+        if (r && q) cross_check(*r, *q, fit.tolerance);
+        const LocalMaps maps = local_maps_at(x, m, *a.delay, w, c.dt);
+        if (maps.result) {
+          if (r) cross_check(*r, LyapunovMethod::rosenstein, *maps.result, fit.tolerance);
+          if (q) cross_check(*q, LyapunovMethod::kantz, *maps.result, fit.tolerance);
+        } else {
+          if (r) cross_check_without_local_maps(*r, LyapunovMethod::rosenstein, maps.refusal);
+          if (q) cross_check_without_local_maps(*q, LyapunovMethod::kantz, maps.refusal);
         }
+        row.rosenstein = r ? lambda_estimate(*r, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
+        row.kantz = q ? lambda_estimate(*q, c.dt, c.lambda_band) : not_run("not_run: " + curve_error);
+        row.local_maps = maps.result ? local_maps_estimate(*maps.result, c.lambda_band) : not_run("not_run: " + maps.refusal);
+        row.lyapunov = answer_estimate(combine_lyapunov(r ? &r->estimate : nullptr, q ? &q->estimate : nullptr,
+                                                        maps.result ? &*maps.result : nullptr, c.dt)
+                                           .per_time(),
+                                       c.lambda_band);
+        result.rows.push_back(row);
       }
     }
   } catch (const std::exception& e) {

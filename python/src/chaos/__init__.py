@@ -636,7 +636,7 @@ def validation_cases(filter=None):
     return _core.validate_list(dict(filter=filter))
 
 
-def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progress=None):
+def zoo(only=None, *, fast=False, grid=True, grid_points=2, threads=1, checkpoint=None, progress=None):
     """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
     controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
     short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
@@ -650,10 +650,11 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
 
     ``only``: case names (a list, or a comma-separated string; default every case); ``fast``: the CI
     subset (4 systems and 5 controls at N = 10^4, automatic choices only); ``grid=False``: automatic
-    choices only (``--no-grid``); ``threads``: cases run in parallel (nothing depends on it).
+    choices only (``--no-grid``); ``grid_points``: grid points per chaotic system at N = 10^5, 1 to
+    12 (``--grid-points``; 12: the whole grid); ``threads``: cases run in parallel (nothing depends on it).
     ``checkpoint``: a file path (``--checkpoint``): each finished case is appended to it and the
     cases it already holds are read instead of run, so that a stopped run resumes; the file belongs
-    to one build and one choice of ``fast`` and ``grid``, and any other run refuses it.
+    to one build and one choice of ``fast``, ``grid`` and ``grid_points``, and any other run refuses it.
     ``progress``: True for a bar on stderr, or a callable taking the fraction of cases done; Ctrl-C
     stops after the cases being run.
 
@@ -669,7 +670,7 @@ def zoo(only=None, *, fast=False, grid=True, threads=1, checkpoint=None, progres
     bar = _progress_bar(progress, "zoo")
     try:
         return _make(_core.zoo(dict(only=None if only is None else list(only), fast=fast, grid=grid,
-                                    threads=threads, checkpoint=None if checkpoint is None else os.fspath(checkpoint)), bar))
+                                    grid_points=grid_points, threads=threads, checkpoint=None if checkpoint is None else os.fspath(checkpoint)), bar))
     finally:
         if bar is not None and not callable(progress):
             sys.stderr.write("\n")

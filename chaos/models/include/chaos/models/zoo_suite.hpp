@@ -69,6 +69,10 @@ struct ZooCase {
 struct ZooSuiteOptions {
   bool fast = false;        // the CI subset: a few systems and controls at N = 10^4, automatic choices only
   bool grid = true;         // chaotic systems over the neighbourhood grid
+  // Grid points per system at N = 10^5, 1 to 12 (three Theiler windows by four dimensions; 12: all),
+  // chosen by the case's name so that over the zoo each point is run about equally often. N = 10^4
+  // runs all 12.
+  std::size_t grid_points = 2;
   std::vector<std::string> only;  // case names to run (empty: all)
   std::size_t threads = 1;        // zoo_cases: the spectra behind the bands in parallel
 };
@@ -115,6 +119,18 @@ struct ZooCaseResult {
   double seconds = 0.0;
   std::string error;  // a refusal from the pipeline (e.g. a series too short), when there was one
 };
+
+// A point of the neighbourhood grid: Theiler window 1, 2 or 3 times the automatic one (window 0, 1,
+// 2) and embedding dimension m0 + extra (extra 0..3), with m0 Cao's.
+struct ZooGridPoint {
+  std::size_t window = 0, extra = 0;
+};
+
+// The grid points a case runs at record length n: all 12 at N <= 10^4; at longer records `sample` of
+// them, evenly spaced in the order (window, extra) from a start drawn from the case's name (FNV-1a),
+// so that a case runs the same points in any selection of cases and over the zoo every point is run
+// about equally often.
+std::vector<ZooGridPoint> zoo_grid_points(std::size_t n, const std::string& name, std::size_t sample);
 
 // Runs one case (deterministic; single-threaded inside).
 ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSuiteOptions& options);
