@@ -6,7 +6,8 @@
 // stroboscopic map), the composition of m maps over the intervals T/m between renormalisations. finite_difference_lyapunov.hpp runs Benettin's renormalisation on that map with
 // k + 1 copies of the system, each carrying its own contact memory, so contact onsets, releases,
 // latched impact velocities and bristle resets are all inside the map; no saltation matrix is
-// needed. The phase point is (q, q_dot, z): the generalised coordinates, their rates and the LuGre
+// needed. LyapunovMethod::saltation carries variational equations with saltation matrices instead
+// (saltation.hpp). The phase point is (q, q_dot, z): the generalised coordinates, their rates and the LuGre
 // bristle deflections; the work accumulators are bookkeeping, not dynamics, and are left out.
 //
 // The period map's exponents mu_j are the flow's exponents times T; the flow in the extended
