@@ -18,7 +18,7 @@
 //     the state's rows jump by nothing (the force is zero at zero penetration on either side);
 //   onset where the located rate was not positive (commit() latches the end's rate): dp_i = grad(g_i') dx;
 //   a site open at the step's end: its bristle row is zeroed (commit() resets z to 0), dp_i = 0.
-// Only RK4 runs with integrated bristles and without Coulomb's law are handled (check_saltation_scene).
+// Only RK4 runs with integrated bristles and without Coulomb's law are handled (saltation_unsupported).
 
 #include <Eigen/Core>
 
