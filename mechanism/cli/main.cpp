@@ -1,7 +1,7 @@
 // The `mechanism` command: the slider-crank simulator from a scene file.
 //   mechanism scene [--default] [scene.toml] [--set key=value]...
 //   mechanism simulate [scene.toml] [--set key=value]... [--stroboscopic] [--signals a,b] [-o FILE] [--json]
-//   mechanism lyapunov [scene.toml] [--set key=value]... [--periods N] [--exponents K] [-o FILE] [--json] [--plot FILE]
+//   mechanism lyapunov [scene.toml] [--set key=value]... [--method benettin|saltation] [--periods N] [--exponents K] [-o FILE] [--json] [--plot FILE]
 //   mechanism impact-oscillator [--zeta Z] [--amplitude A] [--omega W] [--gap G] [--restitution R] [--periods N]
 // Exit codes: 0 ok (simulation completed), 1 internal error, 2 usage, 3 invalid scene or output file
 // (refused before the run, or a write that failed: a full disk, /dev/full), 5 the integration could
@@ -209,8 +209,21 @@ int run(int argc, char** argv) {
   bool lyap_json = false;
   std::string lyap_out, lyap_plot;
   auto* lyap_cmd = app.add_subcommand(
-      "lyapunov", "Lyapunov exponents from the equations of motion (finite-difference Benettin on the crank-period map)");
+      "lyapunov",
+      "Lyapunov exponents from the equations of motion (Benettin on the crank-period map: finite differences, or "
+      "variational equations with saltation matrices)");
   add_scene_options(*lyap_cmd, lyap_opts);
+  std::string lyap_method = "benettin";
+  lyap_cmd
+      ->add_option("--method", lyap_method,
+                   "benettin: finite differences of k + 1 trajectories; saltation: variational equations with "
+                   "Mueller's jump matrices at contact onsets and releases (RK4 scenes without Coulomb friction)")
+      ->check(CLI::IsMember({"benettin", "saltation"}))
+      ->default_val(lyap_method);
+  bool lyap_drop_latched = false;
+  lyap_cmd->add_flag("--drop-latched-variations", lyap_drop_latched,
+                     "saltation only: zero the latched impact velocities' variations at every renormalisation, as "
+                     "Benettin's companions do (each restarts with the reference's memory), to measure that difference");
   lyap_cmd->add_option("--periods", lyap.periods, "crank periods averaged (>= 10)")->default_val(lyap.periods);
   lyap_cmd->add_option("--transient-periods", lyap.transient_periods,
                        "periods that align the directions before averaging (after run.transient)")
@@ -315,6 +328,13 @@ int run(int argc, char** argv) {
     }
     if (lyap_cmd->parsed()) {
       const mechanism::Scene scene = load_scene(lyap_opts);
+      lyap.method = lyap_method == "saltation" ? mechanism::LyapunovMethod::saltation : mechanism::LyapunovMethod::benettin;
+      if (lyap_drop_latched && lyap.method != mechanism::LyapunovMethod::saltation) {
+        std::cerr << "mechanism: lyapunov: --drop-latched-variations needs --method saltation (Benettin's companions "
+                     "always drop them)\n";
+        return usage_error;
+      }
+      lyap.carry_latched_variations = !lyap_drop_latched;
       cli_support::ProgressBar bar(!lyap_opts.quiet && isatty(fileno(stderr)));
       lyap.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
       std::ostream* file = lyap_out.empty() ? nullptr : &safe_output::open_pending(lyap_out).stream();
@@ -322,12 +342,21 @@ int run(int argc, char** argv) {
       bar.update(1.0, "done");
       std::ostream* out = file ? file : (lyap_json ? nullptr : &std::cout);
       if (out) {
-        *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
-             << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
-             << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
-             << number(r.perturbation) << " (floor " << number(r.perturbation_floor) << ": 1e3 x epsilon x "
-             << r.steps_per_interval << " steps per interval x " << number(r.largest_scaled_coordinate) << ", "
-             << r.largest_scaled_name << "), largest separation " << number(r.largest_separation) << "\n";
+        if (r.method == "saltation")
+          *out << "# mechanism lyapunov: Benettin on the crank-period map, variational equations with saltation "
+                  "matrices (docs/reference/mechanism/saltation.md)\n"
+               << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
+               << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, J v by central "
+               << "differences of step " << number(r.perturbation) << " of each coordinate's scale, latched impact "
+               << "velocities' variations " << (r.latched_variations_carried ? "carried" : "dropped at each renormalisation")
+               << "\n";
+        else
+          *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
+               << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
+               << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
+               << number(r.perturbation) << " (floor " << number(r.perturbation_floor) << ": 1e3 x epsilon x "
+               << r.steps_per_interval << " steps per interval x " << number(r.largest_scaled_coordinate) << ", "
+               << r.largest_scaled_name << "), largest separation " << number(r.largest_separation) << "\n";
         for (std::size_t j = 0; j < r.exponents.size(); ++j)
           *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";

@@ -14,6 +14,8 @@ nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nloh
 nlohmann::ordered_json scene_lyapunov_json(const SceneLyapunov& r) {
   nlohmann::ordered_json j;
   j["status"] = r.status;
+  j["method"] = r.method;
+  if (r.method == "saltation") j["latched_variations"] = r.latched_variations_carried ? "carried" : "dropped";
   if (!r.message.empty()) j["message"] = r.message;
   j["exponents"] = nlohmann::ordered_json::array();
   for (double v : r.exponents) j["exponents"].push_back(finite_or_null(v));

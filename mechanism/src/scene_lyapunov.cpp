@@ -10,6 +10,7 @@
 
 #include "mechanism/error.hpp"
 #include "mechanism/finite_difference_lyapunov.hpp"
+#include "mechanism/saltation.hpp"
 #include "mechanism/simulate.hpp"
 #include "mechanism/slider_crank.hpp"
 
@@ -68,6 +69,11 @@ class SceneTrajectory {
     return true;
   }
   const SliderCrank& system() const { return systems_->front(); }
+  const SliderCrank& system_at(std::size_t j) const { return (*systems_)[j]; }
+  std::size_t intervals() const { return systems_->size(); }
+  std::size_t phase() const { return phase_; }  // the interval the next advance() runs
+  const State& state() const { return x_; }
+  const std::vector<ContactMemory>& contact_memory() const { return memory_; }
   void set_state(const std::vector<double>& x) {
     if (static_cast<Eigen::Index>(x.size()) != x_.size())
       throw InvalidParameter("start", std::to_string(x.size()) + " values",
@@ -97,7 +103,72 @@ std::vector<std::string> phase_names(const SliderCrank& system) {
   return names;
 }
 
+// Benettin's renormalisation on the tangents of the saltation method (saltation.hpp): one
+// reference trajectory, the k tangents carried along each interval's steps, a QR of their scaled
+// phase rows after each interval, the other rows (work accumulators, latched velocities) carried
+// with the same column operations.
+FiniteDifferenceLyapunov saltation_benettin(SceneTrajectory& reference, const FiniteDifferenceOptions& options,
+                                            bool carry_latched) {
+  const SliderCrank& sys = reference.system();
+  const Eigen::Index d = sys.phase_dimension();
+  options.validate(d);
+  const int k = options.exponents;
+  const Eigen::VectorXd& scale = options.scale;
+  const Eigen::Index n_state = sys.state_size();
+  const int n = sys.coordinate_count();
+  // Each row's scale for the central differences: the phase scales, and the work accumulators
+  // (which no force reads) out of the measure.
+  Eigen::VectorXd state_scale = Eigen::VectorXd::Constant(n_state, std::numeric_limits<double>::infinity());
+  sys.set_phase_point(state_scale, scale);
+  std::vector<SaltationTangents> tangents;
+  tangents.reserve(reference.intervals());
+  for (std::size_t j = 0; j < reference.intervals(); ++j) tangents.emplace_back(reference.system_at(j), state_scale);
+
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd q = detail::initial_directions(d, k, rng, normal);
+  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(tangents.front().rows(), k);
+  auto load = [&](int j) {
+    State column = State::Zero(n_state);
+    sys.set_phase_point(column, scale.cwiseProduct(q.col(j)));
+    y.col(j).setZero();
+    y.col(j).head(n_state) = column;
+  };
+  for (int j = 0; j < k; ++j) load(j);
+  Eigen::VectorXd r_diag(k);
+  std::vector<bool> dead(static_cast<std::size_t>(k));
+  FiniteDifferenceLyapunov out;
+  detail::BenettinAverages averages(k, options, out);
+  SimulationObserver observer;
+  SaltationTangents* current = nullptr;
+  observer.step = [&](const StepRecord& step) { current->step(step, y); };
+  for (std::size_t it = 0; it < averages.total(); ++it) {
+    current = &tangents[reference.phase()];
+    current->start(0.0, reference.state(), reference.contact_memory(), y);
+    if (!reference.advance(observer)) {
+      out.status = FiniteDifferenceLyapunov::Status::trajectory_failed;
+      out.message = "the reference trajectory could not be advanced at iteration " + std::to_string(it) + ": " +
+                    reference.failure();
+      break;
+    }
+    for (int j = 0; j < k; ++j) q.col(j) = sys.phase_point(y.col(j).head(n_state)).cwiseQuotient(scale);
+    detail::orthonormalise_columns(q, &y, r_diag, dead, rng, normal);
+    for (int j = 0; j < k; ++j)
+      if (dead[static_cast<std::size_t>(j)]) load(j);
+    y.row(2 * n).setZero();  // the work accumulators' rows: nothing reads them
+    y.row(2 * n + 1).setZero();
+    if (!carry_latched) y.bottomRows(y.rows() - n_state).setZero();
+    averages.add(it, r_diag, dead);
+  }
+  averages.finish();
+  return out;
+}
+
 }  // namespace
+
+const char* to_string(LyapunovMethod method) noexcept {
+  return method == LyapunovMethod::saltation ? "saltation" : "benettin";
+}
 
 void SceneLyapunovOptions::validate() const {
   if (exponents < 0) detail::throw_invalid_option("exponents", exponents, "must be >= 0 (0: all)");
@@ -172,6 +243,9 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   if (scene.driver.free)
     throw InvalidParameter("driver.free", "true",
                            "has no crank-period map: the exponents are computed for a driven crank (driver.free = false)");
+  if (options.method == LyapunovMethod::saltation)
+    if (const std::string why = saltation_unsupported(scene); !why.empty())
+      throw InvalidParameter("method", "saltation", "does not apply to this scene: " + why);
   const auto wall0 = std::chrono::steady_clock::now();
   const double period = scene.driver.period();
   const int m = options.intervals_per_period;
@@ -180,6 +254,8 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   if (!options.start.empty()) reference.set_state(options.start);
 
   SceneLyapunov out;
+  out.method = to_string(options.method);
+  out.latched_variations_carried = options.method == LyapunovMethod::saltation && options.carry_latched_variations;
   out.period = period;
   out.perturbation = options.perturbation;
   out.coordinates = phase_names(reference.system());
@@ -239,7 +315,12 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   out.largest_scaled_name = out.coordinates[static_cast<std::size_t>(largest_at)];
   out.perturbation_floor =
       perturbation_digits * std::numeric_limits<double>::epsilon() * static_cast<double>(steps_per_interval) * largest;
-  if (options.perturbation < out.perturbation_floor) {
+  const bool saltation = options.method == LyapunovMethod::saltation;
+  if (saltation) {
+    out.perturbation = SaltationTangents::jacobian_step;
+    out.perturbation_floor = 0.0;
+  }
+  if (!saltation && options.perturbation < out.perturbation_floor) {
     char why[400];
     std::snprintf(why, sizeof why,
                   "is below this scene's floor %.3g: 1e3 x machine epsilon %.3g x %zu integrator steps per interval x "
@@ -259,12 +340,13 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   fd.seed = options.seed;
   fd.scale = scale;
   fd.progress = options.progress;
-  const FiniteDifferenceLyapunov r = finite_difference_lyapunov(reference, fd);
+  const FiniteDifferenceLyapunov r = saltation ? saltation_benettin(reference, fd, options.carry_latched_variations)
+                                               : finite_difference_lyapunov(reference, fd);
 
   const std::size_t k = r.exponents.size();
   out.periods = r.iterations / static_cast<std::size_t>(m);
   out.resolution_limit = std::log(std::numeric_limits<double>::epsilon()) / interval;
-  out.largest_separation = options.perturbation * r.largest_growth;
+  out.largest_separation = saltation ? 0.0 : options.perturbation * r.largest_growth;
   out.collapsed = r.collapsed;
   for (double mu : r.exponents) out.exponents.push_back(mu / interval);
   for (double mu : r.exponents) out.exponents_per_period.push_back(mu * m);

@@ -77,6 +77,7 @@ class HybridLoop {
     next_rev_ = static_cast<std::size_t>(std::ceil(transient_ / period_ - 1e-9));
     locate_ = s.integrator.locate_switches;
     onset_rate_.assign(sys_.site_count(), std::numeric_limits<double>::quiet_NaN());
+    onset_time_ = onset_rate_;
   }
 
   double end_time() const { return t_end_; }
@@ -93,6 +94,7 @@ class HybridLoop {
     emit_due(0.0, x, true);
     State x0 = x;
     sys_.commit(0.0, ev_, onset_rate_, x0);
+    if (obs_.step) x_start_ = x;
   }
 
   // The evaluation at the end (t1, x) of the step just taken, which find_switch and after_step
@@ -147,17 +149,30 @@ class HybridLoop {
     for (std::size_t i = 0; i < sys_.site_count(); ++i) {
       const double now = ev_.sites[i].penetration;
       sum_.max_penetration = std::max(sum_.max_penetration, now);
-      onset_rate_[i] = std::numeric_limits<double>::quiet_NaN();
+      onset_rate_[i] = onset_time_[i] = std::numeric_limits<double>::quiet_NaN();
       if (penetration_prev_[i] <= 0.0 && now > 0.0) {
-        onset_rate_[i] = rate_at_onset(i, t0, t1, penetration_prev_[i], now);
+        onset_rate_[i] = rate_at_onset(i, t0, t1, penetration_prev_[i], now, onset_time_[i]);
         ++sum_.contact_events;
         onset = true;
       }
       penetration_prev_[i] = now;
     }
+    if (obs_.step) {
+      StepRecord r;
+      r.t0 = t0;
+      r.t1 = t1;
+      r.x0 = &x_start_;
+      r.x1 = &x;
+      r.at_end = &ev_;
+      r.memory = &sys_.memory();
+      r.onset_time = &onset_time_;
+      r.onset_rate = &onset_rate_;
+      obs_.step(r);
+    }
     if (rec_) rec_->forget();
     const bool changed = sys_.commit(t1, ev_, onset_rate_, x);
     if (onset || changed) stepper_.invalidate();
+    if (obs_.step) x_start_ = x;
   }
 
   void finish() {
@@ -167,7 +182,7 @@ class HybridLoop {
  private:
   // Locates the onset on the step's dense output and returns the penetration rate there: the
   // impact velocity of the Lankarani-Nikravesh family, free of the step's position in the impact.
-  double rate_at_onset(std::size_t i, double t0, double t1, double p0, double p1) {
+  double rate_at_onset(std::size_t i, double t0, double t1, double p0, double p1, double& at) {
     auto g = [&](double t) {
       stepper_.interpolate(t, scratch_);
       sys_.evaluate(t, scratch_, probe_);
@@ -180,7 +195,9 @@ class HybridLoop {
     const double rate = probe_.sites[i].penetration_rate;
     // A crossing on the dense output with a non-positive rate is a graze at the step's
     // resolution: fall back to the end-of-step rate.
-    return rate > 0.0 ? rate : std::numeric_limits<double>::quiet_NaN();
+    if (!(rate > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    at = tc;
+    return rate;
   }
 
   // Emits the time-series rows and revolutions due up to t1 (inside the step just taken, or at
@@ -243,7 +260,8 @@ class HybridLoop {
   std::size_t next_out_ = 0, next_rev_ = 0;
   double energy0_ = 0, kinetic_max_ = 0;
   double balance_prev_ = 0;  // the energy balance at the last step end (0 at the start)
-  std::vector<double> penetration_prev_, onset_rate_;
+  std::vector<double> penetration_prev_, onset_rate_, onset_time_;
+  State x_start_;  // the step's start, kept only for observer.step
   // Switching functions at the last accepted step end, at the step end being checked, at a probe.
   std::vector<double> switch_prev_, switch_now_, switch_probe_;
   Evaluation ev_, probe_;

@@ -105,6 +105,119 @@ inline void FiniteDifferenceOptions::validate(Eigen::Index dimension) const {
   }
 }
 
+namespace detail {
+
+// Modified Gram-Schmidt on the columns of y (a QR factorisation): r_diag gets R's diagonal. The
+// same column operations are applied to `along` when given (a variational method measures only some
+// rows of its tangents, and carries the others with them). A column that collapsed to zero
+// (dead) restarts along a fresh random direction orthogonal to those before it; its `along`
+// column is then zero, for the caller to rebuild from y.
+template <class Rng>
+void orthonormalise_columns(Eigen::MatrixXd& y, Eigen::MatrixXd* along, Eigen::VectorXd& r_diag, std::vector<bool>& dead,
+                            Rng& rng, std::normal_distribution<double>& normal) {
+  const Eigen::Index k = y.cols();
+  for (Eigen::Index j = 0; j < k; ++j) {
+    for (Eigen::Index i = 0; i < j; ++i) {
+      const double c = y.col(i).dot(y.col(j));
+      y.col(j) -= c * y.col(i);
+      if (along) along->col(j) -= c * along->col(i);
+    }
+    r_diag[j] = y.col(j).norm();
+    const auto js = static_cast<std::size_t>(j);
+    dead[js] = !(r_diag[j] > 0.0);
+    if (dead[js]) {
+      for (Eigen::Index i = 0; i < y.rows(); ++i) y(i, j) = normal(rng);
+      for (Eigen::Index i = 0; i < j; ++i) y.col(j) -= y.col(i).dot(y.col(j)) * y.col(i);
+      if (along) along->col(j).setZero();
+      y.col(j) /= y.col(j).norm();
+    } else {
+      y.col(j) /= r_diag[j];
+      if (along) along->col(j) /= r_diag[j];
+    }
+  }
+}
+
+// The averages of Benettin's method: ln R_jj per iteration after the transient, their running
+// means, block means (the standard error) and the collapse counts, written into `out`.
+class BenettinAverages {
+ public:
+  BenettinAverages(int k, const FiniteDifferenceOptions& options, FiniteDifferenceLyapunov& out)
+      : k_(static_cast<std::size_t>(k)), options_(options), out_(out), sums_(k_, 0.0), block_sums_(k_, 0.0),
+        block_means_(k_) {
+    out_.exponents.assign(k_, 0.0);
+    out_.collapsed.assign(k_, 0);
+    block_length_ = options.iterations / options.blocks;
+    out_.running.reserve(options.iterations * k_);
+  }
+  std::size_t total() const { return options_.transient + options_.iterations; }
+  // After the renormalisation of iteration `it` (0-based, transient included: those are not averaged).
+  void add(std::size_t it, const Eigen::VectorXd& r_diag, const std::vector<bool>& dead) {
+    if (it < options_.transient) return;
+    {
+      const std::size_t n = it - options_.transient + 1;
+      for (std::size_t j = 0; j < k_; ++j) {
+        const double log_r = dead[j] ? -std::numeric_limits<double>::infinity()
+                                     : std::log(r_diag[static_cast<Eigen::Index>(j)]);
+        if (dead[j]) ++out_.collapsed[j];
+        sums_[j] += log_r;
+        block_sums_[j] += log_r;
+        out_.running.push_back(sums_[j] / static_cast<double>(n));
+        if (n % block_length_ == 0 && block_means_[j].size() < options_.blocks) {
+          block_means_[j].push_back(block_sums_[j] / static_cast<double>(block_length_));
+          block_sums_[j] = 0.0;
+        }
+      }
+      out_.iterations = n;
+    }
+    if (options_.progress) {
+      const double f = static_cast<double>(it + 1) / static_cast<double>(total());
+      if (f - last_progress_ >= 0.01 || it + 1 == total()) {
+        options_.progress(f);
+        last_progress_ = f;
+      }
+    }
+  }
+  // The means and their standard errors (NaN with fewer than two blocks).
+  void finish() {
+    out_.standard_error.assign(k_, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t j = 0; j < k_; ++j) {
+      out_.exponents[j] = out_.iterations ? sums_[j] / static_cast<double>(out_.iterations)
+                                          : std::numeric_limits<double>::quiet_NaN();
+      const auto& b = block_means_[j];
+      if (b.size() >= 2) {
+        double mean = 0.0, ss = 0.0;
+        for (double v : b) mean += v;
+        mean /= static_cast<double>(b.size());
+        for (double v : b) ss += (v - mean) * (v - mean);
+        out_.standard_error[j] = std::sqrt(ss / static_cast<double>(b.size() - 1) / static_cast<double>(b.size()));
+      }
+    }
+  }
+
+ private:
+  std::size_t k_;
+  const FiniteDifferenceOptions& options_;
+  FiniteDifferenceLyapunov& out_;
+  std::vector<double> sums_, block_sums_;
+  std::vector<std::vector<double>> block_means_;
+  std::size_t block_length_ = 1;
+  double last_progress_ = -1.0;
+};
+
+// The initial directions: seeded Gaussian vectors, orthonormalised (no coordinate is singled out).
+// `normal` goes on drawing the restarts of collapsed directions.
+template <class Rng>
+Eigen::MatrixXd initial_directions(Eigen::Index d, int k, Rng& rng, std::normal_distribution<double>& normal) {
+  Eigen::MatrixXd q(d, k);
+  for (Eigen::Index i = 0; i < q.size(); ++i) q.data()[i] = normal(rng);
+  Eigen::VectorXd r_diag(k);
+  std::vector<bool> dead(static_cast<std::size_t>(k));
+  orthonormalise_columns(q, nullptr, r_diag, dead, rng, normal);
+  return q;
+}
+
+}  // namespace detail
+
 // Runs the method from `reference` (advanced in place: it ends where the run ended).
 template <PerturbableTrajectory T>
 FiniteDifferenceLyapunov finite_difference_lyapunov(T& reference, const FiniteDifferenceOptions& options) {
@@ -115,41 +228,17 @@ FiniteDifferenceLyapunov finite_difference_lyapunov(T& reference, const FiniteDi
   const Eigen::VectorXd scale = options.scale.size() ? options.scale : Eigen::VectorXd::Ones(d);
   const double delta = options.perturbation;
 
-  // Initial directions: seeded Gaussian vectors, orthonormalised (no coordinate is singled out).
   std::mt19937_64 rng(options.seed);
   std::normal_distribution<double> normal;
-  Eigen::MatrixXd q(d, k);
-  for (Eigen::Index i = 0; i < q.size(); ++i) q.data()[i] = normal(rng);
-  auto orthonormalise = [&](Eigen::MatrixXd& y, Eigen::VectorXd& r_diag, std::vector<bool>& dead) {
-    for (int j = 0; j < k; ++j) {
-      for (int i = 0; i < j; ++i) y.col(j) -= y.col(i).dot(y.col(j)) * y.col(i);
-      r_diag[j] = y.col(j).norm();
-      dead[j] = !(r_diag[j] > 0.0);
-      if (dead[j]) {
-        // A collapsed direction restarts along a fresh random one, orthogonal to those before it.
-        for (Eigen::Index i = 0; i < d; ++i) y(i, j) = normal(rng);
-        for (int i = 0; i < j; ++i) y.col(j) -= y.col(i).dot(y.col(j)) * y.col(i);
-      }
-      y.col(j) /= y.col(j).norm();
-    }
-  };
+  Eigen::MatrixXd q = detail::initial_directions(d, k, rng, normal);
   Eigen::VectorXd r_diag(k);
   std::vector<bool> dead(static_cast<std::size_t>(k));
-  orthonormalise(q, r_diag, dead);
 
   FiniteDifferenceLyapunov out;
-  out.exponents.assign(static_cast<std::size_t>(k), 0.0);
-  out.collapsed.assign(static_cast<std::size_t>(k), 0);
-  const std::size_t total = options.transient + options.iterations;
-  const std::size_t block_length = options.iterations / options.blocks;
-  std::vector<double> sums(static_cast<std::size_t>(k), 0.0), block_sums(static_cast<std::size_t>(k), 0.0);
-  std::vector<std::vector<double>> block_means(static_cast<std::size_t>(k));
-  out.running.reserve(options.iterations * static_cast<std::size_t>(k));
-
+  detail::BenettinAverages averages(k, options, out);
   std::vector<T> companions(static_cast<std::size_t>(k), reference);
   Eigen::MatrixXd y(d, k);
-  double last_progress = -1.0;
-  for (std::size_t it = 0; it < total; ++it) {
+  for (std::size_t it = 0; it < averages.total(); ++it) {
     const Eigen::VectorXd x0 = reference.phase_point();
     for (int j = 0; j < k; ++j) {
       T& c = companions[static_cast<std::size_t>(j)];
@@ -177,45 +266,11 @@ FiniteDifferenceLyapunov finite_difference_lyapunov(T& reference, const FiniteDi
     for (int j = 0; j < k; ++j)
       y.col(j) = (companions[static_cast<std::size_t>(j)].phase_point() - x1).cwiseQuotient(scale) / delta;
     for (int j = 0; j < k; ++j) out.largest_growth = std::max(out.largest_growth, y.col(j).norm());
-    orthonormalise(y, r_diag, dead);
+    detail::orthonormalise_columns(y, nullptr, r_diag, dead, rng, normal);
     q = y;
-    if (it < options.transient) continue;
-    const std::size_t n = it - options.transient + 1;
-    for (int j = 0; j < k; ++j) {
-      const auto js = static_cast<std::size_t>(j);
-      const double log_r = dead[js] ? -std::numeric_limits<double>::infinity() : std::log(r_diag[j]);
-      if (dead[js]) ++out.collapsed[js];
-      sums[js] += log_r;
-      block_sums[js] += log_r;
-      out.running.push_back(sums[js] / static_cast<double>(n));
-      if (n % block_length == 0 && block_means[js].size() < options.blocks) {
-        block_means[js].push_back(block_sums[js] / static_cast<double>(block_length));
-        block_sums[js] = 0.0;
-      }
-    }
-    out.iterations = n;
-    if (options.progress) {
-      const double f = static_cast<double>(it + 1) / static_cast<double>(total);
-      if (f - last_progress >= 0.01 || it + 1 == total) {
-        options.progress(f);
-        last_progress = f;
-      }
-    }
+    averages.add(it, r_diag, dead);
   }
-  out.standard_error.assign(static_cast<std::size_t>(k), std::numeric_limits<double>::quiet_NaN());
-  for (int j = 0; j < k; ++j) {
-    const auto js = static_cast<std::size_t>(j);
-    out.exponents[js] = out.iterations ? sums[js] / static_cast<double>(out.iterations)
-                                       : std::numeric_limits<double>::quiet_NaN();
-    const auto& b = block_means[js];
-    if (b.size() >= 2) {
-      double mean = 0.0, ss = 0.0;
-      for (double v : b) mean += v;
-      mean /= static_cast<double>(b.size());
-      for (double v : b) ss += (v - mean) * (v - mean);
-      out.standard_error[js] = std::sqrt(ss / static_cast<double>(b.size() - 1) / static_cast<double>(b.size()));
-    }
-  }
+  averages.finish();
   return out;
 }
 

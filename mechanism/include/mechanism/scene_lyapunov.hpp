@@ -6,7 +6,8 @@
 // stroboscopic map), the composition of m maps over the intervals T/m between renormalisations. finite_difference_lyapunov.hpp runs Benettin's renormalisation on that map with
 // k + 1 copies of the system, each carrying its own contact memory, so contact onsets, releases,
 // latched impact velocities and bristle resets are all inside the map; no saltation matrix is
-// needed. The phase point is (q, q_dot, z): the generalised coordinates, their rates and the LuGre
+// needed. LyapunovMethod::saltation carries variational equations with saltation matrices instead
+// (saltation.hpp). The phase point is (q, q_dot, z): the generalised coordinates, their rates and the LuGre
 // bristle deflections; the work accumulators are bookkeeping, not dynamics, and are left out.
 //
 // The period map's exponents mu_j are the flow's exponents times T; the flow in the extended
@@ -29,7 +30,20 @@
 
 namespace mechanism {
 
+// How the tangents of the period map are computed.
+//   benettin:  finite differences of k + 1 trajectories (finite_difference_lyapunov.hpp);
+//   saltation: the variational equations along the reference trajectory, with Müller's jump
+//              matrices at its contact onsets and releases (saltation.hpp); RK4 scenes without
+//              Coulomb friction (saltation_unsupported says why not).
+enum class LyapunovMethod { benettin, saltation };
+const char* to_string(LyapunovMethod method) noexcept;
+
 struct SceneLyapunovOptions {
+  LyapunovMethod method = LyapunovMethod::benettin;
+  // Saltation only: the variations of the latched impact velocities go on across the
+  // renormalisations (the map's derivative). false zeroes them there, which is what Benettin's
+  // companions do, each restarting with the reference's memory: for measuring that difference.
+  bool carry_latched_variations = true;
   int exponents = 0;                 // k leading exponents; 0: all of them (the phase-space dimension)
   // delta, relative to each coordinate's scale; at least the floor (perturbation_digits below)
   double perturbation = 1e-8;
@@ -75,10 +89,15 @@ struct SceneLyapunov {
   // exponents are reported, only the running means up to the failure).
   std::string status = "completed";
   std::string message;
+  std::string method = "benettin";       // to_string(LyapunovMethod)
+  bool latched_variations_carried = false;  // saltation: options.carry_latched_variations
   std::vector<std::string> coordinates;  // the phase-space coordinates, in the state's order
   std::vector<double> scale;             // their scales
   double period = 0.0;                   // s, one crank period (one iteration)
   std::size_t periods = 0;               // periods averaged
+  // benettin: delta; saltation: the central differences' step of J v (SaltationTangents::jacobian_step),
+  // relative to each coordinate's scale. The floor and the largest separation are Benettin's (0
+  // for saltation, whose tangents are linear by construction).
   double perturbation = 0.0;
   // The floor the perturbation was checked against (perturbation_digits above), its parts: the
   // most integrator steps in one interval and the largest |coordinate| / scale, with its name.

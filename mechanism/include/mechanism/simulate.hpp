@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "mechanism/slider_crank.hpp"
 
@@ -62,6 +63,20 @@ struct SimulationSummary {
   State final_state;  // the state at end_time (a parameter continuation starts the next run from it)
 };
 
+// One accepted step of the simulation loop as it is about to be committed.
+struct StepRecord {
+  double t0 = 0.0, t1 = 0.0;
+  const State* x0 = nullptr;   // at t0, after the previous commit
+  const State* x1 = nullptr;   // at t1, before this step's commit
+  const Evaluation* at_end = nullptr;  // at (t1, x1) with the step's memory
+  const std::vector<ContactMemory>* memory = nullptr;  // the memory the step ran with
+  // Per site: the onset time located inside the step and the penetration rate there (what
+  // commit() latches); NaN where the site did not start touching, and for an onset whose located
+  // rate was not positive (a graze: commit() latches the step end's rate).
+  const std::vector<double>* onset_time = nullptr;
+  const std::vector<double>* onset_rate = nullptr;
+};
+
 struct SimulationObserver {
   // A time-series row every run.output_interval after the transient.
   std::function<void(double t, const State& x, const Evaluation& ev)> sample;
@@ -70,6 +85,9 @@ struct SimulationObserver {
   std::function<void(std::size_t revolution, double t, const State& x, const Evaluation& ev)> stroboscopic;
   // Fraction of the simulated time done, called about every percent.
   std::function<void(double fraction)> progress;
+  // After each accepted step, before commit(): what an integration of the variational equations
+  // along the run needs (scene_lyapunov's saltation method, saltation.hpp).
+  std::function<void(const StepRecord& step)> step;
 };
 
 // Runs the scene of `system` from its initial state (seed Eq. 29).

@@ -164,6 +164,19 @@ expect 3 "perturbation = .*: is below the floor 2.22e-13" -- lyapunov -q --pertu
 expect 3 "perturbation = .*: is below this scene's floor 2.[0-9]*e-10: 1e3 x machine epsilon .* x 240 integrator steps per interval" -- \
   lyapunov -q --periods 10 --transient-periods 2 --perturbation 1e-11
 expect 3 "rigid" -- lyapunov -q --set joint.slider.type=ideal
+# --method saltation (docs/reference/mechanism/saltation.md): the same keys plus the method, and the
+# scenes it refuses, each with the reason.
+"$m" lyapunov -q "${tilted[@]}" --method saltation --periods 10 --transient-periods 2 -k 2 --json > "$work/salt.json" \
+  2> "$work/err" || fail "lyapunov --method saltation: $(head -c 300 "$work/err")"
+grep -q '"method": "saltation"' "$work/salt.json" || fail "lyapunov --method saltation: the JSON does not name the method"
+grep -q '"latched_variations": "carried"' "$work/salt.json" || fail "lyapunov --method saltation: latched_variations not carried"
+grep -q '"status": "completed"' "$work/salt.json" || fail "lyapunov --method saltation did not complete: $(head -c 300 "$work/salt.json")"
+grep -q '"method": "benettin"' "$work/lyap.json" || fail "lyapunov: the JSON does not name the default method"
+expect 2 "not in {benettin,saltation}" -- lyapunov -q --method newton
+expect 2 "needs --method saltation" -- lyapunov -q --drop-latched-variations
+expect 3 "method = saltation: does not apply to this scene: .*rk4" -- lyapunov -q --method saltation \
+  --set integrator.method=dopri5
+expect 3 "Coulomb" -- lyapunov -q --method saltation --set joint.slider.friction.law=coulomb
 expect 3 "exponents = 9: must be between 1 and the phase-space dimension" -- lyapunov -q --periods 10 -k 9
 "$m" lyapunov -q --periods -1 > /dev/null 2> "$work/err"
 code=$?
