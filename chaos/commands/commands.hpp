@@ -4,7 +4,8 @@
 // command's defaults), applies the command's own defaults that depend on the data, computes, and
 // fills a Report: its parameters (the '#' header / "parameters") and its JSON body, exactly what
 // `chaos X --json` writes. The command line adds the text table and the plot; the Python package
-// hands the JSON over as the result.
+// hands the JSON over as the result. X_parameters() is the command's parameter table
+// (parameter_table.hpp, parameter_tables.cpp): its options and Python keyword arguments.
 
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +34,7 @@
 #include "chaos/surrogates.hpp"
 #include "chaos/models/validation.hpp"
 #include "chaos/models/zoo_suite.hpp"
+#include "parameter_table.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -74,6 +76,7 @@ struct CaoParams {
   CaoOptions options;
   std::string norm = "max";
 };
+const ParameterTable<CaoParams>& cao_parameters();
 struct CaoRun {
   CaoResult result;
   Report report;

@@ -15,8 +15,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "chaos/embedding.hpp"
@@ -108,6 +111,60 @@ void get(const py::dict& p, const char* name, std::vector<double>& target) {
   if (!has(p, name)) return;
   target.clear();
   for (const auto& v : p[name]) target.push_back(to_real(v, name));
+}
+void get(const py::dict& p, const char* name, std::vector<std::size_t>& target) {
+  if (!has(p, name)) return;
+  target.clear();
+  for (const auto& v : p[name]) target.push_back(to_count(v, name));
+}
+// name=value settings (-p name=value, repeatable): a dict {name: value}.
+void get(const py::dict& p, const char* name, std::map<std::string, double>& target) {
+  if (!has(p, name)) return;
+  if (!py::isinstance<py::dict>(p[name])) type_error(std::string(name) + " must be a dict of name: value");
+  for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(p[name])) {
+    if (!py::isinstance<py::str>(key)) type_error(std::string(name) + " names must be strings");
+    target[py::cast<std::string>(key)] = to_real(value, name);
+  }
+}
+
+// A command's keyword arguments, read by its parameter table (parameter_table.hpp).
+template <class Params>
+void read_parameters(const py::dict& p, Params& params, const ParameterTable<Params>& table) {
+  for (const auto& parameter : table)
+    std::visit([&](auto* field) { get(p, parameter.name.c_str(), *field); }, parameter.field(params));
+}
+
+// A field's value as Python's default: None for a field left out (an empty optional, list or map).
+py::object python_value(const ParameterField& field) {
+  return std::visit(
+      [](const auto* value) -> py::object {
+        using T = std::remove_cv_t<std::remove_pointer_t<decltype(value)>>;
+        if constexpr (std::is_same_v<T, std::optional<std::size_t>> || std::is_same_v<T, std::optional<double>>)
+          return *value ? py::cast(**value) : py::none();
+        else if constexpr (std::is_same_v<T, bool> || std::is_arithmetic_v<T> || std::is_same_v<T, std::string>)
+          return py::cast(*value);
+        else
+          return value->empty() ? py::none() : py::cast(*value);
+      },
+      field);
+}
+
+// The table as chaos/__init__.py builds the functions' signatures from it: (name, default, flags)
+// per parameter, in the table's order.
+template <class Params>
+py::list describe(const ParameterTable<Params>& table) {
+  Params defaults;
+  py::list out;
+  for (const auto& parameter : table)
+    out.append(py::make_tuple(parameter.name,
+                              parameter.default_described ? py::none() : python_value(parameter.field(defaults)),
+                              parameter.flags));
+  return out;
+}
+
+py::list parameters(const std::string& command) {
+  if (command == "cao") return describe(cao_parameters());
+  value_error("no parameter table for '" + command + "'");
 }
 
 // The series: the checks every command applies to what it reads (finite, usable scale).
@@ -208,14 +265,7 @@ py::object cao(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   CaoParams params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.options.min_dimension);
-  get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "norm", params.norm);
-  get(p, "level", params.options.saturation_level);
-  get(p, "change", params.options.saturation_change);
-  get(p, "sigmas", params.options.stochastic_sigmas);
+  read_parameters(p, params, cao_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_cao(in, params).report.json(); });
 }
@@ -829,6 +879,7 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "The chaos library's commands on NumPy arrays (see the chaos package).";
+  m.def("parameters", &parameters);
   m.def("mutual", &mutual);
   m.def("autocorrelation", &autocorrelation);
   m.def("cao", &cao);

@@ -20,6 +20,8 @@ information in nats.
 A result's JSON names the series in ``parameters["file"]``: the path for a file, ``"(array)"`` for
 an array.
 """
+import functools
+import inspect
 import os
 import sys
 
@@ -34,6 +36,36 @@ __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d
 __version__ = "0.1.0"
 
 ARRAY_NAME = "(array)"
+
+
+def _parameters(command):
+    """Gives the decorated function the keyword arguments of the command's parameter table (the
+    table the ``chaos`` command's options come from, chaos/commands/parameter_tables.cpp), with
+    the command's defaults, ahead of the function's own keyword arguments. The function takes them
+    as ``**params``, every one of them present (its default where the caller left it out), and hands
+    them to _core; ``inspect.signature`` and ``help`` show them with their defaults."""
+    table = _core.parameters(command)
+    defaults = {name: default for name, default, _ in table}
+
+    def decorate(function):
+        own = inspect.signature(function).parameters.values()
+        keyword = [p for p in own if p.kind is inspect.Parameter.KEYWORD_ONLY]
+        leading = [p for p in own if p.kind in (inspect.Parameter.POSITIONAL_ONLY,
+                                                inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+        accepted = set(defaults) | {p.name for p in own if p.kind is not inspect.Parameter.VAR_KEYWORD}
+
+        @functools.wraps(function)
+        def with_parameters(*args, **kwargs):
+            for name in kwargs:
+                if name not in accepted:
+                    raise TypeError(f"{function.__name__}() got an unexpected keyword argument '{name}'")
+            return function(*args, **{**defaults, **kwargs})
+
+        table_parameters = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default)
+                            for name, default in defaults.items()]
+        with_parameters.__signature__ = inspect.Signature(leading + table_parameters + keyword)
+        return with_parameters
+    return decorate
 
 
 def _series(x, dt, column=1, skip=0, length=None):
@@ -154,8 +186,8 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
     return _make(_core.autocorrelation(values, file, column, dt, dict(max_lag=max_lag)))
 
 
-def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm="max", level=0.8, change=0.1, sigmas=4.0,
-        progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("cao")
+def cao(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates (``chaos cao``).
 
     ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
@@ -175,9 +207,7 @@ def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm=
     stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.cao, "Cao's method", progress, values, file, column, dt,
-                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                     norm=norm, level=level, change=change, sigmas=sigmas))
+    return _run(_core.cao, "Cao's method", progress, values, file, column, dt, params)
 
 
 def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=10.0, atol=2.0, norm="euclidean",
