@@ -47,6 +47,7 @@ struct MutualParams {
   MutualInformationOptions options;
   std::string estimator = "equal_width";
 };
+const ParameterTable<MutualParams>& mutual_parameters();
 struct MutualRun {
   MutualInformationResult result;
   std::optional<std::size_t> minimum;

@@ -22,6 +22,18 @@ const char* const end_match_help = "first trim the series to the segment whose e
 
 }  // namespace
 
+const ParameterTable<MutualParams>& mutual_parameters() {
+  static const ParameterTable<MutualParams> table{
+      {"max_delay", "-D,--max-delay",
+       "largest delay (default: automatic, 100 (at most N/10), and where the information has no minimum there, on to "
+       "two Theiler windows, as chaos analyze searches)",
+       field(&MutualParams::max_delay)},
+      {"boxes", "-b,--boxes", "boxes per axis", field(&MutualParams::options, &MutualInformationOptions::boxes)},
+      {"estimator", "--estimator", "equal_width (TISEAN) or equiprobable", field(&MutualParams::estimator)},
+  };
+  return table;
+}
+
 const ParameterTable<CaoParams>& cao_parameters() {
   static const ParameterTable<CaoParams> table{
       {"delay", "-d,--delay", delay_help, field(&CaoParams::delay)},

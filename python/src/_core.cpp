@@ -163,6 +163,7 @@ py::list describe(const ParameterTable<Params>& table) {
 }
 
 py::list parameters(const std::string& command) {
+  if (command == "mutual") return describe(mutual_parameters());
   if (command == "cao") return describe(cao_parameters());
   value_error("no parameter table for '" + command + "'");
 }
@@ -247,9 +248,7 @@ std::function<void(const std::string&, double)> step_progress_hook(py::object ca
 py::object mutual(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   MutualParams params;
-  get(p, "max_delay", params.max_delay);
-  get(p, "boxes", params.options.boxes);
-  get(p, "estimator", params.estimator);
+  read_parameters(p, params, mutual_parameters());
   return call([&] { return run_mutual(in, params).report.json(); });
 }
 
@@ -858,8 +857,7 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
     get(p, "max_lag", a.max_lag);
     work = [&] { (void)run_autocorrelation(in, a).report.json().size(); };
   } else if (command == "mutual") {
-    get(p, "max_delay", m.max_delay);
-    get(p, "boxes", m.options.boxes);
+    read_parameters(p, m, mutual_parameters());
     work = [&] { (void)run_mutual(in, m).report.json().size(); };
   } else if (command == "d2") {
     get(p, "delay", d.delay);

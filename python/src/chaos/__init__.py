@@ -156,7 +156,8 @@ def _step_bar(progress):
     return bar
 
 
-def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
+@_parameters("mutual")
+def mutual(x, *, dt=None, column=1, skip=0, length=None, **params):
     """Average mutual information I(tau) in nats and its first minimum (``chaos mutual``).
 
     I(tau) = sum_ij p_ij(tau) ln(p_ij(tau) / (p_i p_j)) over a partition of the range into ``boxes``
@@ -169,8 +170,7 @@ def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, col
     Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time, no_minimum.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.mutual(values, file, column, dt,
-                              dict(max_delay=max_delay, boxes=boxes, estimator=estimator)))
+    return _make(_core.mutual(values, file, column, dt, params))
 
 
 def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
