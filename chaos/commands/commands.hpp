@@ -60,6 +60,7 @@ MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOpt
 struct AutocorrelationParams {
   std::optional<std::size_t> max_lag;  // default: N/10, at most 1000, at least 1
 };
+const ParameterTable<AutocorrelationParams>& autocorrelation_parameters();
 struct AutocorrelationRun {
   AutocorrelationResult result;
   std::optional<std::size_t> zero;

@@ -34,6 +34,13 @@ const ParameterTable<MutualParams>& mutual_parameters() {
   return table;
 }
 
+const ParameterTable<AutocorrelationParams>& autocorrelation_parameters() {
+  static const ParameterTable<AutocorrelationParams> table{
+      {"max_lag", "-D,--max-lag", "largest lag (default N/10, at most 1000)", field(&AutocorrelationParams::max_lag)},
+  };
+  return table;
+}
+
 const ParameterTable<CaoParams>& cao_parameters() {
   static const ParameterTable<CaoParams> table{
       {"delay", "-d,--delay", delay_help, field(&CaoParams::delay)},

@@ -164,6 +164,7 @@ py::list describe(const ParameterTable<Params>& table) {
 
 py::list parameters(const std::string& command) {
   if (command == "mutual") return describe(mutual_parameters());
+  if (command == "autocorrelation") return describe(autocorrelation_parameters());
   if (command == "cao") return describe(cao_parameters());
   value_error("no parameter table for '" + command + "'");
 }
@@ -256,7 +257,7 @@ py::object autocorrelation(const Array& x, const std::string& file, std::size_t 
                            const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   AutocorrelationParams params;
-  get(p, "max_lag", params.max_lag);
+  read_parameters(p, params, autocorrelation_parameters());
   return call([&] { return run_autocorrelation(in, params).report.json(); });
 }
 
@@ -854,7 +855,7 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
   MutualParams m;
   D2Params d;
   if (command == "autocorrelation") {
-    get(p, "max_lag", a.max_lag);
+    read_parameters(p, a, autocorrelation_parameters());
     work = [&] { (void)run_autocorrelation(in, a).report.json().size(); };
   } else if (command == "mutual") {
     read_parameters(p, m, mutual_parameters());

@@ -173,7 +173,8 @@ def mutual(x, *, dt=None, column=1, skip=0, length=None, **params):
     return _make(_core.mutual(values, file, column, dt, params))
 
 
-def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
+@_parameters("autocorrelation")
+def autocorrelation(x, *, dt=None, column=1, skip=0, length=None, **params):
     """Autocorrelation r(k) by FFT, its first zero crossing and 1/e time (``chaos autocorrelation``).
 
     r(k) = sum_i (x_i - m)(x_{i+k} - m) / sum_i (x_i - m)^2 for k = 0..max_lag (default N/10, at most
@@ -183,7 +184,7 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
     Result keys: lag, autocorrelation, first_zero_crossing, decorrelation_time, [decorrelation_time_units].
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.autocorrelation(values, file, column, dt, dict(max_lag=max_lag)))
+    return _make(_core.autocorrelation(values, file, column, dt, params))
 
 
 @_parameters("cao")
