@@ -91,6 +91,7 @@ struct FnnParams {
   FnnOptions options;
   std::string norm = "euclidean";
 };
+const ParameterTable<FnnParams>& fnn_parameters();
 struct FnnRun {
   FnnResult result;
   Report report;

@@ -60,4 +60,22 @@ const ParameterTable<CaoParams>& cao_parameters() {
   return table;
 }
 
+const ParameterTable<FnnParams>& fnn_parameters() {
+  static const ParameterTable<FnnParams> table{
+      {"delay", "-d,--delay", delay_help, field(&FnnParams::delay)},
+      {"min_dimension", "-m,--min-dimension", "smallest embedding dimension",
+       field(&FnnParams::options, &FnnOptions::min_dimension)},
+      {"max_dimension", "-M,--max-dimension", "largest embedding dimension",
+       field(&FnnParams::options, &FnnOptions::max_dimension)},
+      {"theiler", "-t,--theiler", theiler_help, field(&FnnParams::theiler)},
+      {"rtol", "--rtol", "distance-ratio threshold (criterion 1)", field(&FnnParams::options, &FnnOptions::rtol)},
+      {"atol", "--atol", "size threshold in units of the standard deviation (criterion 2)",
+       field(&FnnParams::options, &FnnOptions::atol)},
+      {"norm", "--norm", "euclidean (Kennel et al.) or max", field(&FnnParams::norm)},
+      {"threshold", "--threshold", "dimension chosen where the false fraction <= this",
+       field(&FnnParams::options, &FnnOptions::threshold)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

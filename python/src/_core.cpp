@@ -166,6 +166,7 @@ py::list parameters(const std::string& command) {
   if (command == "mutual") return describe(mutual_parameters());
   if (command == "autocorrelation") return describe(autocorrelation_parameters());
   if (command == "cao") return describe(cao_parameters());
+  if (command == "fnn") return describe(fnn_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -274,14 +275,7 @@ py::object fnn(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   FnnParams params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.options.min_dimension);
-  get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "rtol", params.options.rtol);
-  get(p, "atol", params.options.atol);
-  get(p, "norm", params.norm);
-  get(p, "threshold", params.options.threshold);
+  read_parameters(p, params, fnn_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_fnn(in, params).report.json(); });
 }

@@ -211,8 +211,8 @@ def cao(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     return _run(_core.cao, "Cao's method", progress, values, file, column, dt, params)
 
 
-def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=10.0, atol=2.0, norm="euclidean",
-        threshold=0.01, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("fnn")
+def fnn(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The fraction of false nearest neighbours against m (``chaos fnn``).
 
     ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
@@ -229,9 +229,7 @@ def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=
     stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt,
-                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                     rtol=rtol, atol=atol, norm=norm, threshold=threshold))
+    return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt, params)
 
 
 def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
