@@ -118,6 +118,7 @@ struct D2Params {
   bool fast = false;
   AdaptiveD2Options adaptive;
 };
+const ParameterTable<D2Params>& d2_parameters();
 struct D2Run {
   CorrelationSumResult sums;
   CorrelationDimensionResult d2;

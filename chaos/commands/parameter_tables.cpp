@@ -78,4 +78,81 @@ const ParameterTable<FnnParams>& fnn_parameters() {
   return table;
 }
 
+const ParameterTable<D2Params>& d2_parameters() {
+  using Sums = CorrelationSumOptions;
+  using Dimension = CorrelationDimensionOptions;
+  using Region = ScalingRegionOptions;
+  static const ParameterTable<D2Params> table{
+      {"delay", "-d,--delay", delay_help, field(&D2Params::delay)},
+      {"min_dimension", "-m,--min-dimension", "smallest embedding dimension", field(&D2Params::sums, &Sums::min_dimension)},
+      {"max_dimension", "-M,--max-dimension", "largest embedding dimension", field(&D2Params::sums, &Sums::max_dimension)},
+      {"theiler", "-t,--theiler", theiler_help, field(&D2Params::theiler)},
+      {"min_radius", "-r,--min-radius", "smallest radius (default: data range / 1000)", field(&D2Params::r_min)},
+      {"max_radius", "-R,--max-radius", "largest radius (default: data range / 4)", field(&D2Params::r_max)},
+      {"radii", "-#,--radii", "number of log-spaced radii", field(&D2Params::radii)},
+      {.name = "radius_list",
+       .flags = "--radius-list",
+       .help = "explicit increasing radii (comma-separated), instead of -r -R -#",
+       .field = field(&D2Params::radius_list),
+       .delimiter = ','},
+      {"norm", "--norm", "max or euclidean", field(&D2Params::norm)},
+      {"inclusive", "--inclusive", "count pairs at distance <= eps, as TISEAN's d2 does (default: < eps)",
+       field(&D2Params::sums, &Sums::inclusive)},
+      {"search", "--search",
+       "box (box-assisted, the fastest), kd (kd-tree, one traversal per point for all radii and m: 0.8-1.3 times the "
+       "box time) or brute (the definition, slowest)",
+       field(&D2Params::search)},
+      {"pairs_per_radius", "-N,--pairs-per-radius", "stop counting a radius after this many close pairs (0: exact)",
+       field(&D2Params::sums, &Sums::pairs_per_radius)},
+      {"reference_points", "--reference-points", "random subset of reference points (0: all)",
+       field(&D2Params::sums, &Sums::reference_points)},
+      {"seed", "--seed", "seed of the reference order and subset", field(&D2Params::sums, &Sums::seed)},
+      {"fast", "--fast",
+       "choose the reference subset from the data: it doubles (from --fast-start points) until two disjoint subsets "
+       "agree on D2 within --fast-target, else the exact counts are used",
+       field(&D2Params::fast)},
+      {"fast_target", "--fast-target", "--fast: agreement of two disjoint subsets' D2",
+       field(&D2Params::adaptive, &AdaptiveD2Options::target)},
+      {"fast_start", "--fast-start", "--fast: reference points in each subset of the first round",
+       field(&D2Params::adaptive, &AdaptiveD2Options::initial_reference_points)},
+      {"threads", "--threads", threads_help, field(&D2Params::sums, &Sums::threads)},
+      {"tolerance", "--tolerance", "relative flatness of the local slopes in the region",
+       field(&D2Params::dimension, &Dimension::region, &Region::tolerance)},
+      {"min_points", "--min-points", "radii in a scaling region, at least",
+       field(&D2Params::dimension, &Dimension::region, &Region::min_points)},
+      {"saturation_dimensions", "--saturation-dimensions", "highest dimensions that must share the plateau",
+       field(&D2Params::dimension, &Dimension::saturation_dimensions)},
+      {"min_pairs", "--min-pairs", "radii with fewer close pairs are left out",
+       field(&D2Params::dimension, &Dimension::min_pairs)},
+      {"min_plateau_ratio", "--min-plateau-ratio",
+       "the highest dimensions' shared plateau spans at least this factor in eps (eps_high / eps_low)",
+       field(&D2Params::dimension, &Dimension::min_plateau_ratio)},
+      // FLOAT|inf: not the command line's FLOAT check, which refuses infinity; the library validates it.
+      {"projection_tolerance", "--projection-tolerance",
+       "no lower dimension m >= 2 D2 + 1 may read a mean local slope over the plateau more than this fraction above "
+       "it (a projection cannot have a larger dimension; inf: no check)",
+       field(&D2Params::dimension, &Dimension::projection_tolerance), "FLOAT|inf"},
+      {"noise_fill_fraction", "--noise-fill-fraction",
+       "a plateau is noise-limited when, over consecutive radii below it, every saturating dimension m reads a local "
+       "slope more than this fraction of the way from the plateau's slope to m (inf: no check)",
+       field(&D2Params::dimension, &Dimension::noise_fill_fraction), "FLOAT|inf"},
+      {.name = "max_region_fraction",
+       .flags = "--max-region-fraction",
+       .help = "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)",
+       .field = field(&D2Params::dimension, &Dimension::max_region_fraction),
+       .default_described = true},
+      {"halves", "--halves,!--no-halves",
+       "a saturated D2 must be reproduced by the first and the second half of the record, else it is "
+       "'not_reproduced' (on by default, as in chaos analyze; --no-halves gives the plain estimate)",
+       field(&D2Params::halves)},
+      {"delay_check", "--delay-check",
+       "a saturated D2 must be reproduced at twice the delay, within --delay-tolerance (as in chaos analyze)",
+       field(&D2Params::delay_check)},
+      {"delay_tolerance", "--delay-tolerance",
+       "the largest difference between D2 at the delay and at twice it, with --delay-check",
+       field(&D2Params::dimension, &Dimension::delay_tolerance)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -167,6 +167,7 @@ py::list parameters(const std::string& command) {
   if (command == "autocorrelation") return describe(autocorrelation_parameters());
   if (command == "cao") return describe(cao_parameters());
   if (command == "fnn") return describe(fnn_parameters());
+  if (command == "d2") return describe(d2_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -284,35 +285,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
               py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   D2Params params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.sums.min_dimension);
-  get(p, "max_dimension", params.sums.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "min_radius", params.r_min);
-  get(p, "max_radius", params.r_max);
-  get(p, "radii", params.radii);
-  get(p, "radius_list", params.radius_list);
-  get(p, "norm", params.norm);
-  get(p, "search", params.search);
-  get(p, "pairs_per_radius", params.sums.pairs_per_radius);
-  get(p, "reference_points", params.sums.reference_points);
-  get(p, "seed", params.sums.seed);
-  get(p, "threads", params.sums.threads);
-  get(p, "tolerance", params.dimension.region.tolerance);
-  get(p, "min_points", params.dimension.region.min_points);
-  get(p, "saturation_dimensions", params.dimension.saturation_dimensions);
-  get(p, "min_plateau_ratio", params.dimension.min_plateau_ratio);
-  get(p, "projection_tolerance", params.dimension.projection_tolerance);
-  get(p, "noise_fill_fraction", params.dimension.noise_fill_fraction);
-  get(p, "min_pairs", params.dimension.min_pairs);
-  get(p, "max_region_fraction", params.dimension.max_region_fraction);
-  get(p, "halves", params.halves);
-  get(p, "delay_check", params.delay_check);
-  get(p, "delay_tolerance", params.dimension.delay_tolerance);
-  get(p, "inclusive", params.sums.inclusive);
-  get(p, "fast", params.fast);
-  get(p, "fast_target", params.adaptive.target);
-  get(p, "fast_start", params.adaptive.initial_reference_points);
+  read_parameters(p, params, d2_parameters());
   params.sums.progress = progress_hook(std::move(progress));
   params.halves_progress = params.sums.progress;  // again from 0 for each half (Ctrl-C is noticed there too)
   return call([&] { return run_d2(in, params).report.json(); });
@@ -855,9 +828,7 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
     read_parameters(p, m, mutual_parameters());
     work = [&] { (void)run_mutual(in, m).report.json().size(); };
   } else if (command == "d2") {
-    get(p, "delay", d.delay);
-    get(p, "max_dimension", d.sums.max_dimension);
-    get(p, "theiler", d.theiler);
+    read_parameters(p, d, d2_parameters());
     work = [&] { (void)run_d2(in, d).report.json().size(); };
   } else {
     value_error("compute_seconds: autocorrelation, mutual or d2");

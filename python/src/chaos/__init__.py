@@ -232,11 +232,8 @@ def fnn(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt, params)
 
 
-def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
-       radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
-       tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=True, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
-       skip=0, length=None):
+@_parameters("d2")
+def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
 
@@ -288,15 +285,6 @@ def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_ra
     plain estimate.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    params = dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                  min_radius=min_radius, max_radius=max_radius, radii=radii, radius_list=radius_list, norm=norm,
-                  search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
-                  threads=threads, tolerance=tolerance, min_points=min_points,
-                  saturation_dimensions=saturation_dimensions, min_plateau_ratio=min_plateau_ratio,
-                  projection_tolerance=projection_tolerance, noise_fill_fraction=noise_fill_fraction,
-                  min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, delay_check=delay_check,
-                  delay_tolerance=delay_tolerance, inclusive=inclusive, fast=fast,
-                  fast_target=fast_target, fast_start=fast_start)
     bar = _progress_bar(progress, "correlation sums")
     try:
         return _make(_core.d2(values, file, column, dt, params, bar))
