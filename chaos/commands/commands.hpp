@@ -158,6 +158,7 @@ struct LyapunovParams {
   // On by default, as in chaos analyze; `--no-halves` for the plain estimate.
   bool halves = true;
 };
+const ParameterTable<LyapunovParams>& lyapunov_parameters();
 struct LyapunovRun {
   LyapunovResult result;
   std::optional<LyapunovResult> check;  // the other method's result, when cross-checked

@@ -155,4 +155,60 @@ const ParameterTable<D2Params>& d2_parameters() {
   return table;
 }
 
+const ParameterTable<LyapunovParams>& lyapunov_parameters() {
+  using Fit = LyapunovFitOptions;
+  static const ParameterTable<LyapunovParams> table{
+      {"method", "--method",
+       "rosenstein (mean log distance of nearest neighbours) or kantz (log of the mean distance in an "
+       "eps-neighbourhood)",
+       field(&LyapunovParams::method)},
+      {"dimension", "-m,--dimension", dimension_help, field(&LyapunovParams::dimension)},
+      {"delay", "-d,--delay", delay_help, field(&LyapunovParams::delay)},
+      {"theiler", "-t,--theiler", theiler_help, field(&LyapunovParams::theiler)},
+      {"steps", "-s,--steps", "steps the divergence is followed (default: 20 correlation times or periods, 20..N/10)",
+       field(&LyapunovParams::steps)},
+      {"period", "--period",
+       "oscillation period in samples: local slopes span a whole period (default: twice the first autocorrelation "
+       "minimum; 0: none)",
+       field(&LyapunovParams::period)},
+      {"dimensions", "--dimensions",
+       "embedding dimensions m, m+1, ... whose curves must share the linear region and agree on its slope",
+       field(&LyapunovParams::fit, &Fit::dimensions)},
+      {"radius", "-r,--radius",
+       "Kantz: neighbourhood radius eps (default: data range / 1000, scaled by powers of 2 so that half the reference "
+       "points have a neighbour and at most 20 on average)",
+       field(&LyapunovParams::options, &LyapunovOptions::radius)},
+      {"min_neighbours", "-k,--min-neighbours", "Kantz: reference points with fewer neighbours are skipped",
+       field(&LyapunovParams::options, &LyapunovOptions::min_neighbours)},
+      {"max_neighbours", "--max-neighbours",
+       "Kantz: at most this many neighbours per reference point; a larger neighbourhood is represented by that many "
+       "of its members evenly spaced in time, and the output counts them (capped_neighbourhoods; 0: no bound)",
+       field(&LyapunovParams::options, &LyapunovOptions::max_neighbours)},
+      {"reference_points", "--reference-points",
+       "use this many evenly spaced reference points (default: at most 10^4, as chaos analyze; 0: all)",
+       field(&LyapunovParams::reference_points)},
+      {"norm", "--norm", "max or euclidean", field(&LyapunovParams::norm)},
+      {"threads", "--threads", threads_help, field(&LyapunovParams::options, &LyapunovOptions::threads)},
+      {"tolerance", "--tolerance", "relative flatness of the local slopes in the linear region",
+       field(&LyapunovParams::fit, &Fit::tolerance)},
+      {"half_width", "--half-width", "local-slope half width in steps (0: max(2, steps/25, period/2))",
+       field(&LyapunovParams::fit, &Fit::half_width)},
+      {"min_steps", "--min-steps", "steps in a linear region, at least (0: 3 half widths + 1, and a period + 1)",
+       field(&LyapunovParams::fit, &Fit::min_steps)},
+      {"min_rise", "--min-rise", "e-folds the curve must rise across the linear region",
+       field(&LyapunovParams::fit, &Fit::min_rise)},
+      {"cross_check", "!--no-cross-check",
+       "skip the other estimators' checks: the status is then this estimator's alone (by default a linear region the "
+       "other method does not confirm within the tolerance, or that lambda_1 from local maps does not confirm (maps "
+       "not consistent, or more than the tolerance away), as in chaos analyze, is 'unconfirmed')",
+       field(&LyapunovParams::cross_check)},
+      {"halves", "--halves,!--no-halves",
+       "run the estimator over each half of the record too: a linear region that neither half shows, or that a half "
+       "puts more than the tolerance away, is 'not_reproduced' (on by default, as in chaos analyze; --no-halves gives "
+       "the plain estimate)",
+       field(&LyapunovParams::halves)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

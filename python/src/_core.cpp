@@ -168,6 +168,7 @@ py::list parameters(const std::string& command) {
   if (command == "cao") return describe(cao_parameters());
   if (command == "fnn") return describe(fnn_parameters());
   if (command == "d2") return describe(d2_parameters());
+  if (command == "lyapunov") return describe(lyapunov_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -295,24 +296,7 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
                     const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovParams params;
-  get(p, "method", params.method);
-  get(p, "dimension", params.dimension);
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "steps", params.steps);
-  get(p, "period", params.period);
-  get(p, "dimensions", params.fit.dimensions);
-  get(p, "radius", params.options.radius);
-  get(p, "min_neighbours", params.options.min_neighbours);
-  get(p, "reference_points", params.reference_points);
-  get(p, "norm", params.norm);
-  get(p, "threads", params.options.threads);
-  get(p, "tolerance", params.fit.tolerance);
-  get(p, "half_width", params.fit.half_width);
-  get(p, "min_steps", params.fit.min_steps);
-  get(p, "min_rise", params.fit.min_rise);
-  get(p, "cross_check", params.cross_check);
-  get(p, "halves", params.halves);
+  read_parameters(p, params, lyapunov_parameters());
   // With the cross-check the other method's curve is the second half of the work.
   const std::function<void(double)> hook = progress_hook(std::move(progress));
   if (hook) params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there

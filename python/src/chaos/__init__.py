@@ -296,10 +296,8 @@ def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
 correlation_sum = d2  # the correlation sums are part of d2's result (correlation_sum, pairs, radius)
 
 
-def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None, steps=None, period=None, dimensions=3,
-             radius=None, min_neighbours=1, reference_points=None, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, cross_check=True, halves=True, progress=None, dt=None, column=1, skip=0,
-             length=None):
+@_parameters("lyapunov")
+def lyapunov(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
     ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
@@ -341,12 +339,7 @@ def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None
     reference points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt,
-                dict(method=method, dimension=dimension, delay=delay, theiler=theiler, steps=steps,
-                     period=period, dimensions=dimensions, radius=radius,
-                     min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
-                     threads=threads, tolerance=tolerance, half_width=half_width,
-                     min_steps=min_steps, min_rise=min_rise, cross_check=cross_check, halves=halves))
+    return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt, params)
 
 
 def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
