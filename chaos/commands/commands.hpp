@@ -181,6 +181,7 @@ struct LyapunovMapsParams {
   std::string norm = "max";
   double tolerance = 0.05;
 };
+const ParameterTable<LyapunovMapsParams>& lyapunov_maps_parameters();
 struct LyapunovMapsRun {
   LocalMapResult result;
   Report report;

@@ -211,4 +211,27 @@ const ParameterTable<LyapunovParams>& lyapunov_parameters() {
   return table;
 }
 
+const ParameterTable<LyapunovMapsParams>& lyapunov_maps_parameters() {
+  static const ParameterTable<LyapunovMapsParams> table{
+      {"dimension", "-m,--dimension", dimension_help, field(&LyapunovMapsParams::dimension)},
+      {"delay", "-d,--delay", delay_help, field(&LyapunovMapsParams::delay)},
+      {"theiler", "-t,--theiler", theiler_help, field(&LyapunovMapsParams::theiler)},
+      {"step", "--step", "samples the local maps advance (0: max(1, round(tau/2)))",
+       field(&LyapunovMapsParams::options, &LocalMapOptions::step)},
+      {"neighbours", "-k,--neighbours", "neighbours per local map (0: 5 m)",
+       field(&LyapunovMapsParams::options, &LocalMapOptions::neighbours)},
+      {"cutoff", "--cutoff", "singular values of a neighbourhood below this fraction of the largest are not fitted",
+       field(&LyapunovMapsParams::options, &LocalMapOptions::cutoff)},
+      {"tolerance", "--tolerance", "agreement required of every variant, relative to the base",
+       field(&LyapunovMapsParams::tolerance)},
+      {"max_residual", "--max-residual",
+       "a map leaving more of its neighbourhood's image spread unexplained is not averaged; more than half such maps: "
+       "not_deterministic",
+       field(&LyapunovMapsParams::options, &LocalMapOptions::max_residual)},
+      {"norm", "--norm", "max or euclidean (neighbour search)", field(&LyapunovMapsParams::norm)},
+      {"threads", "--threads", threads_help, field(&LyapunovMapsParams::options, &LocalMapOptions::threads)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -169,6 +169,7 @@ py::list parameters(const std::string& command) {
   if (command == "fnn") return describe(fnn_parameters());
   if (command == "d2") return describe(d2_parameters());
   if (command == "lyapunov") return describe(lyapunov_parameters());
+  if (command == "lyapunov_maps") return describe(lyapunov_maps_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -316,16 +317,7 @@ py::object lyapunov_maps(const Array& x, const std::string& file, std::size_t co
                          const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovMapsParams params;
-  get(p, "dimension", params.dimension);
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "step", params.options.step);
-  get(p, "neighbours", params.options.neighbours);
-  get(p, "cutoff", params.options.cutoff);
-  get(p, "max_residual", params.options.max_residual);
-  get(p, "tolerance", params.tolerance);
-  get(p, "norm", params.norm);
-  get(p, "threads", params.options.threads);
+  read_parameters(p, params, lyapunov_maps_parameters());
   return call([&] { return run_lyapunov_maps(in, params).report.json(); });
 }
 

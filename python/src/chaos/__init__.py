@@ -342,8 +342,8 @@ def lyapunov(x, *, progress=None, dt=None, column=1, skip=0, length=None, **para
     return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt, params)
 
 
-def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
-                  max_residual=0.25, norm="max", threads=1, dt=None, column=1, skip=0, length=None):
+@_parameters("lyapunov_maps")
+def lyapunov_maps(x, *, dt=None, column=1, skip=0, length=None, **params):
     """The largest Lyapunov exponent from local linear maps (``chaos lyapunov-maps``).
 
     ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
@@ -369,10 +369,7 @@ def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighb
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.lyapunov_maps(values, file, column, dt,
-                                     dict(dimension=dimension, delay=delay, theiler=theiler, step=step,
-                                          neighbours=neighbours, cutoff=cutoff, tolerance=tolerance,
-                                          max_residual=max_residual, norm=norm, threads=threads)))
+    return _make(_core.lyapunov_maps(values, file, column, dt, params))
 
 
 def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
