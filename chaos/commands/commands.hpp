@@ -235,12 +235,14 @@ struct AnalyzeParams {
   std::size_t test_length = 4096;  // samples given to the nonlinearity test
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
+  std::size_t builtin_length = 100000;  // of the built-in series, analysed without a file (enough for a confident lambda_1)
   bool delay_check = false;   // a saturated D2 must be reproduced at twice the delay too
   bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
   // Called with each step's name and the fraction of it done (AutomaticAnalysisOptions::progress),
   // also for the false neighbours and the surrogate test; may throw to stop.
   std::function<void(const std::string&, double)> progress;
 };
+const ParameterTable<AnalyzeParams>& analyze_parameters();
 struct AnalyzeRun {
   AutomaticAnalysis analysis;
   std::optional<FnnResult> fnn;

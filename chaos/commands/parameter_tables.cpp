@@ -234,4 +234,30 @@ const ParameterTable<LyapunovMapsParams>& lyapunov_maps_parameters() {
   return table;
 }
 
+const ParameterTable<AnalyzeParams>& analyze_parameters() {
+  static const ParameterTable<AnalyzeParams> table{
+      {"delay", "-d,--delay", "use this delay instead of the mutual-information minimum", field(&AnalyzeParams::delay)},
+      {"theiler", "-t,--theiler",
+       "use this Theiler window instead of the automatic one (the longer of the autocorrelation 1/e time and half the "
+       "dominant period, at least the delay)",
+       field(&AnalyzeParams::theiler)},
+      {"max_delay", "-D,--max-delay",
+       "largest delay searched first for the MI minimum; where nothing is found up to it, the search goes on to twice "
+       "the record's Theiler window (at most N/10)",
+       field(&AnalyzeParams::max_delay)},
+      {"boxes", "-b,--boxes", "boxes for mutual information", field(&AnalyzeParams::boxes)},
+      {"max_dimension", "-M,--max-dimension", "largest embedding dimension", field(&AnalyzeParams::max_dimension)},
+      {"delay_check", "--delay-check",
+       "a saturated D2 must also be reproduced at twice the delay, within 0.05 (chaos d2 --delay-check)",
+       field(&AnalyzeParams::delay_check)},
+      {"builtin_length", "--builtin-length", "length of the built-in Lorenz series", field(&AnalyzeParams::builtin_length)},
+      {"test_length", "--test-length", "samples given to the nonlinearity test (the first ones)",
+       field(&AnalyzeParams::test_length)},
+      {"surrogates", "--surrogates", "surrogates of the one-sided nonlinearity test (19: 5%)",
+       field(&AnalyzeParams::surrogates)},
+      {"seed", "--seed", "seed of the surrogates", field(&AnalyzeParams::seed)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -170,6 +170,7 @@ py::list parameters(const std::string& command) {
   if (command == "d2") return describe(d2_parameters());
   if (command == "lyapunov") return describe(lyapunov_parameters());
   if (command == "lyapunov_maps") return describe(lyapunov_maps_parameters());
+  if (command == "analyze") return describe(analyze_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -325,15 +326,7 @@ py::tuple analyze(const Array& x, const std::string& file, std::size_t column, s
                    const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   AnalyzeParams params;
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "max_delay", params.max_delay);
-  get(p, "boxes", params.boxes);
-  get(p, "max_dimension", params.max_dimension);
-  get(p, "test_length", params.test_length);
-  get(p, "surrogates", params.surrogates);
-  get(p, "seed", params.seed);
-  get(p, "delay_check", params.delay_check);
+  read_parameters(p, params, analyze_parameters());
   params.progress = step_progress_hook(std::move(progress));
   params.mutual_curve = true;  // the information curve, for the plot (the JSON does not change)
   nlohmann::ordered_json json, evidence = nlohmann::ordered_json::object();

@@ -372,9 +372,8 @@ def lyapunov_maps(x, *, dt=None, column=1, skip=0, length=None, **params):
     return _make(_core.lyapunov_maps(values, file, column, dt, params))
 
 
-def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
-            test_length=4096, surrogates=19, seed=1, delay_check=False, progress=None, dt=None, column=1, skip=0,
-            length=None):
+@_parameters("analyze")
+def analyze(x=None, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The embedding parameters chosen and justified, then D2, lambda_1 and a nonlinearity test
     (``chaos analyze``).
 
@@ -401,16 +400,13 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     none).
     """
     if x is None:
-        values, builtin_dt = _core.builtin_series(builtin_length)
+        values, builtin_dt = _core.builtin_series(params["builtin_length"])
         file, column, dt = _core.builtin_series_name, 1, builtin_dt
     else:
         values, file, column, dt = _series(x, dt, column, skip, length)
     bar = _step_bar(progress)
     try:
-        json, evidence = _core.analyze(values, file, column, dt,
-                                       dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
-                                            max_dimension=max_dimension, test_length=test_length,
-                                            surrogates=surrogates, seed=seed, delay_check=delay_check), bar)
+        json, evidence = _core.analyze(values, file, column, dt, params, bar)
         return _make(json, evidence=evidence)
     finally:
         if bar is not None and not callable(progress):
