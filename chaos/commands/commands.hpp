@@ -275,6 +275,7 @@ struct SurrogatesParams {
   bool end_match = false;
   EndMatchOptions end;
 };
+const ParameterTable<SurrogatesParams>& surrogates_parameters();
 struct SurrogatesRun {
   std::vector<Surrogate> surrogates;
   std::optional<EndMatch> match;

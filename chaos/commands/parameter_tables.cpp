@@ -260,4 +260,20 @@ const ParameterTable<AnalyzeParams>& analyze_parameters() {
   return table;
 }
 
+const ParameterTable<SurrogatesParams>& surrogates_parameters() {
+  static const ParameterTable<SurrogatesParams> table{
+      {"method", "--method", "ft (phase randomised), aaft or iaaft", field(&SurrogatesParams::method)},
+      {"count", "-n,--count", "number of surrogates", field(&SurrogatesParams::count)},
+      {"seed", "--seed", "seed; surrogate k uses the k-th draw of its stream", field(&SurrogatesParams::seed)},
+      {"max_iterations", "--max-iterations", "IAAFT: iteration limit",
+       field(&SurrogatesParams::options, &SurrogateOptions::max_iterations)},
+      {"tolerance", "--tolerance", "IAAFT: stop when the spectral deviation is this small (0: only at a fixed point)",
+       field(&SurrogatesParams::options, &SurrogateOptions::tolerance)},
+      {"end_match", "--end-match", end_match_help, field(&SurrogatesParams::end_match)},
+      {"max_trim", "--max-trim", "end matching: largest fraction cut off",
+       field(&SurrogatesParams::end, &EndMatchOptions::max_trim)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -171,6 +171,7 @@ py::list parameters(const std::string& command) {
   if (command == "lyapunov") return describe(lyapunov_parameters());
   if (command == "lyapunov_maps") return describe(lyapunov_maps_parameters());
   if (command == "analyze") return describe(analyze_parameters());
+  if (command == "surrogates") return describe(surrogates_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -359,13 +360,7 @@ py::object surrogates(const Array& x, const std::string& file, std::size_t colum
                       const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   SurrogatesParams params;
-  get(p, "method", params.method);
-  get(p, "count", params.count);
-  get(p, "seed", params.seed);
-  get(p, "max_iterations", params.options.max_iterations);
-  get(p, "tolerance", params.options.tolerance);
-  get(p, "end_match", params.end_match);
-  get(p, "max_trim", params.end.max_trim);
+  read_parameters(p, params, surrogates_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_surrogates(in, params).report.json(); });
 }

@@ -413,8 +413,8 @@ def analyze(x=None, *, progress=None, dt=None, column=1, skip=0, length=None, **
             sys.stderr.write("\n")
 
 
-def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, tolerance=0.0, end_match=False,
-               max_trim=0.1, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("surrogates")
+def surrogates(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """FT, AAFT or IAAFT surrogate series (``chaos surrogates``).
 
     FT: the data's Fourier amplitudes with uniformly random phases (Theiler et al., Physica D 58, 77,
@@ -430,9 +430,7 @@ def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, toler
     surrogates done); Ctrl-C stops the IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.surrogates, "surrogates", progress, values, file, column, dt,
-                dict(method=method, count=count, seed=seed, max_iterations=max_iterations,
-                     tolerance=tolerance, end_match=end_match, max_trim=max_trim))
+    return _run(_core.surrogates, "surrogates", progress, values, file, column, dt, params)
 
 
 def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
