@@ -298,6 +298,7 @@ struct NonlinearityParams {
   std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   bool end_match = false;
 };
+const ParameterTable<NonlinearityParams>& nonlinearity_parameters();
 struct NonlinearityRun {
   NonlinearityTestResult result;
   Report report;

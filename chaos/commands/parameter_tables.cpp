@@ -276,4 +276,36 @@ const ParameterTable<SurrogatesParams>& surrogates_parameters() {
   return table;
 }
 
+const ParameterTable<NonlinearityParams>& nonlinearity_parameters() {
+  using Test = NonlinearityTestOptions;
+  using Prediction = PredictionErrorOptions;
+  static const ParameterTable<NonlinearityParams> table{
+      {"count", "-n,--count", "surrogates K (39: two-sided 5%; 19: one-sided 5%)",
+       field(&NonlinearityParams::options, &Test::surrogates)},
+      {"seed", "--seed", "seed of the surrogates", field(&NonlinearityParams::options, &Test::seed)},
+      {"statistic", "--statistic", "prediction_error or time_reversal_asymmetry", field(&NonlinearityParams::statistic)},
+      {"alternative", "--alternative", "two_sided, smaller or larger", field(&NonlinearityParams::alternative)},
+      {"method", "--method", "surrogates: ft, aaft or iaaft", field(&NonlinearityParams::method)},
+      {"max_iterations", "--max-iterations", "IAAFT: iteration limit",
+       field(&NonlinearityParams::options, &Test::surrogate, &SurrogateOptions::max_iterations)},
+      {"delay", "-d,--delay",
+       "delay: of the predictor's embedding, or the lag of the asymmetry (default: automatic, the first "
+       "mutual-information minimum; the output names the rule)",
+       field(&NonlinearityParams::delay)},
+      {"dimension", "-m,--dimension", "prediction: embedding dimension (default: automatic, where Cao's E1 saturates)",
+       field(&NonlinearityParams::dimension)},
+      {"theiler", "-t,--theiler",
+       "prediction: Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and "
+       "half the dominant period, at least the delay)",
+       field(&NonlinearityParams::theiler)},
+      {"horizon", "--horizon", "prediction: steps ahead",
+       field(&NonlinearityParams::options, &Test::prediction, &Prediction::horizon)},
+      {"neighbours", "-k,--neighbours", "prediction: neighbours averaged",
+       field(&NonlinearityParams::options, &Test::prediction, &Prediction::neighbours)},
+      {"norm", "--norm", "prediction: max or euclidean", field(&NonlinearityParams::norm)},
+      {"end_match", "--end-match", end_match_help, field(&NonlinearityParams::end_match)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

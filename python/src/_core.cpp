@@ -172,6 +172,7 @@ py::list parameters(const std::string& command) {
   if (command == "lyapunov_maps") return describe(lyapunov_maps_parameters());
   if (command == "analyze") return describe(analyze_parameters());
   if (command == "surrogates") return describe(surrogates_parameters());
+  if (command == "nonlinearity") return describe(nonlinearity_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -369,19 +370,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
                         const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   NonlinearityParams params;
-  get(p, "count", params.options.surrogates);
-  get(p, "seed", params.options.seed);
-  get(p, "statistic", params.statistic);
-  get(p, "alternative", params.alternative);
-  get(p, "method", params.method);
-  get(p, "max_iterations", params.options.surrogate.max_iterations);
-  get(p, "delay", params.delay);
-  get(p, "dimension", params.dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "horizon", params.options.prediction.horizon);
-  get(p, "neighbours", params.options.prediction.neighbours);
-  get(p, "norm", params.norm);
-  get(p, "end_match", params.end_match);
+  read_parameters(p, params, nonlinearity_parameters());
   params.options.progress = progress_hook(std::move(progress));
   const std::function<void(double)> hook = params.options.progress;
   params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there

@@ -433,9 +433,8 @@ def surrogates(x, *, progress=None, dt=None, column=1, skip=0, length=None, **pa
     return _run(_core.surrogates, "surrogates", progress, values, file, column, dt, params)
 
 
-def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
-                 max_iterations=1000, delay=None, dimension=None, theiler=None, horizon=1, neighbours=5, norm="max",
-                 end_match=False, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("nonlinearity")
+def nonlinearity(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Rank-order surrogate test for nonlinearity (``chaos nonlinearity``).
 
     The statistic (the locally constant predictor's error in a delay embedding, or the time-reversal
@@ -455,11 +454,7 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
     done); Ctrl-C stops the surrogates' IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt,
-                dict(count=count, seed=seed, statistic=statistic, alternative=alternative,
-                     method=method, max_iterations=max_iterations, delay=delay,
-                     dimension=dimension, theiler=theiler, horizon=horizon,
-                     neighbours=neighbours, norm=norm, end_match=end_match))
+    return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt, params)
 
 
 def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
