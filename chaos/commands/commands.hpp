@@ -345,6 +345,7 @@ struct DensityParams {
   std::optional<double> bandwidth, low, high;
   double padding = 0.05;
 };
+const ParameterTable<DensityParams>& density_parameters();
 struct DensityRun {
   std::vector<double> parameters;             // the distinct parameter values, ascending
   std::vector<std::vector<double>> samples;   // the values of each

@@ -308,4 +308,21 @@ const ParameterTable<NonlinearityParams>& nonlinearity_parameters() {
   return table;
 }
 
+const ParameterTable<DensityParams>& density_parameters() {
+  static const ParameterTable<DensityParams> table{
+      {"bins", "-b,--bins", "a fixed number of bins (default: the Freedman-Diaconis rule, at most --max-bins)",
+       field(&DensityParams::bins)},
+      {"max_bins", "--max-bins", "the cap on the Freedman-Diaconis count", field(&DensityParams::max_bins)},
+      {"kde", "--kde",
+       "Gaussian kernel estimate (Silverman's bandwidth) averaged over each bin, instead of the histogram",
+       field(&DensityParams::kde)},
+      {"bandwidth", "--bandwidth", "kde: one bandwidth for every parameter value", field(&DensityParams::bandwidth)},
+      {"low", "--low", "lower end of the common range (with --high)", field(&DensityParams::low)},
+      {"high", "--high", "upper end of the common range (with --low)", field(&DensityParams::high)},
+      {"padding", "--padding", "without a range: fraction of the pooled span added on each side",
+       field(&DensityParams::padding)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -173,6 +173,7 @@ py::list parameters(const std::string& command) {
   if (command == "analyze") return describe(analyze_parameters());
   if (command == "surrogates") return describe(surrogates_parameters());
   if (command == "nonlinearity") return describe(nonlinearity_parameters());
+  if (command == "density") return describe(density_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -380,13 +381,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
 py::object density(const Array& parameter, const Array& value, const std::string& file, std::size_t parameter_column,
                    std::size_t value_column, const py::dict& p) {
   DensityParams params;
-  get(p, "bins", params.bins);
-  get(p, "max_bins", params.max_bins);
-  get(p, "kde", params.kde);
-  get(p, "bandwidth", params.bandwidth);
-  get(p, "low", params.low);
-  get(p, "high", params.high);
-  get(p, "padding", params.padding);
+  read_parameters(p, params, density_parameters());
   check_density_params(params);
   const SeriesInput x = series(parameter, file, parameter_column, std::nullopt);
   const SeriesInput y = series(value, file, value_column, std::nullopt);

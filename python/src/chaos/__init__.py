@@ -501,8 +501,8 @@ def spectrum(system, *, parameter=None, time=None, step=None, interval=None, tra
                                              seed=seed)))
 
 
-def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwidth=None, low=None, high=None,
-            padding=0.05, column=1, value_column=2, skip=0, length=None):
+@_parameters("density")
+def density(parameter, value=None, *, column=1, value_column=2, skip=0, length=None, **params):
     """The density map of a bifurcation diagram (``chaos density``): the values observed at each
     parameter value (rows of (parameter, value), e.g. the stroboscopic samples of a sweep) as a
     density on common bins: a histogram with a fixed number of ``bins`` or the Freedman-Diaconis rule
@@ -517,7 +517,6 @@ def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwi
     Result keys: parameter, bin_centre, edges, density (parameters x bins), in_range (and bandwidth,
     kernel_mass with ``kde``).
     """
-    params = dict(bins=bins, max_bins=max_bins, kde=kde, bandwidth=bandwidth, low=low, high=high, padding=padding)
     if isinstance(parameter, (str, os.PathLike)):
         if value is not None:
             raise TypeError("density: give a file, or the parameter and value arrays")
