@@ -370,6 +370,7 @@ struct SectionParams {
   std::optional<double> level;               // ... through this level
   std::string direction = "up";              // up, down or both
 };
+const ParameterTable<SectionParams>& section_parameters();
 // The option checks made before any input is read (one section, a level for a hyperplane, dt > 0,
 // the direction's name).
 void check_section_params(const SectionParams& params);

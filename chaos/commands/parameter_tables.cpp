@@ -325,4 +325,24 @@ const ParameterTable<DensityParams>& density_parameters() {
   return table;
 }
 
+const ParameterTable<SectionParams>& section_parameters() {
+  static const ParameterTable<SectionParams> table{
+      {.name = "columns",
+       .flags = "-c,--columns",
+       .help = "columns to read, 1-based, comma separated (default: every column but the time column)",
+       .field = field(&SectionParams::columns),
+       .delimiter = ','},
+      {"dt", "--dt", "time between rows, when there is no time column", field(&SectionParams::dt)},
+      {"time_column", "--time-column", "column holding the time (increasing; steps may be uneven)",
+       field(&SectionParams::time_column)},
+      {"stroboscopic", "--stroboscopic", "stroboscopic section: every PERIOD-th row", field(&SectionParams::period)},
+      {"phase", "--phase", "stroboscopic: the first row taken, 0 <= K < PERIOD", field(&SectionParams::phase)},
+      {"hyperplane", "--hyperplane", "hyperplane section: crossings of this column (1-based)",
+       field(&SectionParams::hyperplane)},
+      {"level", "--level", "hyperplane: the plane is column = C", field(&SectionParams::level)},
+      {"direction", "--direction", "hyperplane: up, down or both", field(&SectionParams::direction)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

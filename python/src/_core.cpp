@@ -174,6 +174,7 @@ py::list parameters(const std::string& command) {
   if (command == "surrogates") return describe(surrogates_parameters());
   if (command == "nonlinearity") return describe(nonlinearity_parameters());
   if (command == "density") return describe(density_parameters());
+  if (command == "section") return describe(section_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -394,15 +395,7 @@ py::object density(const Array& parameter, const Array& value, const std::string
 // 1-based numbers in params["columns"], `times` the time column (empty without one).
 SectionParams section_params(const py::dict& p) {
   SectionParams params;
-  if (has(p, "columns"))
-    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
-  get(p, "time_column", params.time_column);
-  get(p, "dt", params.dt);
-  get(p, "stroboscopic", params.period);
-  get(p, "phase", params.phase);
-  get(p, "hyperplane", params.hyperplane);
-  get(p, "level", params.level);
-  get(p, "direction", params.direction);
+  read_parameters(p, params, section_parameters());
   check_section_params(params);  // before any input is read, as the command checks them
   return params;
 }

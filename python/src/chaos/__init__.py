@@ -543,8 +543,8 @@ def _column_numbers(columns, name):
     return [int(c) if isinstance(c, np.integer) else c for c in columns]
 
 
-def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, phase=0, hyperplane=None, level=None,
-            direction="up", skip=0, length=None):
+@_parameters("section")
+def section(data, *, skip=0, length=None, **params):
     """A Poincare section of a multi-column series (``chaos section``).
 
     Stroboscopic (``stroboscopic=P``): every P-th row from row ``phase``, x(t_0 + k P dt), the
@@ -564,10 +564,10 @@ def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, 
     Result keys: parameters, time, points (2-D: one row per section point, one column per column
     read), return_time (hyperplane; NaN for the first crossing).
     """
+    time_column = params["time_column"]
     if isinstance(time_column, np.integer):
-        time_column = int(time_column)
-    params = dict(columns=_column_numbers(columns, "columns"), time_column=time_column, dt=dt,
-                  stroboscopic=stroboscopic, phase=phase, hyperplane=hyperplane, level=level, direction=direction)
+        time_column = params["time_column"] = int(time_column)
+    params["columns"] = _column_numbers(params["columns"], "columns")
     if isinstance(data, (str, os.PathLike)):
         path = os.fspath(data)
         numbers, values, times = _core.section_file_columns(path, params, skip, length)
