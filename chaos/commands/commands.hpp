@@ -313,6 +313,7 @@ struct GenerateParams {
   std::uint64_t seed = 1;
   std::string components = "all";
 };
+const ParameterTable<GenerateParams>& generate_parameters();
 struct GenerateRun {
   Trajectory trajectory;
   std::vector<std::size_t> chosen;  // the components written, in order
@@ -331,6 +332,7 @@ struct SpectrumParams {
   std::optional<std::size_t> delay_exponents;
   bool identity = false;
 };
+const ParameterTable<SpectrumParams>& spectrum_parameters();
 struct SpectrumRun {
   LyapunovSpectrum spectrum;
   Report report;

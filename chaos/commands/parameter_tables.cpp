@@ -308,6 +308,40 @@ const ParameterTable<NonlinearityParams>& nonlinearity_parameters() {
   return table;
 }
 
+const ParameterTable<GenerateParams>& generate_parameters() {
+  static const ParameterTable<GenerateParams> table{
+      {"length", "-l,--length", "number of samples", field(&GenerateParams::length)},
+      {"parameter", "-p,--parameter", "system parameter name=value (repeatable)", field(&GenerateParams::parameters)},
+      {"seed", "--seed", "seed of the stochastic systems and the logistic start", field(&GenerateParams::seed)},
+      {"components", "--components", "comma-separated components to write, or all", field(&GenerateParams::components)},
+  };
+  return table;
+}
+
+const ParameterTable<SpectrumParams>& spectrum_parameters() {
+  static const ParameterTable<SpectrumParams> table{
+      {"parameter", "-p,--parameter", "model parameter name=value (repeatable), as in chaos generate",
+       field(&SpectrumParams::parameters)},
+      {"time", "--time", "flows: averaging time (default 10000; zoo systems: their own)", field(&SpectrumParams::time)},
+      {"step", "--step", "flows: RK4 step (default 0.01; zoo systems: their own; delay: tau / step steps per delay)",
+       field(&SpectrumParams::step)},
+      {"interval", "--interval", "flows: time between QR factorisations (default 0.1)",
+       field(&SpectrumParams::flow_interval)},
+      {"transient", "--transient", "flows: time not averaged (default 100)", field(&SpectrumParams::flow_transient)},
+      {"iterations", "--iterations", "maps: iterations averaged (default 1000000)", field(&SpectrumParams::iterations)},
+      {"map_interval", "--map-interval", "maps: iterations between QR factorisations (default 1)",
+       field(&SpectrumParams::map_interval)},
+      {"map_transient", "--map-transient", "maps: iterations not averaged (default 1000)",
+       field(&SpectrumParams::map_transient)},
+      {"identity", "--identity", "zoo systems: also give what the sum must equal (trace or ln|det J|)",
+       field(&SpectrumParams::identity)},
+      {"exponents", "--exponents", "delay systems: how many leading exponents (1..8, default 6)",
+       field(&SpectrumParams::delay_exponents)},
+      {"seed", "--seed", "logistic map: seed of the initial condition", field(&SpectrumParams::seed)},
+  };
+  return table;
+}
+
 const ParameterTable<DensityParams>& density_parameters() {
   static const ParameterTable<DensityParams> table{
       {"bins", "-b,--bins", "a fixed number of bins (default: the Freedman-Diaconis rule, at most --max-bins)",

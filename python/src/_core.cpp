@@ -173,6 +173,8 @@ py::list parameters(const std::string& command) {
   if (command == "analyze") return describe(analyze_parameters());
   if (command == "surrogates") return describe(surrogates_parameters());
   if (command == "nonlinearity") return describe(nonlinearity_parameters());
+  if (command == "generate") return describe(generate_parameters());
+  if (command == "spectrum") return describe(spectrum_parameters());
   if (command == "density") return describe(density_parameters());
   if (command == "section") return describe(section_parameters());
   value_error("no parameter table for '" + command + "'");
@@ -522,30 +524,10 @@ py::tuple zoo_series(const std::string& name, const py::dict& p) {
   return py::make_tuple(to_python(json), Array(static_cast<py::ssize_t>(run->x.size()), run->x.data()));
 }
 
-// -p name=value, repeatable: a dict {name: value}.
-void get_settings(const py::dict& p, std::map<std::string, double>& target) {
-  if (!has(p, "parameter")) return;
-  if (!py::isinstance<py::dict>(p["parameter"])) type_error("parameter must be a dict of name: value");
-  for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(p["parameter"])) {
-    if (!py::isinstance<py::str>(name)) type_error("parameter names must be strings");
-    target[py::cast<std::string>(name)] = to_real(value, "parameter");
-  }
-}
-
 py::object spectrum(const std::string& system, const py::dict& p) {
   SpectrumParams params;
   params.system = system;
-  get_settings(p, params.parameters);
-  get(p, "time", params.time);
-  get(p, "step", params.step);
-  get(p, "interval", params.flow_interval);
-  get(p, "transient", params.flow_transient);
-  get(p, "iterations", params.iterations);
-  get(p, "map_interval", params.map_interval);
-  get(p, "map_transient", params.map_transient);
-  get(p, "seed", params.seed);
-  get(p, "exponents", params.delay_exponents);
-  get(p, "identity", params.identity);
+  read_parameters(p, params, spectrum_parameters());
   return call([&] { return run_spectrum(params).report.json(); });
 }
 
@@ -554,10 +536,7 @@ py::object spectrum(const std::string& system, const py::dict& p) {
 py::tuple generate(const std::string& system, const py::dict& p) {
   GenerateParams params;
   params.system = system;
-  get(p, "length", params.length);
-  get(p, "seed", params.seed);
-  get(p, "components", params.components);
-  get_settings(p, params.parameters);
+  read_parameters(p, params, generate_parameters());
   std::optional<GenerateRun> run;
   {
     py::gil_scoped_release release;

@@ -457,7 +457,8 @@ def nonlinearity(x, *, progress=None, dt=None, column=1, skip=0, length=None, **
     return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt, params)
 
 
-def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
+@_parameters("generate")
+def generate(system, **params):
     """A series of a reference system or a zoo system (``chaos generate SYSTEM``).
 
     ``system``: lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic,
@@ -470,7 +471,7 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
     (a read-only mapping name -> array).
     """
     import types
-    json, columns = _core.generate(system, dict(length=length, parameter=parameter, seed=seed, components=components))
+    json, columns = _core.generate(system, params)
     arrays = {}
     for name, values in columns:
         values.flags.writeable = False
@@ -478,8 +479,8 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
     return _make(json, {"components": types.MappingProxyType(arrays)})
 
 
-def spectrum(system, *, parameter=None, time=None, step=None, interval=None, transient=None, iterations=None,
-             map_interval=None, map_transient=None, identity=False, exponents=None, seed=1):
+@_parameters("spectrum")
+def spectrum(system, **params):
     """The Lyapunov spectrum and the Kaplan-Yorke dimension of a system from its equations
     (``chaos spectrum SYSTEM``).
 
@@ -495,10 +496,7 @@ def spectrum(system, *, parameter=None, time=None, step=None, interval=None, tra
     Result keys: parameters, exponents, sum, kaplan_yorke_dimension, renormalisations,
     averaging_length, initial_state (and identity).
     """
-    return _make(_core.spectrum(system, dict(parameter=parameter, time=time, step=step, interval=interval,
-                                             transient=transient, iterations=iterations, map_interval=map_interval,
-                                             map_transient=map_transient, identity=identity, exponents=exponents,
-                                             seed=seed)))
+    return _make(_core.spectrum(system, params))
 
 
 @_parameters("density")
