@@ -14,7 +14,10 @@ from chaos import _core
 from conftest import run_cli
 
 # Python function -> `chaos` command, for every function built from a parameter table.
-COMMANDS = {"mutual": "mutual", "autocorrelation": "autocorrelation", "cao": "cao", "fnn": "fnn", "d2": "d2", "lyapunov": "lyapunov", "lyapunov_maps": "lyapunov-maps", "analyze": "analyze", "surrogates": "surrogates", "nonlinearity": "nonlinearity", "generate": "generate", "spectrum": "spectrum", "density": "density", "section": "section"}
+COMMANDS = {"mutual": "mutual", "autocorrelation": "autocorrelation", "cao": "cao", "fnn": "fnn", "d2": "d2",
+            "lyapunov": "lyapunov", "lyapunov_maps": "lyapunov-maps", "analyze": "analyze",
+            "surrogates": "surrogates", "nonlinearity": "nonlinearity", "generate": "generate",
+            "spectrum": "spectrum", "density": "density", "section": "section"}
 
 # An option line of CLI11's help: "  -m,--min-dimension UINT=1   text": the names, then the type in
 # capitals with the default after "=" (none for a flag), then the description.
