@@ -141,7 +141,7 @@ py::object python_value(const ParameterField& field) {
         using T = std::remove_cv_t<std::remove_pointer_t<decltype(value)>>;
         if constexpr (std::is_same_v<T, std::optional<std::size_t>> || std::is_same_v<T, std::optional<double>>)
           return *value ? py::cast(**value) : py::none();
-        else if constexpr (std::is_same_v<T, bool> || std::is_arithmetic_v<T> || std::is_same_v<T, std::string>)
+        else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>)
           return py::cast(*value);
         else
           return value->empty() ? py::none() : py::cast(*value);
