@@ -2,10 +2,11 @@
 // A command's parameter table: one entry per parameter that both the command line and the Python
 // package take, the only place its Python name, command-line flags and help text are written, with
 // the field of the command's parameters struct it sets. From the table the command line registers
-// its options (cli/parameter_options.hpp) and the Python package reads its keyword arguments and
-// builds each function's signature (python/src/_core.cpp, chaos/__init__.py). A parameter's default
-// is its field's value in a default-constructed parameters struct: it is written once, in the struct.
-// The checks of the values stay in the shared computation (run_X), which both front ends call.
+// its options (chaos/cli/parameter_options.hpp) and the Python package reads its keyword arguments
+// and builds each function's signature (python/src/_core.cpp, python/src/chaos/__init__.py). A
+// parameter's default is its field's value in a default-constructed parameters struct: it is
+// written once, in the struct. The checks of the values stay in the shared computation (run_X),
+// which both front ends call.
 
 #include <cstddef>
 #include <cstdint>

@@ -149,8 +149,8 @@ py::object python_value(const ParameterField& field) {
       field);
 }
 
-// The table as chaos/__init__.py builds the functions' signatures from it: (name, default, flags)
-// per parameter, in the table's order.
+// The table as python/src/chaos/__init__.py builds the functions' signatures from it: (name,
+// default, flags) per parameter, in the table's order.
 template <class Params>
 py::list describe(const ParameterTable<Params>& table) {
   Params defaults;
