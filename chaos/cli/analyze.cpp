@@ -29,6 +29,7 @@
 #include "chaos/time_scales.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 #include "plot_panels.hpp"
 
@@ -40,7 +41,6 @@ struct AnalyzeArgs {
   InputOptions input;
   OutputOptions output;
   AnalyzeParams params;
-  std::size_t length = 100000;  // of the built-in series (enough for a confident lambda_1)
   std::string plot;
   bool quiet = false;
 };
@@ -166,7 +166,7 @@ std::string plot_script(const AutomaticAnalysis& a, const std::optional<MutualIn
 
 void run(AnalyzeArgs& args) {
   const bool builtin = args.input.file.empty();
-  const Series series = builtin ? builtin_series(args.length) : load_series(args.input);
+  const Series series = builtin ? builtin_series(args.params.builtin_length) : load_series(args.input);
   const std::vector<double>& x = series.values;
   AnalyzeParams params = args.params;
   params.mutual_curve = !args.plot.empty();
@@ -290,19 +290,7 @@ void register_analyze(CLI::App& app) {
   command->add_option("-x,--skip", args->input.skip, "data rows to skip")->capture_default_str();
   command->add_option("-l,--length", args->input.length, "data rows to use");
   command->add_option("--dt", args->input.dt, "sampling interval");
-  command->add_option("-d,--delay", args->params.delay, "use this delay instead of the mutual-information minimum");
-  command->add_option("-t,--theiler", args->params.theiler, "use this Theiler window instead of the automatic one (the longer of the autocorrelation 1/e time and half the dominant period, at least the delay)");
-  command->add_option("-D,--max-delay", args->params.max_delay, "largest delay searched first for the MI minimum; where nothing is found up to it, the search goes on to twice the record's Theiler window (at most N/10)")->capture_default_str();
-  command->add_option("-b,--boxes", args->params.boxes, "boxes for mutual information")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->params.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_flag("--delay-check", args->params.delay_check,
-                    "a saturated D2 must also be reproduced at twice the delay, within 0.05 (chaos d2 --delay-check)");
-  command->add_option("--builtin-length", args->length, "length of the built-in Lorenz series")->capture_default_str();
-  command->add_option("--test-length", args->params.test_length, "samples given to the nonlinearity test (the first ones)")
-      ->capture_default_str();
-  command->add_option("--surrogates", args->params.surrogates, "surrogates of the one-sided nonlinearity test (19: 5%)")
-      ->capture_default_str();
-  command->add_option("--seed", args->params.seed, "seed of the surrogates")->capture_default_str();
+  add_options(*command, args->params, analyze_parameters());
   add_plot_option(*command, args->plot,
                   "draw the evidence (mutual information, Cao, false neighbours, D2 local slopes) to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);

@@ -9,6 +9,7 @@
 #include "chaos/format.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 
 namespace chaos::cli {
@@ -75,7 +76,7 @@ void register_autocorrelation(CLI::App& app) {
   CLI::App* command = app.add_subcommand("autocorrelation", "autocorrelation r(k), first zero crossing and 1/e time");
   add_quiet_option(*command);
   add_input_options(*command, args->input);
-  command->add_option("-D,--max-lag", args->params.max_lag, "largest lag (default N/10, at most 1000)");
+  add_options(*command, args->params, autocorrelation_parameters());
   add_plot_option(*command, args->plot, "draw r(lag) with the 1/e level and its crossing to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -5,6 +5,7 @@
 #include "chaos/cao.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 #include "plot_panels.hpp"
 
@@ -61,18 +62,7 @@ void register_cao(CLI::App& app) {
   auto args = std::make_shared<CaoArgs>();
   CLI::App* command = app.add_subcommand("cao", "Cao's method: E1(m), E2(m) and the minimum embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
-  command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
-  command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
-  command->add_option("--level", args->params.options.saturation_level, "E1 must reach this level to count as saturated")
-      ->capture_default_str();
-  command->add_option("--change", args->params.options.saturation_change, "and change by at most this per dimension from there on")
-      ->capture_default_str();
-  command->add_option("--sigmas", args->params.options.stochastic_sigmas,
-                      "stochastic when every |E2 - 1| is within this many standard errors")
-      ->capture_default_str();
+  add_options(*command, args->params, cao_parameters());
   add_plot_option(*command, args->plot, "draw E1(m) and E2(m) with the saturation dimension to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

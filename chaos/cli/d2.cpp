@@ -13,6 +13,7 @@
 #include "chaos/error.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 #include "plot_panels.hpp"
 
@@ -108,67 +109,8 @@ void register_d2(CLI::App& app) {
   auto args = std::make_shared<D2Args>();
   CLI::App* command = app.add_subcommand("d2", "correlation sums and the correlation dimension D2 with its scaling region");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
-  command->add_option("-m,--min-dimension", args->params.sums.min_dimension, "smallest embedding dimension")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->params.sums.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
-  command->add_option("-r,--min-radius", args->params.r_min, "smallest radius (default: data range / 1000)");
-  command->add_option("-R,--max-radius", args->params.r_max, "largest radius (default: data range / 4)");
-  command->add_option("-#,--radii", args->params.radii, "number of log-spaced radii")->capture_default_str();
-  command->add_option("--radius-list", args->params.radius_list, "explicit increasing radii (comma-separated), instead of -r -R -#")
-      ->delimiter(',');
-  command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
-  command->add_flag("--inclusive", args->params.sums.inclusive,
-                    "count pairs at distance <= eps, as TISEAN's d2 does (default: < eps)");
-  command->add_option("--search", args->params.search, "box (box-assisted, the fastest), kd (kd-tree, one traversal per point for all radii and m: 0.8-1.3 times the box time) or brute (the definition, slowest)")->capture_default_str();
-  command->add_option("-N,--pairs-per-radius", args->params.sums.pairs_per_radius,
-                      "stop counting a radius after this many close pairs (0: exact)")
-      ->capture_default_str();
-  command->add_option("--reference-points", args->params.sums.reference_points, "random subset of reference points (0: all)")
-      ->capture_default_str();
-  command->add_option("--seed", args->params.sums.seed, "seed of the reference order and subset")->capture_default_str();
-  command->add_flag("--fast", args->params.fast,
-                    "choose the reference subset from the data: it doubles (from --fast-start points) until two disjoint "
-                    "subsets agree on D2 within --fast-target, else the exact counts are used");
-  command->add_option("--fast-target", args->params.adaptive.target, "--fast: agreement of two disjoint subsets' D2")
-      ->capture_default_str();
-  command->add_option("--fast-start", args->params.adaptive.initial_reference_points,
-                      "--fast: reference points in each subset of the first round")
-      ->capture_default_str();
-  command->add_option("--threads", args->params.sums.threads, "threads (results identical for any number)")->capture_default_str();
-  command->add_option("--tolerance", args->params.dimension.region.tolerance, "relative flatness of the local slopes in the region")
-      ->capture_default_str();
-  command->add_option("--min-points", args->params.dimension.region.min_points, "radii in a scaling region, at least")
-      ->capture_default_str();
-  command->add_option("--saturation-dimensions", args->params.dimension.saturation_dimensions,
-                      "highest dimensions that must share the plateau")
-      ->capture_default_str();
-  command->add_option("--min-pairs", args->params.dimension.min_pairs, "radii with fewer close pairs are left out")
-      ->capture_default_str();
-  command->add_option("--min-plateau-ratio", args->params.dimension.min_plateau_ratio,
-                      "the highest dimensions' shared plateau spans at least this factor in eps (eps_high / eps_low)")
-      ->capture_default_str();
-  command->add_option("--projection-tolerance", args->params.dimension.projection_tolerance,
-                      "no lower dimension m >= 2 D2 + 1 may read a mean local slope over the plateau more than this "
-                      "fraction above it (a projection cannot have a larger dimension; inf: no check)")
-      ->capture_default_str()
-      ->type_name("FLOAT|inf");  // not the FLOAT check, which refuses infinity: the library validates it
-  command->add_option("--noise-fill-fraction", args->params.dimension.noise_fill_fraction,
-                      "a plateau is noise-limited when, over consecutive radii below it, every saturating dimension m reads a "
-                      "local slope more than this fraction of the way from the plateau's slope to m (inf: no check)")
-      ->capture_default_str()
-      ->type_name("FLOAT|inf");
-  command->add_option("--max-region-fraction", args->params.dimension.max_region_fraction,
-                      "a region ends at or below this fraction of the data range (Eckmann-Ruelle take 0.1; default: no limit)");
+  add_options(*command, args->params, d2_parameters());
   add_quiet_option(*command, args->quiet);
-  command->add_flag("--halves,!--no-halves", args->params.halves,
-                    "a saturated D2 must be reproduced by the first and the second half of the record, else it is "
-                    "'not_reproduced' (on by default, as in chaos analyze; --no-halves gives the plain estimate)");
-  command->add_flag("--delay-check", args->params.delay_check,
-                    "a saturated D2 must be reproduced at twice the delay, within --delay-tolerance (as in chaos analyze)");
-  command->add_option("--delay-tolerance", args->params.dimension.delay_tolerance,
-                      "the largest difference between D2 at the delay and at twice it, with --delay-check")
-      ->capture_default_str();
   add_plot_option(*command, args->plot, "draw log C and the local slopes with the region to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -11,6 +11,7 @@
 #include "chaos/error.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 
 namespace chaos::cli {
@@ -106,13 +107,7 @@ void register_density(CLI::App& app) {
   command->add_option("-v,--value-column", a->value_column, "the value column (1-based)")->capture_default_str();
   command->add_option("-x,--skip", a->input.skip, "data rows to skip at the start")->capture_default_str();
   command->add_option("-l,--length", a->input.length, "data rows to use after the skip (default: all)");
-  command->add_option("-b,--bins", a->params.bins, "a fixed number of bins (default: the Freedman-Diaconis rule, at most --max-bins)");
-  command->add_option("--max-bins", a->params.max_bins, "the cap on the Freedman-Diaconis count")->capture_default_str();
-  command->add_flag("--kde", a->params.kde, "Gaussian kernel estimate (Silverman's bandwidth) averaged over each bin, instead of the histogram");
-  command->add_option("--bandwidth", a->params.bandwidth, "kde: one bandwidth for every parameter value");
-  command->add_option("--low", a->params.low, "lower end of the common range (with --high)");
-  command->add_option("--high", a->params.high, "upper end of the common range (with --low)");
-  command->add_option("--padding", a->params.padding, "without a range: fraction of the pooled span added on each side")->capture_default_str();
+  add_options(*command, a->params, density_parameters());
   add_plot_option(*command, a->plot, "draw the map as a colour map to FILE.png or FILE.svg");
   add_output_options(*command, a->output);
   command->callback([a] { run(*a); });

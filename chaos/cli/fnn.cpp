@@ -5,6 +5,7 @@
 #include "chaos/fnn.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 #include "plot_panels.hpp"
 
@@ -61,16 +62,7 @@ void register_fnn(CLI::App& app) {
   auto args = std::make_shared<FnnArgs>();
   CLI::App* command = app.add_subcommand("fnn", "false nearest neighbours against the embedding dimension");
   add_input_options(*command, args->input);
-  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
-  command->add_option("-m,--min-dimension", args->params.options.min_dimension, "smallest embedding dimension")->capture_default_str();
-  command->add_option("-M,--max-dimension", args->params.options.max_dimension, "largest embedding dimension")->capture_default_str();
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
-  command->add_option("--rtol", args->params.options.rtol, "distance-ratio threshold (criterion 1)")->capture_default_str();
-  command->add_option("--atol", args->params.options.atol, "size threshold in units of the standard deviation (criterion 2)")
-      ->capture_default_str();
-  command->add_option("--norm", args->params.norm, "euclidean (Kennel et al.) or max")->capture_default_str();
-  command->add_option("--threshold", args->params.options.threshold, "dimension chosen where the false fraction <= this")
-      ->capture_default_str();
+  add_options(*command, args->params, fnn_parameters());
   add_plot_option(*command, args->plot, "draw the false fraction against m to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

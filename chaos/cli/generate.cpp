@@ -11,17 +11,14 @@
 #include "chaos/models/zoo.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
 namespace {
 
 struct GenerateArgs {
-  std::string system;
-  std::size_t length = 10000;
-  std::vector<std::string> settings;
-  std::uint64_t seed = 1;
-  std::string components = "all";
+  GenerateParams params;
   bool list = false;
   OutputOptions output;
 };
@@ -59,13 +56,7 @@ void run(const GenerateArgs& args) {
     list_zoo(std::cout);
     return;
   }
-  GenerateParams params;
-  params.system = args.system;
-  params.length = args.length;
-  params.parameters = parse_settings(args.settings);
-  params.seed = args.seed;
-  params.components = args.components;
-  auto [trajectory, chosen, report] = run_generate(params, args.output, args.output.json);
+  auto [trajectory, chosen, report] = run_generate(args.params, args.output, args.output.json);
   std::ostream& out = report.stream();
   if (report.json_mode()) {
     report.write_json(out);
@@ -87,13 +78,10 @@ void register_generate(CLI::App& app) {
   auto args = std::make_shared<GenerateArgs>();
   CLI::App* command = app.add_subcommand("generate", "write a series from a reference system (full precision)");
   add_quiet_option(*command);
-  command->add_option("system", args->system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, "
+  command->add_option("system", args->params.system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, "
                                                "white_noise, uniform_noise, ar1, or a zoo system (--list)");
   command->add_flag("--list", args->list, "list the zoo systems with their parameters, sampling and citation");
-  command->add_option("-l,--length", args->length, "number of samples")->capture_default_str();
-  command->add_option("-p,--parameter", args->settings, "system parameter name=value (repeatable)");
-  command->add_option("--seed", args->seed, "seed of the stochastic systems and the logistic start")->capture_default_str();
-  command->add_option("--components", args->components, "comma-separated components to write, or all")->capture_default_str();
+  add_options(*command, args->params, generate_parameters());
   add_output_options(*command, args->output);
   command->footer(systems_help());
   command->callback([args] { run(*args); });

@@ -10,6 +10,7 @@
 #include "chaos/lyapunov.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 
 namespace chaos::cli {
@@ -158,52 +159,7 @@ void register_lyapunov(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("lyapunov", "largest Lyapunov exponent from a series (Rosenstein 1993 or Kantz 1994)");
   add_input_options(*command, args->input);
-  command->add_option("--method", args->params.method, "rosenstein (mean log distance of nearest neighbours) or kantz "
-                                                "(log of the mean distance in an eps-neighbourhood)")
-      ->capture_default_str();
-  command->add_option("-m,--dimension", args->params.dimension, "embedding dimension (default: automatic, where Cao's E1 saturates)");
-  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
-  command->add_option("-s,--steps", args->params.steps,
-                      "steps the divergence is followed (default: 20 correlation times or periods, 20..N/10)");
-  command->add_option("--period", args->params.period, "oscillation period in samples: local slopes span a whole period "
-                                                "(default: twice the first autocorrelation minimum; 0: none)");
-  command->add_option("--dimensions", args->params.fit.dimensions, "embedding dimensions m, m+1, ... whose curves must "
-                                                            "share the linear region and agree on its slope")
-      ->capture_default_str();
-  command->add_option("-r,--radius", args->params.options.radius, "Kantz: neighbourhood radius eps (default: data range / 1000, scaled by powers of 2 so that half the "
-                      "reference points have a neighbour and at most 20 on average)");
-  command->add_option("-k,--min-neighbours", args->params.options.min_neighbours,
-                      "Kantz: reference points with fewer neighbours are skipped")
-      ->capture_default_str();
-  command->add_option("--max-neighbours", args->params.options.max_neighbours,
-                      "Kantz: at most this many neighbours per reference point; a larger neighbourhood is represented "
-                      "by that many of its members evenly spaced in time, and the output counts them "
-                      "(capped_neighbourhoods; 0: no bound)")
-      ->capture_default_str();
-  command->add_option("--reference-points", args->params.reference_points,
-                      "use this many evenly spaced reference points (default: at most 10^4, as chaos analyze; 0: all)")
-      ->capture_default_str();
-  command->add_option("--norm", args->params.norm, "max or euclidean")->capture_default_str();
-  command->add_option("--threads", args->params.options.threads, "threads (results identical for any number)")
-      ->capture_default_str();
-  command->add_option("--tolerance", args->params.fit.tolerance, "relative flatness of the local slopes in the linear region")
-      ->capture_default_str();
-  command->add_option("--half-width", args->params.fit.half_width, "local-slope half width in steps (0: max(2, steps/25, period/2))")
-      ->capture_default_str();
-  command->add_option("--min-steps", args->params.fit.min_steps, "steps in a linear region, at least (0: 3 half widths + 1, and a period + 1)")
-      ->capture_default_str();
-  command->add_option("--min-rise", args->params.fit.min_rise, "e-folds the curve must rise across the linear region")
-      ->capture_default_str();
-  command->add_flag("!--no-cross-check", args->params.cross_check,
-                   "skip the other estimators' checks: the status is then this estimator's alone (by default a linear "
-                   "region the other method does not confirm within the tolerance, or that lambda_1 from local maps "
-                   "does not confirm (maps not consistent, or more than the tolerance away), as in chaos analyze, is "
-                   "'unconfirmed')");
-  command->add_flag("--halves,!--no-halves", args->params.halves,
-                    "run the estimator over each half of the record too: a linear region that neither half shows, or "
-                    "that a half puts more than the tolerance away, is 'not_reproduced' (on by default, as in chaos "
-                    "analyze; --no-halves gives the plain estimate)");
+  add_options(*command, args->params, lyapunov_parameters());
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);

@@ -5,6 +5,7 @@
 #include "chaos/lyapunov_local_maps.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
@@ -51,25 +52,7 @@ void register_lyapunov_maps(CLI::App& app) {
                        "reported only when it holds over the estimator's choices");
   add_quiet_option(*command);
   add_input_options(*command, args->input);
-  command->add_option("-m,--dimension", args->params.dimension, "embedding dimension (default: automatic, where Cao's E1 saturates)");
-  command->add_option("-d,--delay", args->params.delay, "delay tau in samples (default: automatic, the first mutual-information minimum or the rule that stands in for it; the output names the rule)");
-  command->add_option("-t,--theiler", args->params.theiler, "Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant oscillation period, at least the delay)");
-  command->add_option("--step", args->params.options.step, "samples the local maps advance (0: max(1, round(tau/2)))")
-      ->capture_default_str();
-  command->add_option("-k,--neighbours", args->params.options.neighbours, "neighbours per local map (0: 5 m)")
-      ->capture_default_str();
-  command->add_option("--cutoff", args->params.options.cutoff,
-                      "singular values of a neighbourhood below this fraction of the largest are not fitted")
-      ->capture_default_str();
-  command->add_option("--tolerance", args->params.tolerance, "agreement required of every variant, relative to the base")
-      ->capture_default_str();
-  command->add_option("--max-residual", args->params.options.max_residual,
-                      "a map leaving more of its neighbourhood's image spread unexplained is not averaged; more than half "
-                      "such maps: not_deterministic")
-      ->capture_default_str();
-  command->add_option("--norm", args->params.norm, "max or euclidean (neighbour search)")->capture_default_str();
-  command->add_option("--threads", args->params.options.threads, "threads (results identical for any number)")
-      ->capture_default_str();
+  add_options(*command, args->params, lyapunov_maps_parameters());
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

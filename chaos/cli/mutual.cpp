@@ -6,6 +6,7 @@
 #include "chaos/error.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 #include "plot.hpp"
 #include "plot_panels.hpp"
 
@@ -65,9 +66,7 @@ void register_mutual(CLI::App& app) {
   CLI::App* command = app.add_subcommand("mutual", "average mutual information I(tau) in nats and its first minimum");
   add_quiet_option(*command);
   add_input_options(*command, args->input);
-  command->add_option("-D,--max-delay", args->params.max_delay, "largest delay (default: automatic, 100 (at most N/10), and where the information has no minimum there, on to two Theiler windows, as chaos analyze searches)");
-  command->add_option("-b,--boxes", args->params.options.boxes, "boxes per axis")->capture_default_str();
-  command->add_option("--estimator", args->params.estimator, "equal_width (TISEAN) or equiprobable")->capture_default_str();
+  add_options(*command, args->params, mutual_parameters());
   add_plot_option(*command, args->plot, "draw I(tau) with the first minimum marked to FILE.png or FILE.svg");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -7,6 +7,7 @@
 #include "chaos/surrogates.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
@@ -65,24 +66,7 @@ void register_nonlinearity(CLI::App& app) {
   auto args = std::make_shared<NonlinearityArgs>();
   CLI::App* command = app.add_subcommand("nonlinearity", "rank-order surrogate test for nonlinearity");
   add_input_options(*command, args->input);
-  command->add_option("-n,--count", args->params.options.surrogates, "surrogates K (39: two-sided 5%; 19: one-sided 5%)")
-      ->capture_default_str();
-  command->add_option("--seed", args->params.options.seed, "seed of the surrogates")->capture_default_str();
-  command->add_option("--statistic", args->params.statistic, "prediction_error or time_reversal_asymmetry")->capture_default_str();
-  command->add_option("--alternative", args->params.alternative, "two_sided, smaller or larger")->capture_default_str();
-  command->add_option("--method", args->params.method, "surrogates: ft, aaft or iaaft")->capture_default_str();
-  command->add_option("--max-iterations", args->params.options.surrogate.max_iterations, "IAAFT: iteration limit")
-      ->capture_default_str();
-  command->add_option("-d,--delay", args->params.delay, "delay: of the predictor's embedding, or the lag of the asymmetry "
-                                                      "(default: automatic, the first mutual-information minimum; the output names the rule)");
-  command->add_option("-m,--dimension", args->params.dimension, "prediction: embedding dimension (default: automatic, where Cao's E1 saturates)");
-  command->add_option("-t,--theiler", args->params.theiler, "prediction: Theiler window in samples (default: automatic, the longer of the autocorrelation 1/e time and half the dominant period, at least the delay)");
-  command->add_option("--horizon", args->params.options.prediction.horizon, "prediction: steps ahead")->capture_default_str();
-  command->add_option("-k,--neighbours", args->params.options.prediction.neighbours, "prediction: neighbours averaged")
-      ->capture_default_str();
-  command->add_option("--norm", args->params.norm, "prediction: max or euclidean")->capture_default_str();
-  command->add_flag("--end-match", args->params.end_match,
-                    "first trim the series to the segment whose ends match best (TISEAN endtoend)");
+  add_options(*command, args->params, nonlinearity_parameters());
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
@@ -55,18 +56,10 @@ void register_section(CLI::App& app) {
   CLI::App* command = app.add_subcommand("section", "Poincaré section: stroboscopic (every PERIOD-th row) or hyperplane crossings with return times");
   add_quiet_option(*command);
   command->add_option("file", a->file, "input file, columns separated by blanks, tabs or commas; - for stdin")->capture_default_str();
-  command->add_option("-c,--columns", a->params.columns, "columns to read, 1-based, comma separated (default: every column but the time column)")
-      ->delimiter(',');
   command->add_option("-x,--skip", a->skip, "data rows to skip at the start")->capture_default_str();
   command->add_option("-l,--length", a->length, "data rows to use after the skip (default: all)");
-  command->add_option("--dt", a->params.dt, "time between rows, when there is no time column")->capture_default_str();
-  command->add_option("--time-column", a->params.time_column, "column holding the time (increasing; steps may be uneven)");
-  auto* strobe = command->add_option("--stroboscopic", a->params.period, "stroboscopic section: every PERIOD-th row");
-  command->add_option("--phase", a->params.phase, "stroboscopic: the first row taken, 0 <= K < PERIOD")->capture_default_str();
-  auto* plane = command->add_option("--hyperplane", a->params.hyperplane, "hyperplane section: crossings of this column (1-based)");
-  command->add_option("--level", a->params.level, "hyperplane: the plane is column = C");
-  command->add_option("--direction", a->params.direction, "hyperplane: up, down or both")->capture_default_str();
-  strobe->excludes(plane);
+  add_options(*command, a->params, section_parameters());
+  command->get_option("--stroboscopic")->excludes(command->get_option("--hyperplane"));
   add_output_options(*command, a->output);
   command->callback([a] { run(*a); });
 }

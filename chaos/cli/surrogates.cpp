@@ -9,6 +9,7 @@
 #include "chaos/surrogates.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
@@ -62,16 +63,7 @@ void register_surrogates(CLI::App& app) {
   auto args = std::make_shared<SurrogatesArgs>();
   CLI::App* command = app.add_subcommand("surrogates", "FT, AAFT or IAAFT surrogate series, one column per surrogate");
   add_input_options(*command, args->input);
-  command->add_option("--method", args->params.method, "ft (phase randomised), aaft or iaaft")->capture_default_str();
-  command->add_option("-n,--count", args->params.count, "number of surrogates")->capture_default_str();
-  command->add_option("--seed", args->params.seed, "seed; surrogate k uses the k-th draw of its stream")->capture_default_str();
-  command->add_option("--max-iterations", args->params.options.max_iterations, "IAAFT: iteration limit")->capture_default_str();
-  command->add_option("--tolerance", args->params.options.tolerance,
-                      "IAAFT: stop when the spectral deviation is this small (0: only at a fixed point)")
-      ->capture_default_str();
-  command->add_flag("--end-match", args->params.end_match,
-                    "first trim the series to the segment whose ends match best (TISEAN endtoend)");
-  command->add_option("--max-trim", args->params.end.max_trim, "end matching: largest fraction cut off")->capture_default_str();
+  add_options(*command, args->params, surrogates_parameters());
   add_quiet_option(*command, args->quiet);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

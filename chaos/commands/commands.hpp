@@ -4,7 +4,8 @@
 // command's defaults), applies the command's own defaults that depend on the data, computes, and
 // fills a Report: its parameters (the '#' header / "parameters") and its JSON body, exactly what
 // `chaos X --json` writes. The command line adds the text table and the plot; the Python package
-// hands the JSON over as the result.
+// hands the JSON over as the result. X_parameters() is the command's parameter table
+// (parameter_table.hpp, parameter_tables.cpp): its options and Python keyword arguments.
 
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +34,7 @@
 #include "chaos/surrogates.hpp"
 #include "chaos/models/validation.hpp"
 #include "chaos/models/zoo_suite.hpp"
+#include "parameter_table.hpp"
 #include "report.hpp"
 
 namespace chaos::cli {
@@ -45,6 +47,7 @@ struct MutualParams {
   MutualInformationOptions options;
   std::string estimator = "equal_width";
 };
+const ParameterTable<MutualParams>& mutual_parameters();
 struct MutualRun {
   MutualInformationResult result;
   std::optional<std::size_t> minimum;
@@ -57,6 +60,7 @@ MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOpt
 struct AutocorrelationParams {
   std::optional<std::size_t> max_lag;  // default: N/10, at most 1000, at least 1
 };
+const ParameterTable<AutocorrelationParams>& autocorrelation_parameters();
 struct AutocorrelationRun {
   AutocorrelationResult result;
   std::optional<std::size_t> zero;
@@ -74,6 +78,7 @@ struct CaoParams {
   CaoOptions options;
   std::string norm = "max";
 };
+const ParameterTable<CaoParams>& cao_parameters();
 struct CaoRun {
   CaoResult result;
   Report report;
@@ -86,6 +91,7 @@ struct FnnParams {
   FnnOptions options;
   std::string norm = "euclidean";
 };
+const ParameterTable<FnnParams>& fnn_parameters();
 struct FnnRun {
   FnnResult result;
   Report report;
@@ -112,6 +118,7 @@ struct D2Params {
   bool fast = false;
   AdaptiveD2Options adaptive;
 };
+const ParameterTable<D2Params>& d2_parameters();
 struct D2Run {
   CorrelationSumResult sums;
   CorrelationDimensionResult d2;
@@ -151,6 +158,7 @@ struct LyapunovParams {
   // On by default, as in chaos analyze; `--no-halves` for the plain estimate.
   bool halves = true;
 };
+const ParameterTable<LyapunovParams>& lyapunov_parameters();
 struct LyapunovRun {
   LyapunovResult result;
   std::optional<LyapunovResult> check;  // the other method's result, when cross-checked
@@ -173,6 +181,7 @@ struct LyapunovMapsParams {
   std::string norm = "max";
   double tolerance = 0.05;
 };
+const ParameterTable<LyapunovMapsParams>& lyapunov_maps_parameters();
 struct LyapunovMapsRun {
   LocalMapResult result;
   Report report;
@@ -226,12 +235,14 @@ struct AnalyzeParams {
   std::size_t test_length = 4096;  // samples given to the nonlinearity test
   std::size_t surrogates = 19;
   std::uint64_t seed = 1;
+  std::size_t builtin_length = 100000;  // of the built-in series, analysed without a file (enough for a confident lambda_1)
   bool delay_check = false;   // a saturated D2 must be reproduced at twice the delay too
   bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
   // Called with each step's name and the fraction of it done (AutomaticAnalysisOptions::progress),
   // also for the false neighbours and the surrogate test; may throw to stop.
   std::function<void(const std::string&, double)> progress;
 };
+const ParameterTable<AnalyzeParams>& analyze_parameters();
 struct AnalyzeRun {
   AutomaticAnalysis analysis;
   std::optional<FnnResult> fnn;
@@ -264,6 +275,7 @@ struct SurrogatesParams {
   bool end_match = false;
   EndMatchOptions end;
 };
+const ParameterTable<SurrogatesParams>& surrogates_parameters();
 struct SurrogatesRun {
   std::vector<Surrogate> surrogates;
   std::optional<EndMatch> match;
@@ -286,6 +298,7 @@ struct NonlinearityParams {
   std::function<void(double)> choice_progress;  // Cao's method, where the dimension is chosen
   bool end_match = false;
 };
+const ParameterTable<NonlinearityParams>& nonlinearity_parameters();
 struct NonlinearityRun {
   NonlinearityTestResult result;
   Report report;
@@ -300,6 +313,7 @@ struct GenerateParams {
   std::uint64_t seed = 1;
   std::string components = "all";
 };
+const ParameterTable<GenerateParams>& generate_parameters();
 struct GenerateRun {
   Trajectory trajectory;
   std::vector<std::size_t> chosen;  // the components written, in order
@@ -318,6 +332,7 @@ struct SpectrumParams {
   std::optional<std::size_t> delay_exponents;
   bool identity = false;
 };
+const ParameterTable<SpectrumParams>& spectrum_parameters();
 struct SpectrumRun {
   LyapunovSpectrum spectrum;
   Report report;
@@ -332,6 +347,7 @@ struct DensityParams {
   std::optional<double> bandwidth, low, high;
   double padding = 0.05;
 };
+const ParameterTable<DensityParams>& density_parameters();
 struct DensityRun {
   std::vector<double> parameters;             // the distinct parameter values, ascending
   std::vector<std::vector<double>> samples;   // the values of each
@@ -356,6 +372,7 @@ struct SectionParams {
   std::optional<double> level;               // ... through this level
   std::string direction = "up";              // up, down or both
 };
+const ParameterTable<SectionParams>& section_parameters();
 // The option checks made before any input is read (one section, a level for a hyperplane, dt > 0,
 // the direction's name).
 void check_section_params(const SectionParams& params);

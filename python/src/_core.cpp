@@ -15,8 +15,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "chaos/embedding.hpp"
@@ -109,6 +112,73 @@ void get(const py::dict& p, const char* name, std::vector<double>& target) {
   target.clear();
   for (const auto& v : p[name]) target.push_back(to_real(v, name));
 }
+void get(const py::dict& p, const char* name, std::vector<std::size_t>& target) {
+  if (!has(p, name)) return;
+  target.clear();
+  for (const auto& v : p[name]) target.push_back(to_count(v, name));
+}
+// name=value settings (-p name=value, repeatable): a dict {name: value}.
+void get(const py::dict& p, const char* name, std::map<std::string, double>& target) {
+  if (!has(p, name)) return;
+  if (!py::isinstance<py::dict>(p[name])) type_error(std::string(name) + " must be a dict of name: value");
+  for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(p[name])) {
+    if (!py::isinstance<py::str>(key)) type_error(std::string(name) + " names must be strings");
+    target[py::cast<std::string>(key)] = to_real(value, name);
+  }
+}
+
+// A command's keyword arguments, read by its parameter table (parameter_table.hpp).
+template <class Params>
+void read_parameters(const py::dict& p, Params& params, const ParameterTable<Params>& table) {
+  for (const auto& parameter : table)
+    std::visit([&](auto* field) { get(p, parameter.name.c_str(), *field); }, parameter.field(params));
+}
+
+// A field's value as Python's default: None for a field left out (an empty optional, list or map).
+py::object python_value(const ParameterField& field) {
+  return std::visit(
+      [](const auto* value) -> py::object {
+        using T = std::remove_cv_t<std::remove_pointer_t<decltype(value)>>;
+        if constexpr (std::is_same_v<T, std::optional<std::size_t>> || std::is_same_v<T, std::optional<double>>)
+          return *value ? py::cast(**value) : py::none();
+        else if constexpr (std::is_arithmetic_v<T> || std::is_same_v<T, std::string>)
+          return py::cast(*value);
+        else
+          return value->empty() ? py::none() : py::cast(*value);
+      },
+      field);
+}
+
+// The table as python/src/chaos/__init__.py builds the functions' signatures from it: (name,
+// default, flags) per parameter, in the table's order.
+template <class Params>
+py::list describe(const ParameterTable<Params>& table) {
+  Params defaults;
+  py::list out;
+  for (const auto& parameter : table)
+    out.append(py::make_tuple(parameter.name,
+                              parameter.default_described ? py::none() : python_value(parameter.field(defaults)),
+                              parameter.flags));
+  return out;
+}
+
+py::list parameters(const std::string& command) {
+  if (command == "mutual") return describe(mutual_parameters());
+  if (command == "autocorrelation") return describe(autocorrelation_parameters());
+  if (command == "cao") return describe(cao_parameters());
+  if (command == "fnn") return describe(fnn_parameters());
+  if (command == "d2") return describe(d2_parameters());
+  if (command == "lyapunov") return describe(lyapunov_parameters());
+  if (command == "lyapunov_maps") return describe(lyapunov_maps_parameters());
+  if (command == "analyze") return describe(analyze_parameters());
+  if (command == "surrogates") return describe(surrogates_parameters());
+  if (command == "nonlinearity") return describe(nonlinearity_parameters());
+  if (command == "generate") return describe(generate_parameters());
+  if (command == "spectrum") return describe(spectrum_parameters());
+  if (command == "density") return describe(density_parameters());
+  if (command == "section") return describe(section_parameters());
+  value_error("no parameter table for '" + command + "'");
+}
 
 // The series: the checks every command applies to what it reads (finite, usable scale).
 SeriesInput series(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt) {
@@ -190,9 +260,7 @@ std::function<void(const std::string&, double)> step_progress_hook(py::object ca
 py::object mutual(const Array& x, const std::string& file, std::size_t column, std::optional<double> dt, const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   MutualParams params;
-  get(p, "max_delay", params.max_delay);
-  get(p, "boxes", params.options.boxes);
-  get(p, "estimator", params.estimator);
+  read_parameters(p, params, mutual_parameters());
   return call([&] { return run_mutual(in, params).report.json(); });
 }
 
@@ -200,7 +268,7 @@ py::object autocorrelation(const Array& x, const std::string& file, std::size_t 
                            const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   AutocorrelationParams params;
-  get(p, "max_lag", params.max_lag);
+  read_parameters(p, params, autocorrelation_parameters());
   return call([&] { return run_autocorrelation(in, params).report.json(); });
 }
 
@@ -208,14 +276,7 @@ py::object cao(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   CaoParams params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.options.min_dimension);
-  get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "norm", params.norm);
-  get(p, "level", params.options.saturation_level);
-  get(p, "change", params.options.saturation_change);
-  get(p, "sigmas", params.options.stochastic_sigmas);
+  read_parameters(p, params, cao_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_cao(in, params).report.json(); });
 }
@@ -224,14 +285,7 @@ py::object fnn(const Array& x, const std::string& file, std::size_t column, std:
                const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   FnnParams params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.options.min_dimension);
-  get(p, "max_dimension", params.options.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "rtol", params.options.rtol);
-  get(p, "atol", params.options.atol);
-  get(p, "norm", params.norm);
-  get(p, "threshold", params.options.threshold);
+  read_parameters(p, params, fnn_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_fnn(in, params).report.json(); });
 }
@@ -240,35 +294,7 @@ py::object d2(const Array& x, const std::string& file, std::size_t column, std::
               py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   D2Params params;
-  get(p, "delay", params.delay);
-  get(p, "min_dimension", params.sums.min_dimension);
-  get(p, "max_dimension", params.sums.max_dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "min_radius", params.r_min);
-  get(p, "max_radius", params.r_max);
-  get(p, "radii", params.radii);
-  get(p, "radius_list", params.radius_list);
-  get(p, "norm", params.norm);
-  get(p, "search", params.search);
-  get(p, "pairs_per_radius", params.sums.pairs_per_radius);
-  get(p, "reference_points", params.sums.reference_points);
-  get(p, "seed", params.sums.seed);
-  get(p, "threads", params.sums.threads);
-  get(p, "tolerance", params.dimension.region.tolerance);
-  get(p, "min_points", params.dimension.region.min_points);
-  get(p, "saturation_dimensions", params.dimension.saturation_dimensions);
-  get(p, "min_plateau_ratio", params.dimension.min_plateau_ratio);
-  get(p, "projection_tolerance", params.dimension.projection_tolerance);
-  get(p, "noise_fill_fraction", params.dimension.noise_fill_fraction);
-  get(p, "min_pairs", params.dimension.min_pairs);
-  get(p, "max_region_fraction", params.dimension.max_region_fraction);
-  get(p, "halves", params.halves);
-  get(p, "delay_check", params.delay_check);
-  get(p, "delay_tolerance", params.dimension.delay_tolerance);
-  get(p, "inclusive", params.sums.inclusive);
-  get(p, "fast", params.fast);
-  get(p, "fast_target", params.adaptive.target);
-  get(p, "fast_start", params.adaptive.initial_reference_points);
+  read_parameters(p, params, d2_parameters());
   params.sums.progress = progress_hook(std::move(progress));
   params.halves_progress = params.sums.progress;  // again from 0 for each half (Ctrl-C is noticed there too)
   return call([&] { return run_d2(in, params).report.json(); });
@@ -278,24 +304,7 @@ py::object lyapunov(const Array& x, const std::string& file, std::size_t column,
                     const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovParams params;
-  get(p, "method", params.method);
-  get(p, "dimension", params.dimension);
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "steps", params.steps);
-  get(p, "period", params.period);
-  get(p, "dimensions", params.fit.dimensions);
-  get(p, "radius", params.options.radius);
-  get(p, "min_neighbours", params.options.min_neighbours);
-  get(p, "reference_points", params.reference_points);
-  get(p, "norm", params.norm);
-  get(p, "threads", params.options.threads);
-  get(p, "tolerance", params.fit.tolerance);
-  get(p, "half_width", params.fit.half_width);
-  get(p, "min_steps", params.fit.min_steps);
-  get(p, "min_rise", params.fit.min_rise);
-  get(p, "cross_check", params.cross_check);
-  get(p, "halves", params.halves);
+  read_parameters(p, params, lyapunov_parameters());
   // With the cross-check the other method's curve is the second half of the work.
   const std::function<void(double)> hook = progress_hook(std::move(progress));
   if (hook) params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there
@@ -315,16 +324,7 @@ py::object lyapunov_maps(const Array& x, const std::string& file, std::size_t co
                          const py::dict& p) {
   const SeriesInput in = series(x, file, column, dt);
   LyapunovMapsParams params;
-  get(p, "dimension", params.dimension);
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "step", params.options.step);
-  get(p, "neighbours", params.options.neighbours);
-  get(p, "cutoff", params.options.cutoff);
-  get(p, "max_residual", params.options.max_residual);
-  get(p, "tolerance", params.tolerance);
-  get(p, "norm", params.norm);
-  get(p, "threads", params.options.threads);
+  read_parameters(p, params, lyapunov_maps_parameters());
   return call([&] { return run_lyapunov_maps(in, params).report.json(); });
 }
 
@@ -332,15 +332,7 @@ py::tuple analyze(const Array& x, const std::string& file, std::size_t column, s
                    const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   AnalyzeParams params;
-  get(p, "delay", params.delay);
-  get(p, "theiler", params.theiler);
-  get(p, "max_delay", params.max_delay);
-  get(p, "boxes", params.boxes);
-  get(p, "max_dimension", params.max_dimension);
-  get(p, "test_length", params.test_length);
-  get(p, "surrogates", params.surrogates);
-  get(p, "seed", params.seed);
-  get(p, "delay_check", params.delay_check);
+  read_parameters(p, params, analyze_parameters());
   params.progress = step_progress_hook(std::move(progress));
   params.mutual_curve = true;  // the information curve, for the plot (the JSON does not change)
   nlohmann::ordered_json json, evidence = nlohmann::ordered_json::object();
@@ -373,13 +365,7 @@ py::object surrogates(const Array& x, const std::string& file, std::size_t colum
                       const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   SurrogatesParams params;
-  get(p, "method", params.method);
-  get(p, "count", params.count);
-  get(p, "seed", params.seed);
-  get(p, "max_iterations", params.options.max_iterations);
-  get(p, "tolerance", params.options.tolerance);
-  get(p, "end_match", params.end_match);
-  get(p, "max_trim", params.end.max_trim);
+  read_parameters(p, params, surrogates_parameters());
   params.options.progress = progress_hook(std::move(progress));
   return call([&] { return run_surrogates(in, params).report.json(); });
 }
@@ -388,19 +374,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
                         const py::dict& p, py::object progress) {
   const SeriesInput in = series(x, file, column, dt);
   NonlinearityParams params;
-  get(p, "count", params.options.surrogates);
-  get(p, "seed", params.options.seed);
-  get(p, "statistic", params.statistic);
-  get(p, "alternative", params.alternative);
-  get(p, "method", params.method);
-  get(p, "max_iterations", params.options.surrogate.max_iterations);
-  get(p, "delay", params.delay);
-  get(p, "dimension", params.dimension);
-  get(p, "theiler", params.theiler);
-  get(p, "horizon", params.options.prediction.horizon);
-  get(p, "neighbours", params.options.prediction.neighbours);
-  get(p, "norm", params.norm);
-  get(p, "end_match", params.end_match);
+  read_parameters(p, params, nonlinearity_parameters());
   params.options.progress = progress_hook(std::move(progress));
   const std::function<void(double)> hook = params.options.progress;
   params.choice_progress = [hook](double) { hook(0.0); };  // Cao's method: Ctrl-C is noticed there
@@ -410,13 +384,7 @@ py::object nonlinearity(const Array& x, const std::string& file, std::size_t col
 py::object density(const Array& parameter, const Array& value, const std::string& file, std::size_t parameter_column,
                    std::size_t value_column, const py::dict& p) {
   DensityParams params;
-  get(p, "bins", params.bins);
-  get(p, "max_bins", params.max_bins);
-  get(p, "kde", params.kde);
-  get(p, "bandwidth", params.bandwidth);
-  get(p, "low", params.low);
-  get(p, "high", params.high);
-  get(p, "padding", params.padding);
+  read_parameters(p, params, density_parameters());
   check_density_params(params);
   const SeriesInput x = series(parameter, file, parameter_column, std::nullopt);
   const SeriesInput y = series(value, file, value_column, std::nullopt);
@@ -429,15 +397,7 @@ py::object density(const Array& parameter, const Array& value, const std::string
 // 1-based numbers in params["columns"], `times` the time column (empty without one).
 SectionParams section_params(const py::dict& p) {
   SectionParams params;
-  if (has(p, "columns"))
-    for (const auto& c : p["columns"]) params.columns.push_back(to_count(c, "columns"));
-  get(p, "time_column", params.time_column);
-  get(p, "dt", params.dt);
-  get(p, "stroboscopic", params.period);
-  get(p, "phase", params.phase);
-  get(p, "hyperplane", params.hyperplane);
-  get(p, "level", params.level);
-  get(p, "direction", params.direction);
+  read_parameters(p, params, section_parameters());
   check_section_params(params);  // before any input is read, as the command checks them
   return params;
 }
@@ -565,30 +525,10 @@ py::tuple zoo_series(const std::string& name, const py::dict& p) {
   return py::make_tuple(to_python(json), Array(static_cast<py::ssize_t>(run->x.size()), run->x.data()));
 }
 
-// -p name=value, repeatable: a dict {name: value}.
-void get_settings(const py::dict& p, std::map<std::string, double>& target) {
-  if (!has(p, "parameter")) return;
-  if (!py::isinstance<py::dict>(p["parameter"])) type_error("parameter must be a dict of name: value");
-  for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(p["parameter"])) {
-    if (!py::isinstance<py::str>(name)) type_error("parameter names must be strings");
-    target[py::cast<std::string>(name)] = to_real(value, "parameter");
-  }
-}
-
 py::object spectrum(const std::string& system, const py::dict& p) {
   SpectrumParams params;
   params.system = system;
-  get_settings(p, params.parameters);
-  get(p, "time", params.time);
-  get(p, "step", params.step);
-  get(p, "interval", params.flow_interval);
-  get(p, "transient", params.flow_transient);
-  get(p, "iterations", params.iterations);
-  get(p, "map_interval", params.map_interval);
-  get(p, "map_transient", params.map_transient);
-  get(p, "seed", params.seed);
-  get(p, "exponents", params.delay_exponents);
-  get(p, "identity", params.identity);
+  read_parameters(p, params, spectrum_parameters());
   return call([&] { return run_spectrum(params).report.json(); });
 }
 
@@ -597,10 +537,7 @@ py::object spectrum(const std::string& system, const py::dict& p) {
 py::tuple generate(const std::string& system, const py::dict& p) {
   GenerateParams params;
   params.system = system;
-  get(p, "length", params.length);
-  get(p, "seed", params.seed);
-  get(p, "components", params.components);
-  get_settings(p, params.parameters);
+  read_parameters(p, params, generate_parameters());
   std::optional<GenerateRun> run;
   {
     py::gil_scoped_release release;
@@ -806,16 +743,13 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
   MutualParams m;
   D2Params d;
   if (command == "autocorrelation") {
-    get(p, "max_lag", a.max_lag);
+    read_parameters(p, a, autocorrelation_parameters());
     work = [&] { (void)run_autocorrelation(in, a).report.json().size(); };
   } else if (command == "mutual") {
-    get(p, "max_delay", m.max_delay);
-    get(p, "boxes", m.options.boxes);
+    read_parameters(p, m, mutual_parameters());
     work = [&] { (void)run_mutual(in, m).report.json().size(); };
   } else if (command == "d2") {
-    get(p, "delay", d.delay);
-    get(p, "max_dimension", d.sums.max_dimension);
-    get(p, "theiler", d.theiler);
+    read_parameters(p, d, d2_parameters());
     work = [&] { (void)run_d2(in, d).report.json().size(); };
   } else {
     value_error("compute_seconds: autocorrelation, mutual or d2");
@@ -830,6 +764,7 @@ double compute_seconds(const std::string& command, const Array& x, const py::dic
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "The chaos library's commands on NumPy arrays (see the chaos package).";
+  m.def("parameters", &parameters);
   m.def("mutual", &mutual);
   m.def("autocorrelation", &autocorrelation);
   m.def("cao", &cao);

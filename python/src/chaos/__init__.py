@@ -20,6 +20,8 @@ information in nats.
 A result's JSON names the series in ``parameters["file"]``: the path for a file, ``"(array)"`` for
 an array.
 """
+import functools
+import inspect
 import os
 import sys
 
@@ -34,6 +36,36 @@ __all__ = ["generate", "spectrum", "mutual", "autocorrelation", "cao", "fnn", "d
 __version__ = "0.1.0"
 
 ARRAY_NAME = "(array)"
+
+
+def _parameters(command):
+    """Gives the decorated function the keyword arguments of the command's parameter table (the
+    table the ``chaos`` command's options come from, chaos/commands/parameter_tables.cpp), with
+    the command's defaults, ahead of the function's own keyword arguments. The function takes them
+    as ``**params``, every one of them present (its default where the caller left it out), and hands
+    them to _core; ``inspect.signature`` and ``help`` show them with their defaults."""
+    table = _core.parameters(command)
+    defaults = {name: default for name, default, _ in table}
+
+    def decorate(function):
+        own = inspect.signature(function).parameters.values()
+        keyword = [p for p in own if p.kind is inspect.Parameter.KEYWORD_ONLY]
+        leading = [p for p in own if p.kind in (inspect.Parameter.POSITIONAL_ONLY,
+                                                inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+        accepted = set(defaults) | {p.name for p in own if p.kind is not inspect.Parameter.VAR_KEYWORD}
+
+        @functools.wraps(function)
+        def with_parameters(*args, **kwargs):
+            for name in kwargs:
+                if name not in accepted:
+                    raise TypeError(f"{function.__name__}() got an unexpected keyword argument '{name}'")
+            return function(*args, **{**defaults, **kwargs})
+
+        table_parameters = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default)
+                            for name, default in defaults.items()]
+        with_parameters.__signature__ = inspect.Signature(leading + table_parameters + keyword)
+        return with_parameters
+    return decorate
 
 
 def _series(x, dt, column=1, skip=0, length=None):
@@ -124,7 +156,8 @@ def _step_bar(progress):
     return bar
 
 
-def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, column=1, skip=0, length=None):
+@_parameters("mutual")
+def mutual(x, *, dt=None, column=1, skip=0, length=None, **params):
     """Average mutual information I(tau) in nats and its first minimum (``chaos mutual``).
 
     I(tau) = sum_ij p_ij(tau) ln(p_ij(tau) / (p_i p_j)) over a partition of the range into ``boxes``
@@ -137,11 +170,11 @@ def mutual(x, *, max_delay=None, boxes=16, estimator="equal_width", dt=None, col
     Result keys: delay, [delay_time], mutual_information, first_minimum, first_minimum_time, no_minimum.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.mutual(values, file, column, dt,
-                              dict(max_delay=max_delay, boxes=boxes, estimator=estimator)))
+    return _make(_core.mutual(values, file, column, dt, params))
 
 
-def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
+@_parameters("autocorrelation")
+def autocorrelation(x, *, dt=None, column=1, skip=0, length=None, **params):
     """Autocorrelation r(k) by FFT, its first zero crossing and 1/e time (``chaos autocorrelation``).
 
     r(k) = sum_i (x_i - m)(x_{i+k} - m) / sum_i (x_i - m)^2 for k = 0..max_lag (default N/10, at most
@@ -151,11 +184,11 @@ def autocorrelation(x, *, max_lag=None, dt=None, column=1, skip=0, length=None):
     Result keys: lag, autocorrelation, first_zero_crossing, decorrelation_time, [decorrelation_time_units].
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.autocorrelation(values, file, column, dt, dict(max_lag=max_lag)))
+    return _make(_core.autocorrelation(values, file, column, dt, params))
 
 
-def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm="max", level=0.8, change=0.1, sigmas=4.0,
-        progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("cao")
+def cao(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Cao's E1(m) and E2(m) and the embedding dimension where E1 saturates (``chaos cao``).
 
     ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
@@ -175,13 +208,11 @@ def cao(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm=
     stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.cao, "Cao's method", progress, values, file, column, dt,
-                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                     norm=norm, level=level, change=change, sigmas=sigmas))
+    return _run(_core.cao, "Cao's method", progress, values, file, column, dt, params)
 
 
-def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=10.0, atol=2.0, norm="euclidean",
-        threshold=0.01, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("fnn")
+def fnn(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The fraction of false nearest neighbours against m (``chaos fnn``).
 
     ``delay`` and ``theiler`` left out are chosen as ``analyze`` chooses them (the first
@@ -198,16 +229,11 @@ def fnn(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, rtol=
     stops the search within 4096 points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt,
-                dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                     rtol=rtol, atol=atol, norm=norm, threshold=threshold))
+    return _run(_core.fnn, "false nearest neighbours", progress, values, file, column, dt, params)
 
 
-def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_radius=None, max_radius=None, radii=40,
-       radius_list=None, norm="max", search="box", pairs_per_radius=0, reference_points=0, seed=1, threads=1,
-       tolerance=0.05, min_points=5, saturation_dimensions=3, min_plateau_ratio=2.0, min_pairs=100,
-       projection_tolerance=0.1, noise_fill_fraction=0.5, max_region_fraction=None, halves=True, delay_check=False, delay_tolerance=0.05, inclusive=False, fast=False, fast_target=0.02, fast_start=500, progress=None, dt=None, column=1,
-       skip=0, length=None):
+@_parameters("d2")
+def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Correlation sums C(eps, m), local slopes, the scaling region and the correlation dimension D2
     (``chaos d2``).
 
@@ -259,15 +285,6 @@ def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_ra
     plain estimate.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    params = dict(delay=delay, min_dimension=min_dimension, max_dimension=max_dimension, theiler=theiler,
-                  min_radius=min_radius, max_radius=max_radius, radii=radii, radius_list=radius_list, norm=norm,
-                  search=search, pairs_per_radius=pairs_per_radius, reference_points=reference_points, seed=seed,
-                  threads=threads, tolerance=tolerance, min_points=min_points,
-                  saturation_dimensions=saturation_dimensions, min_plateau_ratio=min_plateau_ratio,
-                  projection_tolerance=projection_tolerance, noise_fill_fraction=noise_fill_fraction,
-                  min_pairs=min_pairs, max_region_fraction=max_region_fraction, halves=halves, delay_check=delay_check,
-                  delay_tolerance=delay_tolerance, inclusive=inclusive, fast=fast,
-                  fast_target=fast_target, fast_start=fast_start)
     bar = _progress_bar(progress, "correlation sums")
     try:
         return _make(_core.d2(values, file, column, dt, params, bar))
@@ -279,10 +296,8 @@ def d2(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, min_ra
 correlation_sum = d2  # the correlation sums are part of d2's result (correlation_sum, pairs, radius)
 
 
-def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None, steps=None, period=None, dimensions=3,
-             radius=None, min_neighbours=1, reference_points=None, norm="max", threads=1, tolerance=0.1, half_width=0,
-             min_steps=0, min_rise=2.0, cross_check=True, halves=True, progress=None, dt=None, column=1, skip=0,
-             length=None):
+@_parameters("lyapunov")
+def lyapunov(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The largest Lyapunov exponent from the series (``chaos lyapunov``).
 
     ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
@@ -324,16 +339,11 @@ def lyapunov(x, *, method="rosenstein", dimension=None, delay=None, theiler=None
     reference points.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt,
-                dict(method=method, dimension=dimension, delay=delay, theiler=theiler, steps=steps,
-                     period=period, dimensions=dimensions, radius=radius,
-                     min_neighbours=min_neighbours, reference_points=reference_points, norm=norm,
-                     threads=threads, tolerance=tolerance, half_width=half_width,
-                     min_steps=min_steps, min_rise=min_rise, cross_check=cross_check, halves=halves))
+    return _run(_core.lyapunov, "divergence curve", progress, values, file, column, dt, params)
 
 
-def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighbours=0, cutoff=0.1, tolerance=0.05,
-                  max_residual=0.25, norm="max", threads=1, dt=None, column=1, skip=0, length=None):
+@_parameters("lyapunov_maps")
+def lyapunov_maps(x, *, dt=None, column=1, skip=0, length=None, **params):
     """The largest Lyapunov exponent from local linear maps (``chaos lyapunov-maps``).
 
     ``delay``, ``theiler`` and ``dimension`` left out are chosen as ``analyze`` chooses them (the
@@ -359,15 +369,11 @@ def lyapunov_maps(x, *, dimension=None, delay=None, theiler=None, step=0, neighb
     The result's key ``lambda`` is a Python keyword: read it as ``r.lambda_`` or ``r["lambda"]``.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _make(_core.lyapunov_maps(values, file, column, dt,
-                                     dict(dimension=dimension, delay=delay, theiler=theiler, step=step,
-                                          neighbours=neighbours, cutoff=cutoff, tolerance=tolerance,
-                                          max_residual=max_residual, norm=norm, threads=threads)))
+    return _make(_core.lyapunov_maps(values, file, column, dt, params))
 
 
-def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_dimension=10, builtin_length=100000,
-            test_length=4096, surrogates=19, seed=1, delay_check=False, progress=None, dt=None, column=1, skip=0,
-            length=None):
+@_parameters("analyze")
+def analyze(x=None, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """The embedding parameters chosen and justified, then D2, lambda_1 and a nonlinearity test
     (``chaos analyze``).
 
@@ -394,24 +400,21 @@ def analyze(x=None, *, delay=None, theiler=None, max_delay=100, boxes=16, max_di
     none).
     """
     if x is None:
-        values, builtin_dt = _core.builtin_series(builtin_length)
+        values, builtin_dt = _core.builtin_series(params["builtin_length"])
         file, column, dt = _core.builtin_series_name, 1, builtin_dt
     else:
         values, file, column, dt = _series(x, dt, column, skip, length)
     bar = _step_bar(progress)
     try:
-        json, evidence = _core.analyze(values, file, column, dt,
-                                       dict(delay=delay, theiler=theiler, max_delay=max_delay, boxes=boxes,
-                                            max_dimension=max_dimension, test_length=test_length,
-                                            surrogates=surrogates, seed=seed, delay_check=delay_check), bar)
+        json, evidence = _core.analyze(values, file, column, dt, params, bar)
         return _make(json, evidence=evidence)
     finally:
         if bar is not None and not callable(progress):
             sys.stderr.write("\n")
 
 
-def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, tolerance=0.0, end_match=False,
-               max_trim=0.1, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("surrogates")
+def surrogates(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """FT, AAFT or IAAFT surrogate series (``chaos surrogates``).
 
     FT: the data's Fourier amplitudes with uniformly random phases (Theiler et al., Physica D 58, 77,
@@ -427,14 +430,11 @@ def surrogates(x, *, method="iaaft", count=1, seed=1, max_iterations=1000, toler
     surrogates done); Ctrl-C stops the IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.surrogates, "surrogates", progress, values, file, column, dt,
-                dict(method=method, count=count, seed=seed, max_iterations=max_iterations,
-                     tolerance=tolerance, end_match=end_match, max_trim=max_trim))
+    return _run(_core.surrogates, "surrogates", progress, values, file, column, dt, params)
 
 
-def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternative="two_sided", method="iaaft",
-                 max_iterations=1000, delay=None, dimension=None, theiler=None, horizon=1, neighbours=5, norm="max",
-                 end_match=False, progress=None, dt=None, column=1, skip=0, length=None):
+@_parameters("nonlinearity")
+def nonlinearity(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     """Rank-order surrogate test for nonlinearity (``chaos nonlinearity``).
 
     The statistic (the locally constant predictor's error in a delay embedding, or the time-reversal
@@ -454,14 +454,11 @@ def nonlinearity(x, *, count=39, seed=1, statistic="prediction_error", alternati
     done); Ctrl-C stops the surrogates' IAAFT loop within one iteration.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
-    return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt,
-                dict(count=count, seed=seed, statistic=statistic, alternative=alternative,
-                     method=method, max_iterations=max_iterations, delay=delay,
-                     dimension=dimension, theiler=theiler, horizon=horizon,
-                     neighbours=neighbours, norm=norm, end_match=end_match))
+    return _run(_core.nonlinearity, "nonlinearity test", progress, values, file, column, dt, params)
 
 
-def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
+@_parameters("generate")
+def generate(system, **params):
     """A series of a reference system or a zoo system (``chaos generate SYSTEM``).
 
     ``system``: lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic,
@@ -474,7 +471,7 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
     (a read-only mapping name -> array).
     """
     import types
-    json, columns = _core.generate(system, dict(length=length, parameter=parameter, seed=seed, components=components))
+    json, columns = _core.generate(system, params)
     arrays = {}
     for name, values in columns:
         values.flags.writeable = False
@@ -482,8 +479,8 @@ def generate(system, *, length=10000, parameter=None, seed=1, components="all"):
     return _make(json, {"components": types.MappingProxyType(arrays)})
 
 
-def spectrum(system, *, parameter=None, time=None, step=None, interval=None, transient=None, iterations=None,
-             map_interval=None, map_transient=None, identity=False, exponents=None, seed=1):
+@_parameters("spectrum")
+def spectrum(system, **params):
     """The Lyapunov spectrum and the Kaplan-Yorke dimension of a system from its equations
     (``chaos spectrum SYSTEM``).
 
@@ -499,14 +496,11 @@ def spectrum(system, *, parameter=None, time=None, step=None, interval=None, tra
     Result keys: parameters, exponents, sum, kaplan_yorke_dimension, renormalisations,
     averaging_length, initial_state (and identity).
     """
-    return _make(_core.spectrum(system, dict(parameter=parameter, time=time, step=step, interval=interval,
-                                             transient=transient, iterations=iterations, map_interval=map_interval,
-                                             map_transient=map_transient, identity=identity, exponents=exponents,
-                                             seed=seed)))
+    return _make(_core.spectrum(system, params))
 
 
-def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwidth=None, low=None, high=None,
-            padding=0.05, column=1, value_column=2, skip=0, length=None):
+@_parameters("density")
+def density(parameter, value=None, *, column=1, value_column=2, skip=0, length=None, **params):
     """The density map of a bifurcation diagram (``chaos density``): the values observed at each
     parameter value (rows of (parameter, value), e.g. the stroboscopic samples of a sweep) as a
     density on common bins: a histogram with a fixed number of ``bins`` or the Freedman-Diaconis rule
@@ -521,7 +515,6 @@ def density(parameter, value=None, *, bins=None, max_bins=200, kde=False, bandwi
     Result keys: parameter, bin_centre, edges, density (parameters x bins), in_range (and bandwidth,
     kernel_mass with ``kde``).
     """
-    params = dict(bins=bins, max_bins=max_bins, kde=kde, bandwidth=bandwidth, low=low, high=high, padding=padding)
     if isinstance(parameter, (str, os.PathLike)):
         if value is not None:
             raise TypeError("density: give a file, or the parameter and value arrays")
@@ -548,8 +541,8 @@ def _column_numbers(columns, name):
     return [int(c) if isinstance(c, np.integer) else c for c in columns]
 
 
-def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, phase=0, hyperplane=None, level=None,
-            direction="up", skip=0, length=None):
+@_parameters("section")
+def section(data, *, skip=0, length=None, **params):
     """A Poincare section of a multi-column series (``chaos section``).
 
     Stroboscopic (``stroboscopic=P``): every P-th row from row ``phase``, x(t_0 + k P dt), the
@@ -569,10 +562,10 @@ def section(data, *, columns=None, time_column=None, dt=1.0, stroboscopic=None, 
     Result keys: parameters, time, points (2-D: one row per section point, one column per column
     read), return_time (hyperplane; NaN for the first crossing).
     """
+    time_column = params["time_column"]
     if isinstance(time_column, np.integer):
-        time_column = int(time_column)
-    params = dict(columns=_column_numbers(columns, "columns"), time_column=time_column, dt=dt,
-                  stroboscopic=stroboscopic, phase=phase, hyperplane=hyperplane, level=level, direction=direction)
+        time_column = params["time_column"] = int(time_column)
+    params["columns"] = _column_numbers(params["columns"], "columns")
     if isinstance(data, (str, os.PathLike)):
         path = os.fspath(data)
         numbers, values, times = _core.section_file_columns(path, params, skip, length)
