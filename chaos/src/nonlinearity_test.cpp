@@ -8,6 +8,7 @@
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
 
@@ -84,6 +85,23 @@ class NeighbourSweep {
   std::vector<std::size_t> sorted_, position_;
 };
 
+// The sweep visits, for each query, at least every point with the same first coordinate: the sum
+// of c^2 over the groups of c equal first coordinates. Above this many per point on average
+// (heavily quantised data) the kd-tree is used instead; untied data (c = 1) always sweep.
+constexpr std::size_t tied_sweep_limit = 64;
+
+std::size_t first_coordinate_ties(const DelayEmbedding& points) {
+  std::vector<double> first(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) first[i] = points(i, 0);
+  std::sort(first.begin(), first.end());
+  std::size_t total = 0;
+  for (std::size_t g = 0, end = 0; g < first.size(); g = end) {
+    for (end = g; end < first.size() && first[end] == first[g];) ++end;
+    total += (end - g) * (end - g);
+  }
+  return total;
+}
+
 double population_std(std::span<const double> x) {
   double mean = 0.0;
   for (const double v : x) mean += v;
@@ -137,17 +155,34 @@ double prediction_error(std::span<const double> x, const PredictionErrorOptions&
   require_not_constant(x, what);
   const std::size_t p = predicted_points(x.size(), o);
   const DelayEmbedding points(x, o.dimension, o.delay, p);
-  const NeighbourSweep sweep(points, o.norm);
   const std::size_t ahead = (o.dimension - 1) * o.delay + o.horizon;
-  std::vector<NeighbourSweep::Neighbor> found;
   double sum = 0.0;
-  for (std::size_t i = 0; i < p; ++i) {
-    sweep.find(i, o.neighbours, o.theiler, found);
-    double prediction = 0.0;
-    for (const auto& nb : found) prediction += x[nb.index + ahead];
-    prediction /= static_cast<double>(found.size());
-    const double e = prediction - x[i + ahead];
+  const auto add_error = [&](std::size_t i, double prediction, std::size_t count) {
+    const double e = prediction / static_cast<double>(count) - x[i + ahead];
     sum += e * e;
+  };
+  if (first_coordinate_ties(points) > tied_sweep_limit * p) {
+    // Quantised data: the sweep would visit every point sharing the query's first coordinate.
+    // The kd-tree finds the same neighbours (same distances, same tie rule) at the cost of untied
+    // data; only the order of the prediction's sum differs (rounding).
+    const KdTree tree(points, o.norm);
+    const NeighborQuery query{o.theiler, false};
+    std::vector<Neighbor> found;
+    for (std::size_t i = 0; i < p; ++i) {
+      tree.k_nearest(i, o.neighbours, found, query);
+      double prediction = 0.0;
+      for (const auto& nb : found) prediction += x[nb.index + ahead];
+      add_error(i, prediction, found.size());
+    }
+  } else {
+    const NeighbourSweep sweep(points, o.norm);
+    std::vector<NeighbourSweep::Neighbor> found;
+    for (std::size_t i = 0; i < p; ++i) {
+      sweep.find(i, o.neighbours, o.theiler, found);
+      double prediction = 0.0;
+      for (const auto& nb : found) prediction += x[nb.index + ahead];
+      add_error(i, prediction, found.size());
+    }
   }
   return std::sqrt(sum / static_cast<double>(p)) / population_std(x);
 }
