@@ -11,6 +11,7 @@
 #include "chaos/neighbors.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
@@ -143,8 +144,14 @@ void PredictionErrorOptions::validate() const {
     refuse("prediction error: unknown norm " + std::to_string(static_cast<int>(norm)));
 }
 
-double prediction_error(std::span<const double> x, const PredictionErrorOptions& o) {
+double prediction_error(std::span<const double> given, const PredictionErrorOptions& o) {
   o.validate();
+  // Squared errors and the variance: on the series divided by a power of two where its magnitude
+  // needs it (exact: the same neighbours, and the error is a ratio).
+  const int exponent = detail::standardising_exponent(given);
+  std::vector<double> scaled;
+  if (exponent != 0) scaled = detail::scaled_by_power_of_two(given, exponent);
+  const std::span<const double> x = exponent != 0 ? std::span<const double>(scaled) : given;
   const std::string what = "prediction error";
   require_length(x, minimum_length(o), what,
                  "m = " + std::to_string(o.dimension) + ", tau = " + std::to_string(o.delay) + ", horizon = " +
@@ -187,11 +194,16 @@ double prediction_error(std::span<const double> x, const PredictionErrorOptions&
   return std::sqrt(sum / static_cast<double>(p)) / population_std(x);
 }
 
-double time_reversal_asymmetry(std::span<const double> x, std::size_t delay) {
+double time_reversal_asymmetry(std::span<const double> given, std::size_t delay) {
   const std::string what = "time reversal asymmetry";
   if (delay < 1) refuse(what + ": delay must be at least 1 sample (got 0)");
-  require_length(x, delay + 1, what, "delay = " + std::to_string(delay) + " needs N > delay, so one increment exists");
-  require_finite(x, what);
+  require_length(given, delay + 1, what, "delay = " + std::to_string(delay) + " needs N > delay, so one increment exists");
+  require_finite(given, what);
+  // Cubes of increments: on the series divided by a power of two where its magnitude needs it.
+  const int exponent = detail::standardising_exponent(given);
+  std::vector<double> scaled;
+  if (exponent != 0) scaled = detail::scaled_by_power_of_two(given, exponent);
+  const std::span<const double> x = exponent != 0 ? std::span<const double>(scaled) : given;
   double s2 = 0.0, s3 = 0.0;
   for (std::size_t t = 0; t + delay < x.size(); ++t) {
     const double d = x[t + delay] - x[t];

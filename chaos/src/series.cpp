@@ -416,15 +416,15 @@ void require_scale(std::span<const double> x, const std::string& what) {
     throw InvalidInput(ErrorCode::scale,
                        what + ": the values reach " + short_number(magnitude) + " in magnitude, beyond the " +
                            short_number(largest_magnitude) +
-                           " that the estimators' sums of squares can hold; divide the series by a power of ten "
-                           "(the estimates do not depend on the scale)");
+                           " (2^1022) where their range max - min can overflow double; divide the series by a power "
+                           "of ten (the estimates do not depend on the scale)");
   const double spread = *hi - *lo;
   if (spread > 0.0 && spread < smallest_spread)
     throw InvalidInput(ErrorCode::scale,
                        what + ": the values span only " + short_number(spread) + " (max - min), below the " +
                            short_number(smallest_spread) +
-                           " that the estimators' squared distances can resolve; multiply the series by a power of "
-                           "ten (the estimates do not depend on the scale)");
+                           " (2^-1021) under which doubles are subnormal and hold fewer than 53 significant bits; "
+                           "multiply the series by a power of ten (the estimates do not depend on the scale)");
 }
 
 }  // namespace chaos

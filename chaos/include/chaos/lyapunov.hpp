@@ -83,7 +83,7 @@ struct LyapunovOptions {
   // the mean over the neighbourhood keeps each distance's weight. Untied data never have such a
   // group, so their curves are unchanged; the curve counts the reference points affected
   // (tied_neighbourhoods). 0: no thinning.
-  std::size_t max_tied_neighbours = 32;
+  std::size_t max_tied_neighbours = 8;
   // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
   std::size_t reference_points = 0;
   std::size_t threads = 1;     // results are identical for any thread count

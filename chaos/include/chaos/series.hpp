@@ -47,13 +47,16 @@ std::size_t count_columns(std::istream& in);
 // Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
 void require_finite(std::span<const double> x, const std::string& what);
 void require_not_constant(std::span<const double> x, const std::string& what);
-// The estimators square and sum distances and FFT coefficients: beyond |x| = 1e120 those overflow
-// double, and below a spread (max - min) of 1e-120 they underflow, giving NaN or a silently wrong
-// answer. Inside these bounds every estimate is unchanged by scaling the series, so a
-// series outside them is refused with its numbers and the advice to rescale it. A constant series
-// (spread 0) passes, for require_not_constant to name.
-inline constexpr double largest_magnitude = std::numeric_limits<double>::max();
-inline constexpr double smallest_spread = 0.0;
+// The estimators square and sum distances and Fourier coefficients, which would overflow or
+// underflow double far from magnitude 1; each works on the series divided by a power of two where
+// its magnitude needs it (exact, so every estimate of a series equals that of its rescaled copy,
+// and values with units come back in the data's units). What is left to refuse: values beyond
+// 2^1022 in magnitude, where max - min itself can overflow, and a spread (max - min) below 2^-1021,
+// where the values are subnormal doubles with fewer significant bits than 53 relative to the spread
+// (the input has lost its precision, whatever the scale). A constant series (spread 0) passes, for
+// require_not_constant to name.
+inline constexpr double largest_magnitude = 0x1p1022;   // 4.49e307
+inline constexpr double smallest_spread = 0x1p-1021;    // 4.45e-308
 void require_scale(std::span<const double> x, const std::string& what);
 
 // How much the pairs of samples tie. Quantised data (a few levels) put most pairs of samples, and
