@@ -559,7 +559,7 @@ invariants() {
   } 2>&1
 }
 d2_of() { "$CHAOS" d2 "$1" --no-halves --json | jq -r '"\(.d2) \(.takens_theiler)"'; }  # 5000 samples: the halves do not reproduce D2
-cao_of() { "$CHAOS" cao "$1" --json | jq -r '(.E1 + .E2) | map(tostring) | join(" ")'; }
+cao_of() { "$CHAOS" cao "$1" --json | jq -r '(.["E1"] + .["E2"]) | map(tostring) | join(" ")'; }
 close() { awk -v a="$1" -v b="$2" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !((x[1] - y[1]) ^ 2 < 1e-18 && (x[2] - y[2]) ^ 2 < 1e-18) }'; }
 # Every number of b within 1e-6 relative of a's, and as many of them.
 relative() { awk -v a="$1" -v b="$2" 'BEGIN { n = split(a, x, " "); if (split(b, y, " ") != n || n == 0) exit 1
