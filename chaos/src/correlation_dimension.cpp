@@ -433,6 +433,7 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   if (out.exceeds_eckmann_ruelle)
     why << "; an estimate exceeds the Eckmann-Ruelle limit 2 log10(N) = " << out.eckmann_ruelle_limit
         << " and cannot be trusted";
+  if (const std::string ties = ties_note(sums.ties); !ties.empty()) why << "; " << ties;
   out.explanation = why.str();
   return out;
 }

@@ -104,6 +104,7 @@ void prepare(Prepared& p, std::span<const double> x, const CorrelationSumOptions
   pb.progress = p.options.progress ? &p.options.progress : nullptr;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
   p.range = *hi - *lo;
+  p.ties = value_ties(x);
 }
 
 CorrelationSumResult assemble(const Prepared& p, Totals totals, std::size_t reference_points) {
@@ -123,6 +124,7 @@ CorrelationSumResult assemble(const Prepared& p, Totals totals, std::size_t refe
   result.group_examined = std::move(totals.group_examined);
   result.points = reference_points > 0 ? reference_points : pb.points;
   result.range = p.range;
+  result.ties = p.ties;
   return result;
 }
 

@@ -232,6 +232,7 @@ struct Prepared {
   std::optional<AccBins> bins;
   Problem pb;
   double range = 0.0;
+  ValueTies ties;
 };
 
 // Checks the options and the series and builds the problem in `p`.

@@ -4,6 +4,7 @@
 #include "chaos/lyapunov.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -44,7 +45,7 @@ struct Partial {
   std::vector<double> product;         // mantissas not yet flushed
   std::vector<std::int64_t> exponent;  // sum of the binary exponents
   std::vector<std::size_t> terms, zeros;
-  std::size_t used = 0, pending = 0, capped = 0;
+  std::size_t used = 0, pending = 0, capped = 0, tied = 0, pairs = 0;
   double neighbours = 0.0;
   explicit Partial(std::size_t steps)
       : sum(steps + 1, 0.0), product(steps + 1, 1.0), exponent(steps + 1, 0), terms(steps + 1, 0), zeros(steps + 1, 0) {}
@@ -54,7 +55,7 @@ struct Partial {
     std::fill(exponent.begin(), exponent.end(), 0);
     std::fill(terms.begin(), terms.end(), 0);
     std::fill(zeros.begin(), zeros.end(), 0);
-    used = pending = capped = 0;
+    used = pending = capped = tied = pairs = 0;
     neighbours = 0.0;
   }
   // ln d joins step k's sum (d > 0).
@@ -119,6 +120,8 @@ struct Partial {
     }
     used += p.used;
     capped += p.capped;
+    tied += p.tied;
+    pairs += p.pairs;
     neighbours += p.neighbours;
   }
   // The mean of ln d at step k, over its terms (terms[k] > 0).
@@ -157,9 +160,97 @@ struct PairDistances {
 // Work space of one thread.
 struct Scratch {
   PairDistances pair;
-  std::vector<std::size_t> neighbourhood, kept;
-  std::vector<double> mean;
+  std::vector<std::size_t> neighbourhood, kept, thinned;
+  std::vector<double> mean, weight;
+  std::vector<std::pair<double, std::size_t>> by_distance;
 };
+
+// The distance of delay vectors i and j (k = 0 of PairDistances::compute, the same operations).
+double start_distance(std::span<const double> y, std::size_t i, std::size_t j, std::size_t m, std::size_t tau,
+                      Norm norm) {
+  double d = 0.0;
+  for (std::size_t l = 0; l < m; ++l) {
+    const double e = std::abs(y[i + l * tau] - y[j + l * tau]);
+    d = norm == Norm::max ? std::max(d, e) : d + e * e;
+  }
+  return norm == Norm::euclidean ? std::sqrt(d) : d;
+}
+
+// Kantz: thins each group of more than `cap` members at one exact distance from reference i to
+// `cap` of them, evenly spaced in index order (G[floor(r |G| / cap)]), into s.thinned, with
+// s.weight[r] = |G| / cap for the kept ones of a thinned group and 1 otherwise, all in index order.
+// False, touching nothing, when no group is that large: the caller then averages as before.
+bool thin_ties(std::span<const double> y, std::size_t i, const std::vector<std::size_t>& members, std::size_t m,
+               std::size_t tau, Norm norm, std::size_t cap, Scratch& s) {
+  if (cap == 0 || members.size() <= cap) return false;
+  s.by_distance.clear();
+  for (const std::size_t j : members) s.by_distance.emplace_back(start_distance(y, i, j, m, tau, norm), j);
+  // Is any distance shared by more than `cap` members? Tied data have a few distinct distances, so
+  // they are counted in a short list; past 16 distinct ones the sort below decides.
+  std::array<std::pair<double, std::size_t>, 16> seen;
+  std::size_t distinct = 0;
+  bool any = false, many = false;
+  for (const auto& [d, j] : s.by_distance) {
+    std::size_t at = 0;
+    while (at < distinct && seen[at].first != d) ++at;
+    if (at == distinct) {
+      if (distinct == seen.size()) {
+        many = true;
+        break;
+      }
+      seen[distinct++] = {d, 0};
+    }
+    if (++seen[at].second > cap) any = true;
+  }
+  if (!many && !any) return false;
+  if (!many) {
+    // Members come in index order, so each group's r-th member is met in order: keep the ones at
+    // ranks floor(t |G| / cap), t = 0, 1, ..., and the kept list is in index order too.
+    std::array<std::size_t, 16> rank{}, next{};
+    s.thinned.clear();
+    s.weight.clear();
+    for (const auto& [d, j] : s.by_distance) {
+      std::size_t g = 0;
+      while (seen[g].first != d) ++g;
+      const std::size_t size = seen[g].second;
+      if (size <= cap) {
+        s.thinned.push_back(j);
+        s.weight.push_back(1.0);
+      } else if (rank[g]++ == next[g] * size / cap) {
+        ++next[g];
+        s.thinned.push_back(j);
+        s.weight.push_back(static_cast<double>(size) / static_cast<double>(cap));
+      }
+    }
+    return true;
+  }
+  std::sort(s.by_distance.begin(), s.by_distance.end());  // by distance, then index
+  for (std::size_t g = 0, end = 0; g < s.by_distance.size(); g = end) {
+    for (end = g; end < s.by_distance.size() && s.by_distance[end].first == s.by_distance[g].first;) ++end;
+    any = any || end - g > cap;
+  }
+  if (!any) return false;
+  // Keep (index, weight) pairs, then restore index order so the sum runs as the plain one does.
+  std::vector<std::pair<std::size_t, double>> kept;
+  for (std::size_t g = 0, end = 0; g < s.by_distance.size(); g = end) {
+    for (end = g; end < s.by_distance.size() && s.by_distance[end].first == s.by_distance[g].first;) ++end;
+    const std::size_t size = end - g;
+    if (size <= cap) {
+      for (std::size_t r = g; r < end; ++r) kept.emplace_back(s.by_distance[r].second, 1.0);
+    } else {
+      const double weight = static_cast<double>(size) / static_cast<double>(cap);
+      for (std::size_t r = 0; r < cap; ++r) kept.emplace_back(s.by_distance[g + r * size / cap].second, weight);
+    }
+  }
+  std::sort(kept.begin(), kept.end());
+  s.thinned.resize(kept.size());
+  s.weight.resize(kept.size());
+  for (std::size_t r = 0; r < kept.size(); ++r) {
+    s.thinned[r] = kept[r].first;
+    s.weight[r] = kept[r].second;
+  }
+  return true;
+}
 
 // Runs work(reference index, partial, scratch) for every reference point, in blocks, on `threads`
 // threads, and adds the blocks' partial sums in block order. An exception in a worker is
@@ -305,6 +396,7 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
       const auto neighbour = tree.nearest(i, query);
       if (!neighbour) return;
       ++p.used;
+      ++p.pairs;
       p.neighbours += 1.0;
       s.pair.compute(y, i, neighbour->index, m, tau, steps, options.norm);
       p.add_logs(s.pair.d.data());
@@ -370,12 +462,22 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
         ++p.capped;
       }
       s.mean.assign(steps + 1, 0.0);
-      for (const std::size_t j : *members) {
-        s.pair.compute(y, i, j, m, tau, steps, options.norm);
-        for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.pair.d[k];
+      const double size = static_cast<double>(members->size());
+      if (thin_ties(y, i, *members, m, tau, options.norm, options.max_tied_neighbours, s)) {
+        ++p.tied;
+        p.pairs += s.thinned.size();
+        for (std::size_t r = 0; r < s.thinned.size(); ++r) {
+          s.pair.compute(y, i, s.thinned[r], m, tau, steps, options.norm);
+          for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.weight[r] * s.pair.d[k];
+        }
+      } else {
+        p.pairs += members->size();
+        for (const std::size_t j : *members) {
+          s.pair.compute(y, i, j, m, tau, steps, options.norm);
+          for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.pair.d[k];
+        }
       }
       // The sum of distances is 0 only if every one is: then the mean has no logarithm (a zero).
-      const double size = static_cast<double>(members->size());
       for (std::size_t k = 0; k <= steps; ++k) s.mean[k] /= size;
       p.add_logs(s.mean.data());
     });
@@ -390,6 +492,8 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
   curve.zero_distances = std::move(total.zeros);
   curve.references_used = total.used;
   curve.capped_neighbourhoods = total.capped;
+  curve.tied_neighbourhoods = total.tied;
+  curve.pairs_followed = total.pairs;
   curve.mean_neighbours = total.used > 0 ? total.neighbours / static_cast<double>(total.used) : 0.0;
   if (curve.divergence[0]) curve.mean_initial_distance = std::exp(*curve.divergence[0]);
   return curve;
@@ -463,11 +567,13 @@ std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, con
     dimensions.push_back(at_m.dimension);
   }
   std::vector<LyapunovResult> results(runs.size());
+  const std::string ties = ties_note(value_ties(x));
   for (std::size_t r = 0; r < runs.size(); ++r) {
     LyapunovResult& result = results[r];
     result.curve = curves[r].front();
     result.dimensions = dimensions;
     result.fit = fit_divergence(curves[r], fit);
+    if (!ties.empty()) result.fit.explanation += "; " + ties;
     result.options = runs[r];
     if (runs[r].method == LyapunovMethod::kantz) result.options.radius = result.curve.radius;
     result.dt = dt;

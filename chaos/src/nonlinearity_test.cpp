@@ -8,8 +8,10 @@
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
+#include "chaos/neighbors.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
@@ -82,6 +84,23 @@ class NeighbourSweep {
   std::vector<std::size_t> sorted_, position_;
 };
 
+// The sweep visits, for each query, at least every point with the same first coordinate: the sum
+// of c^2 over the groups of c equal first coordinates. Above this many per point on average
+// (heavily quantised data) the kd-tree is used instead; untied data (c = 1) always sweep.
+constexpr std::size_t tied_sweep_limit = 64;
+
+std::size_t first_coordinate_ties(const DelayEmbedding& points) {
+  std::vector<double> first(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) first[i] = points(i, 0);
+  std::sort(first.begin(), first.end());
+  std::size_t total = 0;
+  for (std::size_t g = 0, end = 0; g < first.size(); g = end) {
+    for (end = g; end < first.size() && first[end] == first[g];) ++end;
+    total += (end - g) * (end - g);
+  }
+  return total;
+}
+
 double population_std(std::span<const double> x) {
   double mean = 0.0;
   for (const double v : x) mean += v;
@@ -123,8 +142,14 @@ void PredictionErrorOptions::validate() const {
     refuse_parameter("prediction error: unknown norm " + std::to_string(static_cast<int>(norm)));
 }
 
-double prediction_error(std::span<const double> x, const PredictionErrorOptions& o) {
+double prediction_error(std::span<const double> given, const PredictionErrorOptions& o) {
   o.validate();
+  // Squared errors and the variance: on the series divided by a power of two where its magnitude
+  // needs it (exact: the same neighbours, and the error is a ratio).
+  const int exponent = detail::standardising_exponent(given);
+  std::vector<double> scaled;
+  if (exponent != 0) scaled = detail::scaled_by_power_of_two(given, exponent);
+  const std::span<const double> x = exponent != 0 ? std::span<const double>(scaled) : given;
   const std::string what = "prediction error";
   require_length(x, minimum_length(o), what,
                  "m = " + std::to_string(o.dimension) + ", tau = " + std::to_string(o.delay) + ", horizon = " +
@@ -135,26 +160,48 @@ double prediction_error(std::span<const double> x, const PredictionErrorOptions&
   require_not_constant(x, what);
   const std::size_t p = predicted_points(x.size(), o);
   const DelayEmbedding points(x, o.dimension, o.delay, p);
-  const NeighbourSweep sweep(points, o.norm);
   const std::size_t ahead = (o.dimension - 1) * o.delay + o.horizon;
-  std::vector<NeighbourSweep::Neighbor> found;
   double sum = 0.0;
-  for (std::size_t i = 0; i < p; ++i) {
-    sweep.find(i, o.neighbours, o.theiler, found);
-    double prediction = 0.0;
-    for (const auto& nb : found) prediction += x[nb.index + ahead];
-    prediction /= static_cast<double>(found.size());
-    const double e = prediction - x[i + ahead];
+  const auto add_error = [&](std::size_t i, double prediction, std::size_t count) {
+    const double e = prediction / static_cast<double>(count) - x[i + ahead];
     sum += e * e;
+  };
+  if (first_coordinate_ties(points) > tied_sweep_limit * p) {
+    // Quantised data: the sweep would visit every point sharing the query's first coordinate.
+    // The kd-tree finds the same neighbours (same distances, same tie rule) at the cost of untied
+    // data; only the order of the prediction's sum differs (rounding).
+    const KdTree tree(points, o.norm);
+    const NeighborQuery query{o.theiler, false};
+    std::vector<Neighbor> found;
+    for (std::size_t i = 0; i < p; ++i) {
+      tree.k_nearest(i, o.neighbours, found, query);
+      double prediction = 0.0;
+      for (const auto& nb : found) prediction += x[nb.index + ahead];
+      add_error(i, prediction, found.size());
+    }
+  } else {
+    const NeighbourSweep sweep(points, o.norm);
+    std::vector<NeighbourSweep::Neighbor> found;
+    for (std::size_t i = 0; i < p; ++i) {
+      sweep.find(i, o.neighbours, o.theiler, found);
+      double prediction = 0.0;
+      for (const auto& nb : found) prediction += x[nb.index + ahead];
+      add_error(i, prediction, found.size());
+    }
   }
   return std::sqrt(sum / static_cast<double>(p)) / population_std(x);
 }
 
-double time_reversal_asymmetry(std::span<const double> x, std::size_t delay) {
+double time_reversal_asymmetry(std::span<const double> given, std::size_t delay) {
   const std::string what = "time reversal asymmetry";
   if (delay < 1) refuse_parameter(what + ": delay must be at least 1 sample (got 0)");
-  require_length(x, delay + 1, what, "delay = " + std::to_string(delay) + " needs N > delay, so one increment exists");
-  require_finite(x, what);
+  require_length(given, delay + 1, what, "delay = " + std::to_string(delay) + " needs N > delay, so one increment exists");
+  require_finite(given, what);
+  // Cubes of increments: on the series divided by a power of two where its magnitude needs it.
+  const int exponent = detail::standardising_exponent(given);
+  std::vector<double> scaled;
+  if (exponent != 0) scaled = detail::scaled_by_power_of_two(given, exponent);
+  const std::span<const double> x = exponent != 0 ? std::span<const double>(scaled) : given;
   double s2 = 0.0, s3 = 0.0;
   for (std::size_t t = 0; t + delay < x.size(); ++t) {
     const double d = x[t + delay] - x[t];

@@ -37,6 +37,16 @@ inline int scale_exponent(std::span<const double> x) noexcept {
   return exponent;
 }
 
+// The same exponent where max |x| lies outside [2^-100, 2^100], else 0. Inside, squares, cubes and
+// sums of them over any series that fits in memory stay far from overflow and underflow, so the
+// series is used as given (its results bit for bit those of the code before any rescaling, even
+// through pow or log, which a power of two does not pass through exactly); outside, dividing by the
+// power of two is exact and makes the estimate that of the rescaled copy.
+inline int standardising_exponent(std::span<const double> x) noexcept {
+  const int exponent = scale_exponent(x);
+  return exponent < -100 || exponent > 101 ? exponent : 0;
+}
+
 inline std::vector<double> scaled_by_power_of_two(std::span<const double> x, int exponent) {
   std::vector<double> y(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) y[i] = std::ldexp(x[i], -exponent);

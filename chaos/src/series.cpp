@@ -366,6 +366,48 @@ void require_length(std::span<const double> x, std::size_t minimum, const std::s
                                                  " are needed (" + reason + ")");
 }
 
+ValueTies value_ties(std::span<const double> x) {
+  ValueTies out;
+  if (x.size() < 2) return out;
+  std::vector<double> sorted(x.begin(), x.end());
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<double> value;
+  std::vector<double> count;
+  for (std::size_t g = 0, end = 0; g < sorted.size(); g = end) {
+    for (end = g; end < sorted.size() && sorted[end] == sorted[g];) ++end;
+    value.push_back(sorted[g]);
+    count.push_back(static_cast<double>(end - g));
+  }
+  out.distinct = value.size();
+  const double n = static_cast<double>(x.size());
+  const double pairs = n * (n - 1.0) / 2.0, floor = 0.01 * pairs;
+  double repeats = 0.0;  // pairs at distance 0
+  for (const double c : count) repeats += c * (c - 1.0) / 2.0;
+  std::vector<std::pair<double, double>> by_distance{{0.0, repeats}};  // (distance, pairs at it)
+  constexpr std::size_t most_values = 512;
+  if (value.size() <= most_values)
+    for (std::size_t a = 0; a < value.size(); ++a)
+      for (std::size_t b = a + 1; b < value.size(); ++b) by_distance.emplace_back(value[b] - value[a], count[a] * count[b]);
+  std::sort(by_distance.begin(), by_distance.end());
+  double tied = 0.0;
+  for (std::size_t g = 0, end = 0; g < by_distance.size(); g = end) {
+    double at = 0.0;
+    for (end = g; end < by_distance.size() && by_distance[end].first == by_distance[g].first; ++end)
+      at += by_distance[end].second;
+    if (at >= floor) tied += at;
+  }
+  out.tied_pairs = tied / pairs;
+  return out;
+}
+
+std::string ties_note(const ValueTies& ties) {
+  if (!ties.most_pairs_tie()) return {};
+  return "most pairs of samples tie (" + std::to_string(static_cast<int>(std::lround(100.0 * ties.tied_pairs))) +
+         "% lie at a distance shared by at least 1% of all pairs; the series takes " + std::to_string(ties.distinct) +
+         " distinct values): quantised data, whose neighbours are chosen among ties, so the estimate describes "
+         "the quantisation lattice as much as the dynamics";
+}
+
 void require_scale(std::span<const double> x, const std::string& what) {
   if (x.empty()) return;
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
@@ -374,15 +416,15 @@ void require_scale(std::span<const double> x, const std::string& what) {
     throw InvalidInput(ErrorCode::scale,
                        what + ": the values reach " + short_number(magnitude) + " in magnitude, beyond the " +
                            short_number(largest_magnitude) +
-                           " that the estimators' sums of squares can hold; divide the series by a power of ten "
-                           "(the estimates do not depend on the scale)");
+                           " (2^1022) where their range max - min can overflow double; divide the series by a power "
+                           "of ten (the estimates do not depend on the scale)");
   const double spread = *hi - *lo;
   if (spread > 0.0 && spread < smallest_spread)
     throw InvalidInput(ErrorCode::scale,
                        what + ": the values span only " + short_number(spread) + " (max - min), below the " +
                            short_number(smallest_spread) +
-                           " that the estimators' squared distances can resolve; multiply the series by a power of "
-                           "ten (the estimates do not depend on the scale)");
+                           " (2^-1021) under which doubles are subnormal and hold fewer than 53 significant bits; "
+                           "multiply the series by a power of ten (the estimates do not depend on the scale)");
 }
 
 }  // namespace chaos

@@ -17,6 +17,7 @@
 #include "fftw.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
+#include "numeric.hpp"
 
 namespace chaos {
 
@@ -170,14 +171,8 @@ void check_series(std::span<const double> x, const std::string& what) {
                                                             "sizes); got N = " + std::to_string(x.size()));
   require_finite(x, what);
   require_not_constant(x, what);
-  // A Fourier coefficient is at most N max|x|; beyond 1e150 its square would overflow.
-  double peak = 0.0;
-  for (const double v : x) peak = std::max(peak, std::abs(v));
-  if (peak > 1e150 / static_cast<double>(x.size()))
-    throw InvalidInput(ErrorCode::invalid_parameter, what + ": the largest |value| " + num(peak) +
-                                                         " times N = " + std::to_string(x.size()) +
-                                                         " exceeds 1e150, so the squared Fourier amplitudes would "
-                                                         "overflow; rescale the series");
+  // A Fourier coefficient is at most N max|x|, and its square must not overflow: the transforms
+  // work on the series divided by standardising_exponent's power of two (numeric.hpp), exactly.
 }
 
 }  // namespace
@@ -234,9 +229,16 @@ struct SurrogateGenerator::Impl {
   RankSorter sorter;
   std::vector<std::uint32_t> order, previous;
 
+  // The transforms see the data divided by 2^exponent (0 for usual magnitudes): exact, so every
+  // rank and ratio is that of the data; the surrogates are given back in the data's units (AAFT and
+  // IAAFT: the data's own values, `original`).
+  int exponent;
+  std::vector<double> original;             // the data's values, ascending, as given
+
   Impl(std::span<const double> x, const SurrogateOptions& o)
-      : options(o), n(x.size()), fft(x.size()), data(x.begin(), x.end()) {
-    std::copy(x.begin(), x.end(), fft.real.get());
+      : options(o), n(x.size()), fft(x.size()), data(detail::scaled_by_power_of_two(x, detail::standardising_exponent(x))),
+        exponent(detail::standardising_exponent(x)) {
+    std::copy(data.begin(), data.end(), fft.real.get());
     fft.forward.execute();
     data_spectrum.resize(fft.bins());
     amplitude.resize(fft.bins());
@@ -248,6 +250,19 @@ struct SurrogateGenerator::Impl {
     sorter.order(data.data(), n, data_order);
     sorted.resize(n);
     for (std::size_t r = 0; r < n; ++r) sorted[r] = data[data_order[r]];
+    original.resize(n);
+    for (std::size_t r = 0; r < n; ++r) original[r] = x[data_order[r]];
+  }
+
+  // The surrogate in the data's units: the values computed (Fourier) times 2^exponent, or the data's
+  // own values in the surrogate's rank order (AAFT, IAAFT: out.values holds sorted[r] values).
+  void to_data_units(Surrogate& out, bool ranked) const {
+    if (exponent == 0) return;
+    if (!ranked) {
+      for (double& v : out.values) v = std::ldexp(v, exponent);
+      return;
+    }
+    for (double& v : out.values) v = original[static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), v) - sorted.begin())];
   }
 
   // Deviation of the series now in fft.real (destroys nothing: r2c keeps its input).
@@ -268,6 +283,7 @@ struct SurrogateGenerator::Impl {
     const double scale = 1.0 / static_cast<double>(n);  // FFTW's transforms are unnormalised
     for (std::size_t t = 0; t < n; ++t) fft.real[t] = out.values[t] = fft.real[t] * scale;
     out.spectral_deviation = deviation_of_real();
+    to_data_units(out, false);
     return out;
   }
 
@@ -287,6 +303,7 @@ struct SurrogateGenerator::Impl {
     for (std::size_t r = 0; r < n; ++r) out.values[order[r]] = sorted[r];
     std::copy(out.values.begin(), out.values.end(), fft.real.get());
     out.spectral_deviation = deviation_of_real();
+    to_data_units(out, true);
     return out;
   }
 
@@ -338,6 +355,7 @@ struct SurrogateGenerator::Impl {
       std::copy(out.values.begin(), out.values.end(), fft.real.get());
       out.spectral_deviation = deviation_of_real();
     }
+    to_data_units(out, true);
     return out;
   }
 };
@@ -398,8 +416,12 @@ double spectral_deviation(std::span<const double> x, std::span<const double> y) 
                                                          std::to_string(y.size()) + ")");
   check_series(x, "spectral_deviation");
   require_finite(y, "spectral_deviation");
+  // Both series divided by one power of two (0 for usual magnitudes): the ratio is unchanged.
+  const int exponent = std::max(detail::standardising_exponent(x), detail::standardising_exponent(y));
+  const std::vector<double> xs = detail::scaled_by_power_of_two(x, exponent);
+  const std::vector<double> ys = detail::scaled_by_power_of_two(y, exponent);
   Transform fft(x.size());
-  std::copy(x.begin(), x.end(), fft.real.get());
+  std::copy(xs.begin(), xs.end(), fft.real.get());
   fft.forward.execute();
   std::vector<double> amplitude(fft.bins());
   double norm = 0.0;
@@ -407,7 +429,7 @@ double spectral_deviation(std::span<const double> x, std::span<const double> y) 
     amplitude[k] = modulus(fft.spectrum[k]);
     if (k > 0) norm += bin_weight(k, x.size()) * amplitude[k] * amplitude[k];
   }
-  std::copy(y.begin(), y.end(), fft.real.get());
+  std::copy(ys.begin(), ys.end(), fft.real.get());
   fft.forward.execute();
   return deviation(fft.spectrum.get(), amplitude, norm, x.size());
 }
@@ -458,12 +480,18 @@ double direct_variance(std::span<const double> x) {
 
 }  // namespace
 
-EndMatch end_match(std::span<const double> x, const EndMatchOptions& options) {
+EndMatch end_match(std::span<const double> given, const EndMatchOptions& options) {
   options.validate();
   const std::string what = "end_match";
-  require_length(x, 4, what, "the slip needs two samples at each end");
-  require_finite(x, what);
-  require_not_constant(x, what);
+  require_length(given, 4, what, "the slip needs two samples at each end");
+  require_finite(given, what);
+  require_not_constant(given, what);
+  // Squares of the centred values: on the series divided by a power of two where its magnitude
+  // needs it (exact; every mismatch is a ratio, unchanged).
+  const int exponent = detail::standardising_exponent(given);
+  std::vector<double> scaled;
+  if (exponent != 0) scaled = detail::scaled_by_power_of_two(given, exponent);
+  const std::span<const double> x = exponent != 0 ? std::span<const double>(scaled) : given;
   const std::size_t n = x.size();
   const auto shortest = std::max<std::size_t>(
       4, static_cast<std::size_t>(std::ceil((1.0 - options.max_trim) * static_cast<double>(n) - 1e-9)));

@@ -543,11 +543,13 @@ expect_error 3 "highest of the 9223372036854775808 dimensions" -- lyapunov --dim
 
 # Extreme scales. A Lorenz series times 1e150 gave -nan autocorrelation rows, d2
 # asked for "at least 9223372036854775814" samples, and times 1e306 d2 and lyapunov fell back to
-# a wrong Theiler window and gave wrong numbers, all with exit 0. Every estimate is independent of
-# the scale: times a power of two (exact) the autocorrelation, the Theiler windows and lyapunov
-# are identical and d2 agrees to rounding (its log-spaced radii are not scaled exactly), as it does
-# times 1e+-100; beyond |x| = 1e120 or a spread below 1e-120 (series.hpp) the series is refused
-# with exit 3 (docs/reference/input.md) and the numbers, never answered with NaN.
+# a wrong Theiler window and gave wrong numbers, all with exit 0; then such series were refused
+# beyond 1e+-120. Every estimator now works on the series divided by a power of two where its
+# magnitude needs it (series.hpp), so every estimate is independent of the scale: times a power
+# of two (exact) the autocorrelation, the Theiler windows and lyapunov are identical, and times a
+# power of ten (rounded) Cao's E1 and E2 and D2 agree to 1e-6 relative, out to 1e+-300. Only values
+# beyond 2^1022 (max - min can overflow) or spanning less than 2^-1021 (subnormal doubles, bits
+# lost) are refused, with exit 3 (docs/reference/input.md) and the numbers, never answered with NaN.
 scaled() { awk -v f="$1" '!/^#/ { printf "%.17g\n", $1 * f }' "$work/lorenz.dat" > "$work/scaled.dat"; }
 invariants() {
   {
@@ -557,22 +559,34 @@ invariants() {
   } 2>&1
 }
 d2_of() { "$CHAOS" d2 "$1" --no-halves --json | jq -r '"\(.d2) \(.takens_theiler)"'; }  # 5000 samples: the halves do not reproduce D2
+cao_of() { "$CHAOS" cao "$1" --json | jq -r '(.["E1"] + .["E2"]) | map(tostring) | join(" ")'; }
 close() { awk -v a="$1" -v b="$2" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !((x[1] - y[1]) ^ 2 < 1e-18 && (x[2] - y[2]) ^ 2 < 1e-18) }'; }
+# Every number of b within 1e-6 relative of a's, and as many of them.
+relative() { awk -v a="$1" -v b="$2" 'BEGIN { n = split(a, x, " "); if (split(b, y, " ") != n || n == 0) exit 1
+  for (i = 1; i <= n; i++) { d = x[i] - y[i]; if (d < 0) d = -d; s = x[i] < 0 ? -x[i] : x[i]; if (d > 1e-6 * s) exit 1 } }'; }
 reference=$(invariants "$work/lorenz.dat")
 ref_d2=$(d2_of "$work/lorenz.dat")
+ref_cao=$(cao_of "$work/lorenz.dat")
 [[ $ref_d2 == *null* ]] && fail "the reference d2 has no answer to compare: $ref_d2"
-for f in 2^-390 2^-200 2^-1 2^7 2^200 2^390 1e-100 1e100; do
+[[ -n $ref_cao && $ref_cao != *null* ]] || fail "the reference cao has no E1 and E2 to compare: $ref_cao"
+for f in 2^-390 2^-200 2^-1 2^7 2^200 2^390 1e-100 1e100 1e-150 1e150 1e-300 1e300; do
   if [[ $f == 2^* ]]; then scaled "$(awk -v e="${f#2^}" 'BEGIN { printf "%.17g", 2 ^ e }')"; else scaled "$f"; fi
   if [[ $f == 2^* ]]; then
     [[ $(invariants "$work/scaled.dat") == "$reference" ]] && pass || fail "x $f changes the scale-free results"
   fi
   d2=$(d2_of "$work/scaled.dat")
   close "$d2" "$ref_d2" && pass || fail "x $f: d2 and Takens-Theiler $d2, expected $ref_d2"
+  if [[ $f == 1e* ]]; then
+    d2_value=$(d2_of "$work/scaled.dat" | cut -d' ' -f1)
+    relative "${ref_d2%% *}" "$d2_value" && pass || fail "x $f: D2 $d2_value, expected ${ref_d2%% *} to 1e-6 relative"
+    cao=$(cao_of "$work/scaled.dat")
+    relative "$ref_cao" "$cao" && pass || fail "x $f: Cao's E1 and E2 differ from the unscaled series' beyond 1e-6: $cao"
+  fi
 done
-for f in 1e121 1e150 1e306 1e-170 1e-300 4.9e-324; do
+for f in 5e306 -5e306 1e-310 4.9e-324; do
   scaled "$f"
   for cmd in autocorrelation d2 lyapunov; do
-    expect_error 3 "\\[scale\\]: .*scaled.dat: the values (reach .* beyond the 1e\\+120|span only .* below the 1e-120)" -- "$cmd" "$work/scaled.dat"
+    expect_error 3 "\\[scale\\]: .*scaled.dat: the values (reach .* beyond the 4.49423e\\+307 \\(2\\^1022\\)|span only .* below the 4.45015e-308 \\(2\\^-1021\\))" -- "$cmd" "$work/scaled.dat"
   done
 done
 

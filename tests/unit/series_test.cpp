@@ -218,18 +218,24 @@ TEST(Checks, ConstantFiniteLength) {
   EXPECT_NO_THROW(chaos::require_not_constant(tiny, "s"));  // tiny but distinct values are dynamics
 }
 
-// Beyond |x| = 1e120 or below a spread of 1e-120 the estimators' sums of squares
-// overflow or underflow; such a series is refused with its numbers and the bound (series.hpp).
+// The estimators rescale internally, so only what double itself cannot hold is refused: values
+// beyond 2^1022, where max - min can overflow, and a spread below 2^-1021, where the values are
+// subnormal and have lost bits (series.hpp). The bounds are powers of two, so the values either
+// side of them are exact.
 TEST(Checks, Scale) {
-  expect_refusal([] { chaos::require_scale(std::vector<double>{1.0, 2e150}, "s"); }, ErrorCode::scale,
-                 {"reach 2e+150", "1e+120", "divide the series"});
-  expect_refusal([] { chaos::require_scale(std::vector<double>{3e-171, 4e-171}, "s"); }, ErrorCode::scale,
-                 {"span only 1e-171", "1e-120", "multiply the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{1.0, 0x1.8p1022}, "s"); }, ErrorCode::scale,
+                 {"in magnitude", "beyond the 4.49423e+307 (2^1022)", "divide the series"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{-1e308, 1e308}, "s"); }, ErrorCode::scale, {"1e+308"});
+  expect_refusal([] { chaos::require_scale(std::vector<double>{3e-310, 4e-310}, "s"); }, ErrorCode::scale,
+                 {"span only 1e-310", "below the 4.45015e-308 (2^-1021)", "subnormal", "multiply the series"});
   expect_refusal([] { chaos::require_scale(std::vector<double>{5e-324, 1e-323}, "s"); }, ErrorCode::scale,
                  {"span only"});
-  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{-1e120, 1e120}, "s"));
-  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{1e-120, 2e-120, 3e-120}, "s"));
-  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>(5, 1e-200), "s"));  // constant: named elsewhere
+  // Inside the bounds, however far from 1: the magnitudes the former 1e+-120 bounds refused.
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{-0x1p1022, 0x1p1022}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{1.0, 2e150, 1e300}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{0.0, 0x1p-1021}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>{3e-171, 4e-171}, "s"));
+  EXPECT_NO_THROW(chaos::require_scale(std::vector<double>(5, 1e-320), "s"));  // constant: named elsewhere
 }
 
 }  // namespace

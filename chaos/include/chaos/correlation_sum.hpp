@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "chaos/norm.hpp"
+#include "chaos/series.hpp"
 
 namespace chaos {
 
@@ -76,6 +77,7 @@ struct CorrelationSumResult {
   std::vector<std::vector<std::vector<std::uint64_t>>> group_pairs, group_examined;
   std::size_t points = 0;                           // embedded points in the reference set
   double range = 0.0;  // max - min of the series: the max-norm diameter of the embedded points is at most this
+  ValueTies ties;      // of the series (series.hpp): D2's explanation says so when most pairs tie
 };
 
 // n radii from r_min to r_max, equally spaced in log (TISEAN -r -R -#).

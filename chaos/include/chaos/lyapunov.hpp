@@ -76,6 +76,14 @@ struct LyapunovOptions {
   // put most of the record in every neighbourhood). The curve counts the reference points affected
   // (capped_neighbourhoods).
   std::size_t max_neighbours = 0;
+  // Kantz only: members of a neighbourhood that share one exact distance from the reference point
+  // (ties: in quantised data most pairs lie at one of a few distances, and a radius just above the
+  // smallest of them takes thousands of points at once) are represented, when more than this many,
+  // by this many of them evenly spaced in index order, each standing for its share of the group, so
+  // the mean over the neighbourhood keeps each distance's weight. Untied data never have such a
+  // group, so their curves are unchanged; the curve counts the reference points affected
+  // (tied_neighbourhoods). 0: no thinning.
+  std::size_t max_tied_neighbours = 8;
   // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
   std::size_t reference_points = 0;
   std::size_t threads = 1;     // results are identical for any thread count
@@ -97,6 +105,8 @@ struct DivergenceCurve {
   double radius = 0.0;                 // Kantz: eps used; 0 for Rosenstein
   double mean_neighbours = 0.0;        // mean neighbourhood size of the references used (1 for Rosenstein)
   std::size_t capped_neighbourhoods = 0;  // Kantz: references whose neighbourhood was cut to max_neighbours
+  std::size_t tied_neighbourhoods = 0;    // Kantz: references with a tie group thinned to max_tied_neighbours
+  std::size_t pairs_followed = 0;         // pairs whose distances were followed for K steps: the curve's work
   double mean_initial_distance = 0.0;  // exp of the step-0 value: typical starting separation
 };
 

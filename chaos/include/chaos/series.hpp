@@ -47,14 +47,33 @@ std::size_t count_columns(std::istream& in);
 // Checks shared by every estimator; each throws InvalidInput naming `what` and the numbers.
 void require_finite(std::span<const double> x, const std::string& what);
 void require_not_constant(std::span<const double> x, const std::string& what);
-// The estimators square and sum distances and FFT coefficients: beyond |x| = 1e120 those overflow
-// double, and below a spread (max - min) of 1e-120 they underflow, giving NaN or a silently wrong
-// answer. Inside these bounds every estimate is unchanged by scaling the series, so a
-// series outside them is refused with its numbers and the advice to rescale it. A constant series
-// (spread 0) passes, for require_not_constant to name.
-inline constexpr double largest_magnitude = 1e120;
-inline constexpr double smallest_spread = 1e-120;
+// The estimators square and sum distances and Fourier coefficients, which would overflow or
+// underflow double far from magnitude 1; each works on the series divided by a power of two where
+// its magnitude needs it (exact, so every estimate of a series equals that of its rescaled copy,
+// and values with units come back in the data's units). What is left to refuse: values beyond
+// 2^1022 in magnitude, where max - min itself can overflow, and a spread (max - min) below 2^-1021,
+// where the values are subnormal doubles with fewer significant bits than 53 relative to the spread
+// (the input has lost its precision, whatever the scale). A constant series (spread 0) passes, for
+// require_not_constant to name.
+inline constexpr double largest_magnitude = 0x1p1022;   // 4.49e307
+inline constexpr double smallest_spread = 0x1p-1021;    // 4.45e-308
 void require_scale(std::span<const double> x, const std::string& what);
+
+// How much the pairs of samples tie. Quantised data (a few levels) put most pairs of samples, and
+// so of delay vectors, at one of a few distances: nearest neighbours are then chosen among ties,
+// and a neighbourhood radius takes thousands of points at once or none. `tied_pairs` is the
+// fraction of pairs (i < j) whose distance |x_i - x_j| is shared by at least 1% of all pairs
+// (computed over the distinct values when there are at most 512 of them; beyond, only exact repeats,
+// distance 0, are counted). 0 for untied data.
+struct ValueTies {
+  std::size_t distinct = 0;  // distinct values
+  double tied_pairs = 0.0;
+  bool most_pairs_tie() const noexcept { return tied_pairs > 0.5; }
+};
+ValueTies value_ties(std::span<const double> x);
+// A sentence for a result's explanation when most pairs tie, else empty.
+std::string ties_note(const ValueTies& ties);
+
 void require_length(std::span<const double> x, std::size_t minimum, const std::string& what,
                     const std::string& reason);
 
