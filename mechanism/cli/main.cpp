@@ -335,10 +335,23 @@ int run(int argc, char** argv) {
         return usage_error;
       }
       lyap.carry_latched_variations = !lyap_drop_latched;
+      // An option outside its domain is the command's error, not the scene's (refused before -o is opened).
+      try {
+        lyap.validate();
+      } catch (const mechanism::InvalidParameter& e) {
+        std::cerr << "mechanism: lyapunov: " << e.what() << "\n";
+        return invalid_scene;
+      }
       cli_support::ProgressBar bar(!lyap_opts.quiet && isatty(fileno(stderr)));
       lyap.progress = [&](double f) { bar.update(f, std::to_string(static_cast<int>(100 * f)) + "%"); };
       std::ostream* file = lyap_out.empty() ? nullptr : &safe_output::open_pending(lyap_out).stream();
-      const mechanism::SceneLyapunov r = mechanism::scene_lyapunov(scene, lyap);
+      mechanism::SceneLyapunov r;
+      try {
+        r = mechanism::scene_lyapunov(scene, lyap);
+      } catch (const mechanism::InvalidParameter& e) {  // a setting the loaded scene cannot meet
+        std::cerr << "mechanism: lyapunov: " << e.what() << "\n";
+        return invalid_scene;
+      }
       bar.update(1.0, "done");
       std::ostream* out = file ? file : (lyap_json ? nullptr : &std::cout);
       if (out) {

@@ -154,7 +154,7 @@ grep -q '^# lambda_2' "$work/lyap.tsv" && fail "lyapunov -k 1 wrote a second exp
 # One positive exponent alone bounds no dimension: the header says so instead of printing NaN.
 grep -q '^# Kaplan-Yorke dimension: none' "$work/lyap.tsv" || fail "lyapunov -k 1: the Kaplan-Yorke line is not 'none'"
 grep -qiw 'nan' "$work/lyap.tsv" && fail "lyapunov -k 1 printed NaN"
-expect 3 "periods = 5: must be >= 10" -- lyapunov -q --periods 5
+expect 3 "mechanism: lyapunov: periods = 5: must be >= 10" -- lyapunov -q --periods 5
 expect 3 "perturbation = 0: must be in (0, 1)" -- lyapunov -q --perturbation 0
 # Below what the state resolves: refused with the floor named. 1e-16 used to complete with every
 # exponent -inf; 1e-11 gave lambda_1 twice the default's. 1e3 epsilon bounds every floor (refused
