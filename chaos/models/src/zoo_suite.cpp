@@ -523,15 +523,15 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
           return d2;
         };
         const auto curve = [&](LyapunovMethod method, std::size_t j) -> const std::optional<DivergenceCurve>& {
-          std::optional<DivergenceCurve>& c = curves[{wi, method}].whole[j];
-          if (!c) {
+          std::optional<DivergenceCurve>& cached = curves[{wi, method}].whole[j];
+          if (!cached) {
             try {
-              c = divergence_curve(x, choose_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method));
+              cached = divergence_curve(x, choose_lyapunov_options(a.scales, n, m0 + j, *a.delay, w, method));
             } catch (const InvalidInput& e) {
               curve_error = e.what();
             }
           }
-          return c;
+          return cached;
         };
         // The halves check of a linear region, as in the pipeline (check_record_halves).
         const auto check_halves = [&](LyapunovFit& f, LyapunovMethod method, std::size_t k) {
