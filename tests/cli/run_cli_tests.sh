@@ -445,6 +445,7 @@ expect_error 3 "png or .svg" -- density "$work/pv.dat" --plot "$work/density.gif
 grep -q "Confident and wrong: \*\*0\*\*" "$work/zoo.md" && pass || fail "zoo.md does not report 0 confident-wrong"
 grep -q "^| random_walk | random_walk |.*not_run" "$work/zoo.md" && pass || fail "zoo: the random walk was analysed"
 expect_error 3 "no case matches --only" -- zoo --only no_such_case -q
+expect_error 3 "grid-points must be 1 to 12, the points of the grid \(got 13\)" -- zoo --grid-points 13 --only lorenz -q
 # zoo --checkpoint: the second run reads the case the first one appended instead of running it, and
 # says so; a run with other options (the full suite) refuses the file (exit 3) and leaves it as it was.
 "$CHAOS" zoo --fast --only random_walk --checkpoint "$work/zoo.ckpt" -o "$work/zoo1.md" 2>/dev/null \
