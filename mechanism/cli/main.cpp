@@ -355,21 +355,22 @@ int run(int argc, char** argv) {
       bar.update(1.0, "done");
       std::ostream* out = file ? file : (lyap_json ? nullptr : &std::cout);
       if (out) {
-        if (r.method == "saltation")
-          *out << "# mechanism lyapunov: Benettin on the crank-period map, variational equations with saltation "
-                  "matrices (docs/reference/mechanism/saltation.md)\n"
-               << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
-               << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, J v by central "
-               << "differences of step " << number(r.perturbation) << " of each coordinate's scale, latched impact "
-               << "velocities' variations " << (r.latched_variations_carried ? "carried" : "dropped at each renormalisation")
-               << "\n";
+        const bool saltation = r.method == "saltation";
+        *out << (saltation ? "# mechanism lyapunov: Benettin on the crank-period map, variational equations with "
+                             "saltation matrices (docs/reference/mechanism/saltation.md)\n"
+                           : "# mechanism lyapunov: finite-difference Benettin on the crank-period map "
+                             "(docs/reference/mechanism/lyapunov.md)\n")
+             << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
+             << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, ";
+        if (saltation)
+          *out << "J v by central differences of step " << number(r.perturbation) << " of each coordinate's scale, "
+               << "latched impact velocities' variations "
+               << (r.latched_variations_carried ? "carried" : "dropped at each renormalisation") << "\n";
         else
-          *out << "# mechanism lyapunov: finite-difference Benettin on the crank-period map (docs/reference/mechanism/lyapunov.md)\n"
-               << "# status: " << r.status << (r.message.empty() ? "" : " (" + r.message + ")") << "\n"
-               << "# period " << number(r.period) << " s, " << r.periods << " periods averaged, perturbation "
-               << number(r.perturbation) << " (floor " << number(r.perturbation_floor) << ": 1e3 x epsilon x "
-               << r.steps_per_interval << " steps per interval x " << number(r.largest_scaled_coordinate) << ", "
-               << r.largest_scaled_name << "), largest separation " << number(r.largest_separation) << "\n";
+          *out << "perturbation " << number(r.perturbation) << " (floor " << number(r.perturbation_floor)
+               << ": 1e3 x epsilon x " << r.steps_per_interval << " steps per interval x "
+               << number(r.largest_scaled_coordinate) << ", " << r.largest_scaled_name << "), largest separation "
+               << number(r.largest_separation) << "\n";
         for (std::size_t j = 0; j < r.exponents.size(); ++j)
           *out << "# lambda_" << j + 1 << " = " << number(r.exponents[j]) << " +- " << number(r.standard_error[j])
                << " 1/s (" << number(r.exponents_per_period[j]) << " per period)\n";
