@@ -50,6 +50,7 @@ void run(CaoArgs& args) {
   report.write_header(out);
   out << "# embedding_dimension = " << describe_dimension(result) << "\n";
   out << "# max_E2_deviation = " << number(result.max_E2_deviation) << "\n";
+  if (!result.value_ties.empty()) out << "# value_ties = " << result.value_ties << "\n";
   out << "# dimension\tE1\tE2\tE2_standard_error\tE\tE_star\n";
   for (std::size_t k = 0; k < result.dimension.size(); ++k)
     out << result.dimension[k] << "\t" << number(result.E1[k]) << "\t" << number(result.E2[k]) << "\t"

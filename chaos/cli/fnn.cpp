@@ -51,7 +51,9 @@ void run(FnnArgs& args) {
   report.write_header(out);
   out << "# embedding_dimension = "
       << (result.embedding_dimension ? std::to_string(*result.embedding_dimension) : "none (fraction stays above threshold)")
-      << "\n# dimension\tfalse_fraction\n";
+      << "\n";
+  if (!result.value_ties.empty()) out << "# value_ties = " << result.value_ties << "\n";
+  out << "# dimension\tfalse_fraction\n";
   for (std::size_t k = 0; k < result.dimension.size(); ++k)
     out << result.dimension[k] << "\t" << number(result.false_fraction[k]) << "\n";
 }

@@ -55,7 +55,9 @@ void run(NonlinearityArgs& args) {
     out << "false: the data's statistic ties with " << t.ties << " of " << count << " surrogates: a tie cannot reject";
   else
     out << "false: the data are consistent with the null hypothesis";
-  out << "\n# surrogates_not_converged = " << r.surrogates_not_converged << "\n# surrogate\tstatistic\titerations\n";
+  out << "\n# surrogates_not_converged = " << r.surrogates_not_converged << "\n";
+  if (!r.value_ties.empty()) out << "# value_ties = " << r.value_ties << "\n";
+  out << "# surrogate\tstatistic\titerations\n";
   for (std::size_t k = 0; k < r.surrogate_statistics.size(); ++k)
     out << k + 1 << "\t" << number(r.surrogate_statistics[k]) << "\t" << r.surrogate_iterations[k] << "\n";
 }

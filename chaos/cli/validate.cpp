@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "parameter_options.hpp"
 
 namespace chaos::cli {
 
@@ -12,14 +13,14 @@ namespace {
 
 struct ValidateArgs {
   OutputOptions output;
-  std::string filter;
+  ValidateParams params;
   bool list = false;
 };
 
 std::string band(const Reference& r) { return "[" + number(r.low) + ", " + number(r.high) + "]"; }
 
 void run(const ValidateArgs& args) {
-  const ValidateParams params{args.filter};
+  const ValidateParams& params = args.params;
   const std::vector<Reference> selected = validate_cases(params);  // refuses a filter that matches nothing
   Report report = validate_report(params, args.output);
   std::ostream& out = report.stream();
@@ -56,7 +57,7 @@ void register_validate(CLI::App& app) {
   auto args = std::make_shared<ValidateArgs>();
   CLI::App* command = app.add_subcommand("validate", "run the reference cases (references/references.tsv) on this machine");
   add_quiet_option(*command);
-  command->add_option("--filter", args->filter, "only cases whose id contains this text");
+  add_options(*command, args->params, validate_parameters());
   command->add_flag("--list", args->list, "list the cases without running them");
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });

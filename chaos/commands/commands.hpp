@@ -400,6 +400,7 @@ SectionRun run_section(const std::vector<std::span<const double>>& data, std::sp
 struct ValidateParams {
   std::string filter;  // only cases whose id contains this text; empty: every case
 };
+const ParameterTable<ValidateParams>& validate_parameters();
 // The cases selected, in table order; refuses a filter that matches no case id.
 std::vector<Reference> validate_cases(const ValidateParams& params);
 // The report with its parameters, before any case runs (the command line writes its header then).
@@ -419,6 +420,8 @@ struct ZooSeriesParams {
   bool fast = false;         // the CI subset's cases (N = 10^4)
   std::size_t threads = 1;   // the spectra behind the cases' bands
 };
+// Its Python function's table: `chaos zoo --series` takes --fast and --threads from zoo_parameters.
+const ParameterTable<ZooSeriesParams>& zoo_series_parameters();
 struct ZooSeriesRun {
   std::vector<double> x;
   Report report;             // parameters case, kind, description, N, dt; "x" the series
@@ -434,6 +437,7 @@ struct ZooParams {
   std::size_t threads = 1;          // cases run in parallel (the report does not depend on it)
   std::string checkpoint;           // append each finished case here and skip those it holds (zoo_checkpoint.hpp)
 };
+const ParameterTable<ZooParams>& zoo_parameters();
 struct ZooRun {
   std::vector<ZooCase> cases;
   std::vector<ZooCaseResult> results;  // one per case, in case order

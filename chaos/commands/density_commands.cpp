@@ -4,6 +4,7 @@
 
 #include "chaos/error.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -47,10 +48,14 @@ DensityRun run_density(std::span<const double> parameter, std::span<const double
 
   Report& report = run.report;
   report.parameter("file", file).parameter("parameter_column", parameter_column).parameter("value_column", value_column)
-      .parameter("N", parameter.size()).parameter("parameters", run.parameters.size()).parameter("method", run.method)
-      .parameter("bin_rule", rule).parameter("bins", m.centres.size()).parameter("low", m.edges.front()).parameter("high", m.edges.back())
+      .parameter("N", parameter.size()).parameter("parameters", run.parameters.size());
+  report_parameters(report, a, density_parameters());
+  report.parameter("method", run.method).parameter("bin_rule", rule).parameter("bins", m.centres.size())
+      .parameter("low", m.edges.front()).parameter("high", m.edges.back())
       .parameter("range", std::string(a.low ? "given (--low, --high)" : "pooled min/max padded by " + number(a.padding) + " of the span on each side"));
-  if (a.kde) report.parameter("bandwidth", std::string(a.bandwidth ? "given (--bandwidth)" : "Silverman: 0.9 min(s, IQR/1.34) n^(-1/5) per parameter value"));
+  if (a.kde)
+    report.parameter("bandwidth_rule", std::string(a.bandwidth ? "given (--bandwidth)"
+                                                               : "Silverman: 0.9 min(s, IQR/1.34) n^(-1/5) per parameter value"));
   auto& j = report.json();
   j["parameter"] = m.parameters;
   j["bin_centre"] = m.centres;

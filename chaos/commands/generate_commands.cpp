@@ -7,6 +7,7 @@
 #include "chaos/error.hpp"
 #include "chaos/models/zoo.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -85,7 +86,8 @@ GenerateRun run_generate(const GenerateParams& params, const OutputOptions& outp
   }
 
   Report report("generate", output);
-  report.parameter("system", params.system).parameter("length", params.length).parameter("seed", params.seed);
+  report.parameter("system", params.system);
+  report_parameters(report, params, generate_parameters());
   for (const auto& [name, value] : parameters) report.parameter(name, value);
   report.parameter("dt", trajectory.dt);
   if (with_components)

@@ -11,6 +11,7 @@
 #include "chaos/models/generate.hpp"
 #include "chaos/time_scales.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -63,30 +64,16 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   if (params.delay_check) check_delay_variant(d2, x, params.sums, params.dimension);
 
   Report report("d2", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
-      .parameter("dt", in.dt).parameter("delay", params.sums.delay).parameter("delay_source", chosen.delay_source)
-      .parameter("min_dimension", params.sums.min_dimension)
-      .parameter("max_dimension", params.sums.max_dimension).parameter("theiler", params.sums.theiler)
-      .parameter("theiler_source", chosen.theiler_source).parameter("norm", params.norm).parameter("inclusive", params.sums.inclusive)
-      .parameter("search", params.search)
-      .parameter("r_min", params.sums.radii.front()).parameter("r_max", params.sums.radii.back())
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size()).parameter("dt", in.dt);
+  report.parameter("delay", params.sums.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("theiler", params.sums.theiler).parameter("theiler_source", chosen.theiler_source)
+      .parameter("min_radius", params.sums.radii.front()).parameter("max_radius", params.sums.radii.back())
       .parameter("radii", params.sums.radii.size())
-      .parameter("pairs_per_radius", params.sums.pairs_per_radius).parameter("reference_points", params.sums.reference_points)
-      .parameter("seed", params.sums.seed).parameter("threads", params.sums.threads)
-      .parameter("tolerance", params.dimension.region.tolerance).parameter("min_points", params.dimension.region.min_points)
-      .parameter("saturation_dimensions", params.dimension.saturation_dimensions)
-      .parameter("min_plateau_ratio", params.dimension.min_plateau_ratio)
-      .parameter("projection_tolerance", params.dimension.projection_tolerance)
-      .parameter("noise_fill_fraction", params.dimension.noise_fill_fraction)
-      .parameter("halves", params.halves)
       .parameter("halves_reference_points",  // null with --no-halves: no half was counted
                  params.halves ? std::optional<std::size_t>(halves.reference_points) : std::nullopt)
-      .parameter("delay_check", params.delay_check)
-      .parameter("delay_tolerance", params.dimension.delay_tolerance)
-      .parameter("min_pairs", params.dimension.min_pairs)
       .parameter("max_region_radius", d2.max_region_radius)
-      .parameter("points", sums.points)
-      .parameter("fast", params.fast);
+      .parameter("points", sums.points);
+  report_parameters(report, params, d2_parameters());
   auto& j = report.json();
   j["dimension"] = sums.dimension;
   j["radius"] = sums.radius;
@@ -325,28 +312,23 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
   Report report("lyapunov", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
-      .parameter("dt", in.dt).parameter("method", params.method).parameter("dimension", params.options.dimension)
-      .parameter("dimension_source", chosen.dimension_source)
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size()).parameter("dt", in.dt);
+  report.parameter("dimension", params.options.dimension).parameter("dimension_source", chosen.dimension_source)
       .parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
-      .parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", chosen.theiler_source).parameter("steps", params.options.steps)
-      .parameter("steps_source", steps_source).parameter("norm", params.norm);
+      .parameter("theiler", params.options.theiler).parameter("theiler_source", chosen.theiler_source)
+      .parameter("steps", params.options.steps).parameter("steps_source", steps_source);
   if (params.options.method == LyapunovMethod::kantz)
     report.parameter("radius", r.curve.radius)
         .parameter("radius_source", std::string(params.options.radius ? "given (-r)"
                                                                        : "data range / 1000 times a power of two: half "
                                                                          "the reference points have a neighbour, at most "
-                                                                         "20 on average"))
-        .parameter("min_neighbours", params.options.min_neighbours);
-  report.parameter("max_neighbours", params.options.max_neighbours)
-      .parameter("max_maps", params.cross_check ? std::optional<std::size_t>(max_maps) : std::nullopt);
-  report.parameter("reference_points", params.options.reference_points)
-      .parameter("reference_points_source", reference_points_source).parameter("threads", params.options.threads)
-      .parameter("tolerance", params.fit.tolerance).parameter("half_width", r.fit.half_width)
-      .parameter("min_steps", r.fit.min_steps).parameter("period", params.fit.period)
-      .parameter("period_source", period_source).parameter("dimensions", params.fit.dimensions)
-      .parameter("cross_check", params.cross_check).parameter("halves", params.halves);
+                                                                         "20 on average"));
+  report.parameter("max_maps", params.cross_check ? std::optional<std::size_t>(max_maps) : std::nullopt)
+      .parameter("reference_points", params.options.reference_points)
+      .parameter("reference_points_source", reference_points_source)
+      .parameter("half_width", r.fit.half_width).parameter("min_steps", r.fit.min_steps)
+      .parameter("period", params.fit.period).parameter("period_source", period_source);
+  report_parameters(report, params, lyapunov_parameters());
   auto& j = report.json();
   // The answer: this method's estimate, and lambda_1 from every estimator run (lyapunov_answer.hpp).
   // Without the cross-checks a confident estimate is only the fit's own verdict: rough.
@@ -445,15 +427,12 @@ LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams para
   LocalMapResult r = largest_lyapunov_local_maps(x, params.options, in.dt, params.tolerance);
   const bool per_time = r.dt.has_value();
   Report report("lyapunov-maps", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size())
-      .parameter("dt", in.dt).parameter("dimension", params.options.dimension)
-      .parameter("dimension_source", chosen.dimension_source)
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", x.size()).parameter("dt", in.dt);
+  report.parameter("dimension", params.options.dimension).parameter("dimension_source", chosen.dimension_source)
       .parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
-      .parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", chosen.theiler_source).parameter("step", r.base.step)
-      .parameter("neighbours", r.base.neighbours).parameter("cutoff", params.options.cutoff)
-      .parameter("norm", params.norm).parameter("tolerance", r.tolerance)
-      .parameter("max_residual", params.options.max_residual).parameter("threads", params.options.threads);
+      .parameter("theiler", params.options.theiler).parameter("theiler_source", chosen.theiler_source)
+      .parameter("step", r.base.step).parameter("neighbours", r.base.neighbours).parameter("tolerance", r.tolerance);
+  report_parameters(report, params, lyapunov_maps_parameters());
   auto& j = report.json();
   const double scale = per_time ? 1.0 / *r.dt : 1.0;
   j["lambda"] = optional_json(per_time ? r.lambda_per_time : r.lambda);
@@ -553,23 +532,26 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
                                   "too: no evidence of determinism";
   }
   if (params.mutual_curve && scales.stationary) {
-    // The information curve the delay was read from (the pipeline keeps only its minimum), as far
-    // as the search went (further than max_delay where the first search found nothing).
-    MutualInformationOptions mi_options;
-    mi_options.max_delay = std::max<std::size_t>(1, std::min(std::max(params.max_delay, a.delay_searched), x.size() / 10));
-    mi_options.boxes = params.boxes;
-    run.mutual = mutual_information(x, mi_options);
+    // The information curve the delay was read from, as far as the search went (further than
+    // max_delay where the first search found nothing); where the autocorrelation gave delay 1 and no
+    // curve was computed, up to max_delay.
+    if (!a.delay_information.delay.empty()) {
+      run.mutual = a.delay_information;
+    } else {
+      MutualInformationOptions mi_options;
+      mi_options.max_delay = std::max<std::size_t>(1, std::min(params.max_delay, x.size() / 10));
+      mi_options.boxes = params.boxes;
+      run.mutual = mutual_information(x, mi_options);
+    }
   }
 
   const auto& fnn = run.fnn;
   const auto& nonlinear = run.nonlinear;
   const auto& segment = run.segment;
   Report& report = run.report;
-  report.parameter("file", in.file)
-      .parameter("N", x.size()).parameter("dt", in.dt).parameter("max_delay", params.max_delay)
-      .parameter("boxes", params.boxes).parameter("max_dimension", params.max_dimension)
-      .parameter("delay_check", params.delay_check)
-      .parameter("test_length", params.test_length).parameter("surrogates", params.surrogates).parameter("seed", params.seed);
+  report.parameter("file", in.file).parameter("N", x.size()).parameter("dt", in.dt);
+  report.parameter("delay", a.delay).parameter("theiler", a.theiler);
+  report_parameters(report, params, analyze_parameters());
   const bool per_time = in.dt.has_value();
   const auto time = [&](std::size_t samples) {
     return in.dt ? nlohmann::ordered_json(static_cast<double>(samples) * *in.dt) : nullptr;

@@ -26,7 +26,8 @@ static_assert(std::is_same_v<std::uint64_t, std::size_t>, "seeds and counts shar
 // or map) means "left out": the command chooses, and Python's default is None.
 using ParameterField =
     std::variant<std::size_t*, std::optional<std::size_t>*, double*, std::optional<double>*, std::string*, bool*,
-                 std::vector<double>*, std::vector<std::size_t>*, std::map<std::string, double>*>;
+                 std::vector<double>*, std::vector<std::size_t>*, std::vector<std::string>*,
+                 std::map<std::string, double>*>;
 
 template <class Params>
 struct Parameter {

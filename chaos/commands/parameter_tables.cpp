@@ -379,4 +379,55 @@ const ParameterTable<SectionParams>& section_parameters() {
   return table;
 }
 
+const ParameterTable<ValidateParams>& validate_parameters() {
+  static const ParameterTable<ValidateParams> table{
+      {.name = "filter",
+       .flags = "--filter",
+       .help = "only cases whose id contains this text",
+       .field = field(&ValidateParams::filter),
+       .default_described = true},
+  };
+  return table;
+}
+
+namespace {
+
+// The options `chaos zoo` shares with its --series form (chaos.zoo and chaos.zoo_series).
+const char* const zoo_fast_help = "the CI subset: 4 systems and 5 controls at N = 10^4, automatic choices only";
+const char* const zoo_threads_help = "cases run in parallel (the report does not depend on it)";
+
+}  // namespace
+
+const ParameterTable<ZooParams>& zoo_parameters() {
+  static const ParameterTable<ZooParams> table{
+      {"fast", "--fast", zoo_fast_help, field(&ZooParams::fast)},
+      {"grid", "!--no-grid", "automatic choices only, no neighbourhood grid", field(&ZooParams::grid)},
+      {"grid_points", "--grid-points",
+       "grid points per chaotic system at N = 10^5, 1 to 12 (12: the whole grid of three Theiler windows by four "
+       "dimensions; fewer are chosen by the system's name, so that the zoo covers them all)",
+       field(&ZooParams::grid_points)},
+      {.name = "only",
+       .flags = "--only",
+       .help = "run only these cases (by name; repeatable or comma-separated)",
+       .field = field(&ZooParams::only),
+       .delimiter = ','},
+      {"threads", "--threads", zoo_threads_help, field(&ZooParams::threads)},
+      {.name = "checkpoint",
+       .flags = "--checkpoint",
+       .help = "append each finished case to this file (JSON lines) and skip the cases it already holds, so that a "
+               "stopped run resumes; the file belongs to one build and one choice of --fast, --no-grid and --grid-points",
+       .field = field(&ZooParams::checkpoint),
+       .default_described = true},
+  };
+  return table;
+}
+
+const ParameterTable<ZooSeriesParams>& zoo_series_parameters() {
+  static const ParameterTable<ZooSeriesParams> table{
+      {"fast", "--fast", zoo_fast_help, field(&ZooSeriesParams::fast)},
+      {"threads", "--threads", zoo_threads_help, field(&ZooSeriesParams::threads)},
+  };
+  return table;
+}
+
 }  // namespace chaos::cli

@@ -14,7 +14,13 @@ namespace chaos::cli {
 std::string number(double value) { return format_number(value, Precision::result); }
 
 std::string interval_text(const std::optional<Interval>& interval) {
-  return interval ? "[" + number(interval->low) + ", " + number(interval->high) + "]" : std::string("none");
+  if (!interval) return "none";
+  std::string text = "[";  // appended piece by piece: GCC 12's -Wstringop-overflow misreads "[" + string
+  text += number(interval->low);
+  text += ", ";
+  text += number(interval->high);
+  text += ']';
+  return text;
 }
 
 Report::Report(std::string command, const OutputOptions& output) : command_(std::move(command)) {
@@ -30,14 +36,29 @@ void Report::open(const OutputOptions& output) {
 
 Report& Report::parameter(const std::string& name, const std::optional<double>& value) {
   json_["parameters"][name] = optional_json(value);
-  header_.emplace_back(name, value ? number(*value) : "none");
+  set_header(name, value ? number(*value) : "none");
   return *this;
 }
 
 Report& Report::parameter(const std::string& name, const std::optional<std::size_t>& value) {
   json_["parameters"][name] = optional_json(value);
-  header_.emplace_back(name, value ? std::to_string(*value) : "none");
+  set_header(name, value ? std::to_string(*value) : "none");
   return *this;
+}
+
+Report& Report::parameter_left_out(const std::string& name) {
+  json_["parameters"][name] = nullptr;
+  set_header(name, "none");
+  return *this;
+}
+
+void Report::set_header(const std::string& name, std::string text) {
+  for (auto& [n, t] : header_)
+    if (n == name) {
+      t = std::move(text);
+      return;
+    }
+  header_.emplace_back(name, std::move(text));
 }
 
 std::ostream& Report::stream() { return file_ ? *file_ : std::cout; }

@@ -38,18 +38,22 @@ std::string number(double value);
 std::string interval_text(const std::optional<Interval>& interval);
 
 // Collects the parameters of a run in the order they are added, then writes them as '#' lines or
-// as the "parameters" object of the JSON output.
+// as the "parameters" object of the JSON output. A parameter written again keeps its place and takes
+// the new value.
 class Report {
  public:
   explicit Report(std::string command, const OutputOptions& output = {});
   template <class T>
   Report& parameter(const std::string& name, const T& value) {
     json_["parameters"][name] = value;
-    header_.emplace_back(name, to_text(value));
+    set_header(name, to_text(value));
     return *this;
   }
   Report& parameter(const std::string& name, const std::optional<double>& value);
   Report& parameter(const std::string& name, const std::optional<std::size_t>& value);
+  // A parameter left out, with nothing chosen for it: null, and "none" in the header.
+  Report& parameter_left_out(const std::string& name);
+  bool has_parameter(const std::string& name) const { return json_["parameters"].contains(name); }
   // Sends the output to output.path from now on: a temporary file beside it, renamed over it when
   // the command line commits its outputs after the command succeeded (safe_output.hpp's
   // commit_pending), so a failed write or a later error (a plot refused) leaves the file untouched.
@@ -66,11 +70,31 @@ class Report {
  private:
   template <class T>
   static std::string to_text(const T& value) {
-    if constexpr (std::is_same_v<T, bool>) return value ? "true" : "false";
-    else if constexpr (std::is_floating_point_v<T>) return number(value);
-    else if constexpr (std::is_arithmetic_v<T>) return std::to_string(value);
-    else return std::string(value);
+    if constexpr (std::is_same_v<T, bool>) {
+      return value ? "true" : "false";
+    } else if constexpr (std::is_floating_point_v<T>) {
+      return number(value);
+    } else if constexpr (std::is_arithmetic_v<T>) {
+      return std::to_string(value);
+    } else if constexpr (std::is_convertible_v<T, std::string>) {
+      return std::string(value);
+    } else {  // a list, or a map of name=value settings; appended piece by piece (GCC 12's
+              // -Wstringop-overflow misreads a chain of string additions here)
+      std::string text;
+      for (const auto& item : value) {
+        if (!text.empty()) text += ',';
+        if constexpr (requires { item.second; }) {
+          text += item.first;
+          text += '=';
+          text += to_text(item.second);
+        } else {
+          text += to_text(item);
+        }
+      }
+      return text.empty() ? std::string("none") : text;
+    }
   }
+  void set_header(const std::string& name, std::string text);
   std::string command_;
   OutputOptions output_;
   nlohmann::ordered_json json_;

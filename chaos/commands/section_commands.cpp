@@ -8,6 +8,7 @@
 #include "chaos/poincare.hpp"
 #include "chaos/section_stream.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -119,20 +120,11 @@ SectionRun run_section(const std::vector<std::span<const double>>& data, std::sp
   }
 
   Report report("section", output);
-  std::string column_list;
-  for (std::size_t c : params.columns) {
-    if (!column_list.empty()) column_list += ',';
-    column_list += std::to_string(c);
-  }
-  report.parameter("file", file).parameter("columns", column_list).parameter("N", n);
-  if (params.time_column) report.parameter("time_column", *params.time_column);
-  else report.parameter("dt", params.dt);
-  if (params.period) {
-    report.parameter("section", std::string("stroboscopic")).parameter("period", *params.period).parameter("phase", params.phase);
-  } else {
-    report.parameter("section", std::string("hyperplane")).parameter("hyperplane_column", *params.hyperplane).parameter("level", *params.level)
-        .parameter("direction", params.direction).parameter("interpolation", std::string("cubic through 4 rows (linear in the first and last interval)"));
-  }
+  report.parameter("file", file);
+  report_parameters(report, params, section_parameters());
+  report.parameter("N", n).parameter("section", std::string(params.period ? "stroboscopic" : "hyperplane"));
+  if (!params.period)
+    report.parameter("interpolation", std::string("cubic through 4 rows (linear in the first and last interval)"));
   report.parameter("points", section_times.size());
   auto& j = report.json();
   j["time"] = section_times;

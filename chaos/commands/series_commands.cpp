@@ -6,6 +6,7 @@
 #include "chaos/error.hpp"
 #include "chaos/time_scales.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -56,10 +57,10 @@ MutualRun run_mutual(const SeriesInput& in, MutualParams params, const OutputOpt
   }
 
   Report report("mutual", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("max_delay", params.options.max_delay).parameter("max_delay_source", searched)
-      .parameter("boxes", params.options.boxes)
-      .parameter("estimator", params.estimator).parameter("units", std::string("nats"));
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size()).parameter("dt", in.dt);
+  report.parameter("max_delay", params.options.max_delay).parameter("max_delay_source", searched)
+      .parameter("units", std::string("nats"));
+  report_parameters(report, params, mutual_parameters());
   const double dt = in.dt.value_or(1.0);
   auto& j = report.json();
   j["delay"] = result.delay;
@@ -85,8 +86,9 @@ AutocorrelationRun run_autocorrelation(const SeriesInput& in, const Autocorrelat
   const auto decay = decorrelation_time(result);
 
   Report report("autocorrelation", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", n)
-      .parameter("dt", in.dt).parameter("max_lag", max_lag);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", n).parameter("dt", in.dt);
+  report_parameters(report, params, autocorrelation_parameters());
+  report.parameter("max_lag", max_lag);
   const double dt = in.dt.value_or(1.0);
   auto& j = report.json();
   std::vector<std::size_t> lags(result.correlation.size());
@@ -107,14 +109,10 @@ CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& out
   CaoResult result = cao(in.values, params.options);
 
   Report report("cao", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
-      .parameter("min_dimension", params.options.min_dimension)
-      .parameter("max_dimension", params.options.max_dimension).parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", chosen.theiler_source)
-      .parameter("norm", params.norm).parameter("saturation_level", params.options.saturation_level)
-      .parameter("saturation_change", params.options.saturation_change)
-      .parameter("stochastic_sigmas", params.options.stochastic_sigmas);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size()).parameter("dt", in.dt);
+  report.parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("theiler", params.options.theiler).parameter("theiler_source", chosen.theiler_source);
+  report_parameters(report, params, cao_parameters());
   if (in.dt) report.parameter("delay_time", static_cast<double>(params.options.delay) * *in.dt);
   auto& j = report.json();
   const auto used = static_cast<std::ptrdiff_t>(result.dimension.size());
@@ -129,6 +127,7 @@ CaoRun run_cao(const SeriesInput& in, CaoParams params, const OutputOptions& out
   j["stochastic"] = result.stochastic;
   j["max_E2_deviation"] = result.max_E2_deviation;
   j["points_without_neighbor"] = result.points_without_neighbor;
+  j["value_ties"] = result.value_ties.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(result.value_ties);
   return {std::move(result), std::move(report)};
 }
 
@@ -140,17 +139,15 @@ FnnRun run_fnn(const SeriesInput& in, FnnParams params, const OutputOptions& out
   FnnResult result = false_nearest_neighbors(in.values, params.options);
 
   Report report("fnn", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
-      .parameter("min_dimension", params.options.min_dimension)
-      .parameter("max_dimension", params.options.max_dimension).parameter("theiler", params.options.theiler)
-      .parameter("theiler_source", chosen.theiler_source)
-      .parameter("rtol", params.options.rtol).parameter("atol", params.options.atol).parameter("norm", params.norm)
-      .parameter("threshold", params.options.threshold);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size()).parameter("dt", in.dt);
+  report.parameter("delay", params.options.delay).parameter("delay_source", chosen.delay_source)
+      .parameter("theiler", params.options.theiler).parameter("theiler_source", chosen.theiler_source);
+  report_parameters(report, params, fnn_parameters());
   auto& j = report.json();
   j["dimension"] = result.dimension;
   j["false_fraction"] = result.false_fraction;
   j["embedding_dimension"] = optional_json(result.embedding_dimension);
+  j["value_ties"] = result.value_ties.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(result.value_ties);
   return {std::move(result), std::move(report)};
 }
 

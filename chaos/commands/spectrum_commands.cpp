@@ -5,6 +5,7 @@
 #include "chaos/error.hpp"
 #include "chaos/models/zoo.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -61,6 +62,7 @@ SpectrumRun run_zoo(const SpectrumParams& params, const ZooEntry& entry, const O
 
   Report report("spectrum", output);
   report.parameter("system", params.system);
+  report_parameters(report, params, spectrum_parameters());
   const auto values = zoo_parameters(entry, overrides);
   for (std::size_t i = 0; i < values.size(); ++i) report.parameter(entry.parameters[i].name, values[i]);
   if (flow) {
@@ -123,6 +125,7 @@ SpectrumRun run_spectrum(const SpectrumParams& params, const OutputOptions& outp
 
   Report report("spectrum", output);
   report.parameter("system", params.system);
+  report_parameters(report, params, spectrum_parameters());
   for (const auto& p : system_parameters(*kind))
     if (p.name != "dt" && p.name != "step" && p.name != "transient") {
       const auto it = request.parameters.find(p.name);

@@ -3,6 +3,7 @@
 #include "chaos/choose.hpp"
 #include "chaos/error.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -25,10 +26,8 @@ SurrogatesRun run_surrogates(const SeriesInput& in, SurrogatesParams params, con
   std::vector<Surrogate> made = surrogates(x, params.count, params.seed, params.options);
 
   Report report("surrogates", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("method", params.method).parameter("count", params.count)
-      .parameter("seed", params.seed).parameter("max_iterations", params.options.max_iterations)
-      .parameter("tolerance", params.options.tolerance).parameter("end_match", params.end_match);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size()).parameter("dt", in.dt);
+  report_parameters(report, params, surrogates_parameters());
   if (match)
     report.parameter("offset", match->offset).parameter("length", match->length)
         .parameter("end_mismatch", match->mismatch).parameter("whole_series_end_mismatch", match->whole_series_mismatch);
@@ -95,17 +94,12 @@ NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams param
   NonlinearityTestResult r = nonlinearity_test(x, o);
 
   Report report("nonlinearity", output);
-  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size())
-      .parameter("dt", in.dt).parameter("statistic", params.statistic).parameter("alternative", params.alternative)
-      .parameter("count", o.surrogates).parameter("seed", o.seed).parameter("method", params.method)
-      .parameter("max_iterations", o.surrogate.max_iterations).parameter("delay", chosen.delay)
-      .parameter("delay_source", chosen.delay_source);
+  report.parameter("file", in.file).parameter("column", in.column).parameter("N", in.values.size()).parameter("dt", in.dt);
+  report.parameter("delay", chosen.delay).parameter("delay_source", chosen.delay_source);
   if (prediction)
     report.parameter("dimension", o.prediction.dimension).parameter("dimension_source", chosen.dimension_source)
-        .parameter("theiler", o.prediction.theiler).parameter("theiler_source", chosen.theiler_source)
-        .parameter("horizon", o.prediction.horizon).parameter("neighbours", o.prediction.neighbours)
-        .parameter("norm", params.norm);
-  report.parameter("end_match", params.end_match);
+        .parameter("theiler", o.prediction.theiler).parameter("theiler_source", chosen.theiler_source);
+  report_parameters(report, params, nonlinearity_parameters());
   if (match) report.parameter("offset", match->offset).parameter("length", match->length);
   auto& j = report.json();
   j["statistic"] = r.data_statistic;
@@ -116,6 +110,7 @@ NonlinearityRun run_nonlinearity(const SeriesInput& in, NonlinearityParams param
   j["below"] = r.test.below;
   j["above"] = r.test.above;
   j["ties"] = r.test.ties;
+  j["value_ties"] = r.value_ties.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.value_ties);
   j["rejected"] = r.test.rejected;
   j["significance"] = r.test.significance;
   j["surrogates_not_converged"] = r.surrogates_not_converged;

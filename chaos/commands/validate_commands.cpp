@@ -4,6 +4,7 @@
 
 #include "chaos/error.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 
 namespace chaos::cli {
 
@@ -20,7 +21,8 @@ std::vector<Reference> validate_cases(const ValidateParams& params) {
 
 Report validate_report(const ValidateParams& params, const OutputOptions& output) {
   Report report("validate", output);
-  report.parameter("filter", params.filter.empty() ? std::string("(all)") : params.filter);
+  report_parameters(report, params, validate_parameters());
+  if (params.filter.empty()) report.parameter("filter", std::string("(all)"));
   return report;
 }
 

@@ -13,26 +13,25 @@
 
 #include "chaos/detail/parallel.hpp"
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "chaos/models/zoo_suite.hpp"
 #include "commands.hpp"
+#include "report_parameters.hpp"
 #include "zoo_checkpoint.hpp"
 
 namespace chaos::cli {
 
 namespace {
 
-std::string num(const std::optional<double>& v, int digits = 4) {
-  if (!v) return "-";
-  std::ostringstream s;
-  s.precision(digits);
-  s << *v;
-  return s.str();
+// A number of the report, "-" where there is none.
+std::string num(const std::optional<double>& v, Precision precision = Precision::title) {
+  return v && *v == *v ? format_number(*v, precision) : "-";
 }
-std::string num(double v, int digits = 4) { return v == v ? num(std::optional<double>(v), digits) : "-"; }
+std::string num(double v, Precision precision = Precision::title) { return num(std::optional<double>(v), precision); }
 
 std::string estimate(const ZooEstimate& e) {
   std::string s = num(e.value);
-  if (e.interval) s += " [" + num(e.interval->low, 3) + ", " + num(e.interval->high, 3) + "]";
+  if (e.interval) s += " [" + num(e.interval->low, Precision::coarse) + ", " + num(e.interval->high, Precision::coarse) + "]";
   s += " " + e.status;
   if (e.dimension) s += " at m = " + std::to_string(*e.dimension);
   if (e.verdict == ZooVerdict::wrong) s += " **WRONG**";
@@ -45,9 +44,9 @@ std::string bands(const ZooBand& b) {
   for (const auto& i : b.accepted) {  // appended piece by piece: GCC 12's -Wrestrict misreads "[" + string
     if (!s.empty()) s += " or ";
     s += '[';
-    s += num(i.low, 3);
+    s += num(i.low, Precision::coarse);
     s += ", ";
-    s += num(i.high, 3);
+    s += num(i.high, Precision::coarse);
     s += ']';
   }
   return s;
@@ -209,20 +208,23 @@ ZooRun run_zoo(const ZooParams& params,
      << "Made by `chaos zoo" << (params.fast ? " --fast" : "") << (!params.grid ? " --no-grid" : "")
      << (params.grid && !params.fast && params.grid_points != 2 ? " --grid-points " + std::to_string(params.grid_points) : "")
      << " --threads " << params.threads << "` (chaos/cli/zoo.cpp, rules in chaos/models/include/chaos/models/zoo_suite.hpp and "
-     << "automatic_analysis.hpp). Machine: " << machine() << ". Wall time: " << num(wall, 4) << " s on "
+     << "automatic_analysis.hpp). Machine: " << machine() << ". Wall time: " << num(wall) << " s on "
      << params.threads << " thread(s)";
   if (resumed > 0) {
     double sum = 0.0;
     for (const auto& r : results) sum += r.seconds;
     md << ", running " << cases.size() - resumed << " of the " << cases.size() << " cases; the other " << resumed
        << " were read from a checkpoint written by earlier runs of the same build (`--checkpoint`). The cases' own "
-       << "times sum to " << num(sum, 4) << " s";
+       << "times sum to " << num(sum) << " s";
   }
   md << ".\n\n"
      << "Bands, fixed before any run (zoo_suite.hpp): D2 within 0.1 of the attractor's own D2 and its interval at the same N, "
      << "Theiler window and scales (the plateau of the full state's correlation sums from the equations, "
      << "zoo_state_d2.hpp; why a finite record is held to it and not to a zero-scale value: "
-     << "docs/notes/zoo-state-space.md), else within +-0.1 of a cited literature D2, else not above "
+     << "docs/notes/zoo-state-space.md; where another coding of the same samples, each component scaled to a common "
+     << "range or, for a map, each state beside its image, reads more than 0.1 away or no plateau, the reading belongs "
+     << "to the coordinates and is no reference: this rule was added after the first full run under the state "
+     << "reference, for the reason measured there), else within +-0.1 of a cited literature D2, else not above "
      << "D_KY + 0.1 (D_KY from the equations); lambda_1 within 10% of lambda_1 from the equations (`chaos spectrum`); "
      << "noise, surrogates and random walks: no confident value at all; periodic and quasi-periodic signals: "
      << "D2 equal to the torus dimension +-0.1 and no confident lambda_1. A confident value is a D2 with status "
@@ -234,9 +236,9 @@ ZooRun run_zoo(const ZooParams& params,
      << (params.grid && !params.fast ? "automatic choices and grid" : "automatic choices only: no grid in this run") << ").\n";
   if (chaotic > 0)
     md << "- Coverage with the automatic choices at N = " << (params.fast ? "10^4" : "10^5") << ": D2 confident and in band for **"
-       << d2_covered << " of " << chaotic << "** chaotic systems (the D2 answer; " << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), 3)
+       << d2_covered << " of " << chaotic << "** chaotic systems (the D2 answer; " << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), Precision::coarse)
        << "%); lambda_1 (Rosenstein, Kantz or local maps) for **" << lambda_covered << " of " << chaotic << "** ("
-       << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), 3) << "%). The issue's goal is 90% for each.\n";
+       << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), Precision::coarse) << "%). The issue's goal is 90% for each.\n";
   const auto answer_text = [](const AnswerTally& t, const std::string& reference) {
     std::ostringstream a;
     a << t.confident << " confident of " << t.rows << ", " << t.in_band << " of them in band; the interval holds "
@@ -277,7 +279,7 @@ ZooRun run_zoo(const ZooParams& params,
          << bands(r.d2_band) << " | " << estimate(r.lyapunov) << " | " << estimate(r.rosenstein)
          << " | " << estimate(r.kantz) << " | " << estimate(r.local_maps) << " | " << num(c.lambda_equations) << " | " << num(c.kaplan_yorke) << " | " << num(c.literature_lambda) << " / "
          << num(c.literature_d2) << " | " << num(c.dysts_lambda) << " / " << num(c.dysts_d2) << " | "
-         << num(results[i].seconds, 3) << " |\n";
+         << num(results[i].seconds, Precision::coarse) << " |\n";
     }
     if (!results[i].error.empty()) md << "| " << c.name << " | error: " << results[i].error << " |||||||||||||||||\n";
   }
@@ -333,8 +335,9 @@ ZooRun run_zoo(const ZooParams& params,
   run.markdown = md.str();
   auto& j = run.json;
   j["command"] = "zoo";
-  j["parameters"] = {{"fast", params.fast}, {"grid", params.grid}, {"grid_points", params.grid_points}, {"only", params.only}, {"threads", params.threads},
-                      {"checkpoint", params.checkpoint}};
+  Report parameters("zoo");
+  report_parameters(parameters, params, zoo_parameters());
+  j["parameters"] = parameters.json()["parameters"];
   j["wrong"] = wrong;
   j["chaotic"] = chaotic;
   j["d2_covered"] = d2_covered;
@@ -371,7 +374,9 @@ ZooSeriesRun run_zoo_series(const ZooSeriesParams& params, const OutputOptions& 
   const ZooCase& c = cases.front();
   std::vector<double> x = c.series(c.length);
   Report report("zoo", output);
-  report.parameter("case", c.name).parameter("kind", std::string(to_string(c.kind))).parameter("description", c.description)
+  report.parameter("case", c.name);
+  report_parameters(report, params, zoo_series_parameters());
+  report.parameter("kind", std::string(to_string(c.kind))).parameter("description", c.description)
       .parameter("N", x.size()).parameter("dt", c.dt);
   report.json()["x"] = x;
   return {std::move(x), std::move(report)};

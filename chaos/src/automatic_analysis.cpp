@@ -134,9 +134,20 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
   require_not_constant(x, "automatic analysis");
   AutomaticAnalysis a;
   a.scales = time_scales(x);
+  // The window, given or by the rule (at least the delay, where there is one); reported even where
+  // the analysis stops before it is used.
+  const auto choose_window = [&](std::size_t delay) {
+    if (options.theiler) {
+      a.theiler = *options.theiler;
+      a.theiler_source = "given";
+    } else {
+      TheilerChoice w = choose_theiler_window(a.scales, delay);
+      a.theiler = w.window;
+      a.theiler_source = std::move(w.source);
+    }
+  };
   if (options.check_stationarity && !a.scales.stationary) {
-    a.theiler = options.theiler.value_or(a.scales.theiler);
-    a.theiler_source = options.theiler ? "given" : a.scales.theiler_source;
+    choose_window(0);
     a.stopped = a.scales.stationarity_explanation;
     return a;
   }
@@ -149,42 +160,41 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     a.delay = choice.delay;
     a.delay_source = std::move(choice.source);
     a.delay_searched = choice.searched;
-    if (!a.delay) {
-      a.theiler = options.theiler.value_or(a.scales.theiler);
-      a.theiler_source = options.theiler ? "given" : a.scales.theiler_source;
-      a.stopped = std::move(choice.stopped);
-      return a;
-    }
+    a.delay_information = std::move(choice.information);
+    a.stopped = std::move(choice.stopped);
   }
-  if (options.theiler) {
-    a.theiler = *options.theiler;
-    a.theiler_source = "given";
-  } else {
-    TheilerChoice w = choose_theiler_window(a.scales, *a.delay);
-    a.theiler = w.window;
-    a.theiler_source = std::move(w.source);
-  }
+  choose_window(a.delay.value_or(0));
+  if (!a.delay) return a;
 
   if (options.dimension) {
     a.dimension = options.dimension;
   } else {
     std::function<void(double)> progress;
     if (options.progress) progress = [&](double f) { options.progress("Cao's method", f); };
-    DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress));
-    a.cao = std::move(m.cao);
-    a.dimension = m.dimension;
-    if (!a.dimension) {
-      a.stopped = std::move(m.stopped);
-      return a;
+    try {
+      DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress));
+      a.cao = std::move(m.cao);
+      a.dimension = m.dimension;
+      if (!a.dimension) a.stopped = std::move(m.stopped);
+    } catch (const InvalidInput& e) {  // too short for Cao's method: the delay and window stand
+      a.stopped = std::string("no embedding dimension: Cao's method refused the series: ") + e.what();
     }
+    if (!a.dimension) return a;
   }
 
   CorrelationSumOptions s =
       choose_correlation_sum_options(x, *a.delay, a.theiler, *a.dimension + options.extra_dimensions, options.radii);
   s.threads = options.threads;
   if (options.progress) s.progress = [&](double f) { options.progress("correlation sums", f); };
-  a.d2 = automatic_correlation_dimension(x, s, options.check_halves, options.check_delay);
-  a.d2_estimate = d2_answer(*a.d2);
+  // A step that refuses the series (too short for its embedding) says so in `stopped`; what the
+  // steps before it found, and the steps after it, stand.
+  const auto stop = [&](const std::string& why) { a.stopped += (a.stopped.empty() ? "" : "; ") + why; };
+  try {
+    a.d2 = automatic_correlation_dimension(x, s, options.check_halves, options.check_delay);
+    a.d2_estimate = d2_answer(*a.d2);
+  } catch (const InvalidInput& e) {
+    stop(std::string("correlation dimension not estimated: ") + e.what());
+  }
 
   const auto lyapunov = [&](LyapunovMethod method) {
     LyapunovOptions l = choose_lyapunov_options(a.scales, x.size(), *a.dimension, *a.delay, a.theiler, method);
@@ -204,7 +214,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
       cross_check(*a.rosenstein, *a.kantz, choose_lyapunov_fit(a.scales).tolerance);
   } catch (const InvalidInput& e) {
     // Too short for the curve's steps in m + 2 dimensions: the exponent is not estimated.
-    a.stopped = std::string("largest Lyapunov exponent not estimated: ") + e.what();
+    stop(std::string("largest Lyapunov exponent not estimated: ") + e.what());
   }
   if (options.local_maps) {
     LocalMapOptions l = choose_local_map_options(*a.dimension, *a.delay, a.theiler);

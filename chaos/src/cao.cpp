@@ -137,6 +137,7 @@ CaoResult cao(std::span<const double> x, const CaoOptions& options) {
     result.stochastic = result.stochastic &&
                         std::abs(result.E2[k] - 1.0) <= options.stochastic_sigmas * result.E2_standard_error[k];
   if (!result.stochastic) result.embedding_dimension = result.e1_saturation;
+  result.value_ties = ties_note(value_ties(x));
   return result;
 }
 

@@ -33,7 +33,8 @@ DelayChoice choose_delay(std::span<const double> x, const TimeScales& scales, co
     const std::string scope = limit == first ? "" : " (nothing up to " + std::to_string(first) + "; searched on to " +
                                                         std::to_string(search.windows) + " Theiler windows, " +
                                                         std::to_string(limit) + ")";
-    if (const auto minimum = first_minimum(mutual_information(x, mi))) {
+    out.information = mutual_information(x, mi);
+    if (const auto minimum = first_minimum(out.information)) {
       out.delay = minimum;
       out.source = "first mutual-information minimum" + scope;
       return out;

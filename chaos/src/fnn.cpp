@@ -108,6 +108,7 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
     result.false_fraction.push_back(fraction);
     if (!result.embedding_dimension && fraction <= options.threshold) result.embedding_dimension = m;
   }
+  result.value_ties = ties_note(value_ties(x));
   return result;
 }
 

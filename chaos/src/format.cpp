@@ -14,7 +14,9 @@ std::string format_number(double value, Precision precision) {
   const int digits = precision == Precision::round_trip ? 17
                      : precision == Precision::table    ? 12
                      : precision == Precision::result   ? 10
-                                                        : 4;
+                     : precision == Precision::message  ? 6
+                     : precision == Precision::title    ? 4
+                                                        : 3;
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }

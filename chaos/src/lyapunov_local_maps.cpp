@@ -10,6 +10,7 @@
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
 #include "chaos/detail/parallel.hpp"
@@ -451,23 +452,23 @@ LocalMapResult local_maps_run(std::span<const double> x, const LocalMapOptions& 
     if (std::abs(v.lambda - base) > std::abs(worst->lambda - base)) worst = &v;
   }
   std::ostringstream why;
-  why.precision(4);
+  const auto t = [](double v) { return format_number(v, Precision::title); };
   if (!deterministic) {
     result.status = LocalMapStatus::not_deterministic;
-    why << "the local linear maps leave a median " << result.base.median_residual * 100.0
-        << "% of the neighbourhoods' image spread unexplained (at most " << max_residual * 100.0
+    why << "the local linear maps leave a median " << t(result.base.median_residual * 100.0)
+        << "% of the neighbourhoods' image spread unexplained (at most " << t(max_residual * 100.0)
         << "% allowed): at this scale the series does not behave as a deterministic map";
   } else if (!positive) {
     result.status = LocalMapStatus::not_positive;
-    why << "the mean log growth of the tangent vector is " << base
+    why << "the mean log growth of the tangent vector is " << t(base)
         << " per sample, not positive: no exponential divergence";
   } else if (!missing.empty()) {
     result.status = LocalMapStatus::inconsistent;
     why << missing;
   } else if (std::abs(worst->lambda - base) > tolerance * base) {
     result.status = LocalMapStatus::inconsistent;
-    why << "the variant '" << worst->name << "' gives " << worst->lambda << " per sample against the base's " << base
-        << " (" << (worst->lambda / base - 1.0) * 100.0 << "%; at most " << tolerance * 100.0
+    why << "the variant '" << worst->name << "' gives " << t(worst->lambda) << " per sample against the base's " << t(base)
+        << " (" << t((worst->lambda / base - 1.0) * 100.0) << "%; at most " << t(tolerance * 100.0)
         << "% allowed): the estimate depends on the estimator's choices";
   } else {
     result.status = LocalMapStatus::consistent;
@@ -476,7 +477,7 @@ LocalMapResult local_maps_run(std::span<const double> x, const LocalMapOptions& 
     why << "all " << result.variants.size() - 1
         << " variants (neighbourhood size, m + 1, singular-value cutoff, residual limit, "
         << (tau >= 2 ? "delay +- tau/4, " : "") << "halves of the chain) lie within "
-        << tolerance * 100.0 << "% of the base estimate, and the maps explain the neighbourhoods' images";
+        << t(tolerance * 100.0) << "% of the base estimate, and the maps explain the neighbourhoods' images";
     if (dt) {
       result.lambda_per_time = base / *dt;
       result.lambda_per_time_interval = Interval{low / *dt, high / *dt};

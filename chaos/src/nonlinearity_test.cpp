@@ -294,6 +294,7 @@ NonlinearityTestResult nonlinearity_test(std::span<const double> x, const Nonlin
     if (options.progress) options.progress(static_cast<double>(k + 1) / static_cast<double>(options.surrogates));
   }
   out.test = rank_test(out.data_statistic, out.surrogate_statistics, options.alternative);
+  out.value_ties = ties_note(value_ties(x));
   return out;
 }
 

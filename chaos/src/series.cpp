@@ -12,17 +12,11 @@
 #include <string_view>
 
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 
 namespace chaos {
 
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
 
 // Splits a data line into tokens at whitespace and commas; a '#' ends the line. `tokens` is
 // reused from line to line (one allocation per file, not one per line).
@@ -59,14 +53,6 @@ void tokenize_csv(std::string_view line, std::vector<std::string_view>& tokens) 
     start = comma + 1;
   }
   if (!any) tokens.clear();
-}
-
-// Six significant digits: enough for a bound or a magnitude in a message.
-std::string short_number(double v) {
-  std::ostringstream out;
-  out.precision(6);
-  out << v;
-  return out.str();
 }
 
 enum class Parsed { number, not_a_number, out_of_range };
@@ -414,15 +400,15 @@ void require_scale(std::span<const double> x, const std::string& what) {
   const double magnitude = std::max(std::fabs(*lo), std::fabs(*hi));
   if (magnitude > largest_magnitude)
     throw InvalidInput(ErrorCode::scale,
-                       what + ": the values reach " + short_number(magnitude) + " in magnitude, beyond the " +
-                           short_number(largest_magnitude) +
+                       what + ": the values reach " + format_number(magnitude, Precision::message) + " in magnitude, beyond the " +
+                           format_number(largest_magnitude, Precision::message) +
                            " (2^1022) where their range max - min can overflow double; divide the series by a power "
                            "of ten (the estimates do not depend on the scale)");
   const double spread = *hi - *lo;
   if (spread > 0.0 && spread < smallest_spread)
     throw InvalidInput(ErrorCode::scale,
-                       what + ": the values span only " + short_number(spread) + " (max - min), below the " +
-                           short_number(smallest_spread) +
+                       what + ": the values span only " + format_number(spread, Precision::message) + " (max - min), below the " +
+                           format_number(smallest_spread, Precision::message) +
                            " (2^-1021) under which doubles are subnormal and hold fewer than 53 significant bits; "
                            "multiply the series by a power of ten (the estimates do not depend on the scale)");
 }

@@ -3,7 +3,6 @@
 #include <fftw3.h>
 
 #include <algorithm>
-#include <charconv>
 #include <climits>
 #include <cmath>
 #include <complex>
@@ -14,6 +13,7 @@
 #include <utility>
 
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "fftw.hpp"
 #include "chaos/random.hpp"
 #include "chaos/series.hpp"
@@ -27,11 +27,7 @@ using detail::FftwBuffer;
 using detail::fftw_buffer;
 using detail::Plan;
 
-std::string num(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
+std::string num(double v) { return format_number(v, Precision::shortest); }
 
 
 

@@ -117,6 +117,15 @@ void get(const py::dict& p, const char* name, std::vector<std::size_t>& target) 
   target.clear();
   for (const auto& v : p[name]) target.push_back(to_count(v, name));
 }
+void get(const py::dict& p, const char* name, std::vector<std::string>& target) {
+  if (!has(p, name)) return;
+  if (py::isinstance<py::str>(p[name])) type_error(std::string(name) + " must be a list of strings, not one string");
+  target.clear();
+  for (const auto& v : p[name]) {
+    if (!py::isinstance<py::str>(v)) type_error(std::string(name) + " must hold strings");
+    target.push_back(v.cast<std::string>());
+  }
+}
 // name=value settings (-p name=value, repeatable): a dict {name: value}.
 void get(const py::dict& p, const char* name, std::map<std::string, double>& target) {
   if (!has(p, name)) return;
@@ -177,6 +186,9 @@ py::list parameters(const std::string& command) {
   if (command == "spectrum") return describe(spectrum_parameters());
   if (command == "density") return describe(density_parameters());
   if (command == "section") return describe(section_parameters());
+  if (command == "validate") return describe(validate_parameters());
+  if (command == "zoo") return describe(zoo_parameters());
+  if (command == "zoo_series") return describe(zoo_series_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -446,7 +458,7 @@ py::tuple section_file_columns(const std::string& path, const py::dict& p, std::
 // done, or None); Ctrl-C stops between cases.
 py::object validate_cases_run(const py::dict& p, py::object progress) {
   ValidateParams params;
-  get(p, "filter", params.filter);
+  read_parameters(p, params, validate_parameters());
   const std::size_t count = validate_cases(params).size();
   auto callback = std::make_shared<py::object>(std::move(progress));
   std::size_t done = 0;
@@ -465,7 +477,7 @@ py::object validate_cases_run(const py::dict& p, py::object progress) {
 // chaos validate --list: the selected cases' rows (id, quantity, value, low, high, source, kind).
 py::list validate_list(const py::dict& p) {
   ValidateParams params;
-  get(p, "filter", params.filter);
+  read_parameters(p, params, validate_parameters());
   py::list out;
   for (const chaos::Reference& r : validate_cases(params)) {
     py::dict row;
@@ -486,16 +498,7 @@ py::list validate_list(const py::dict& p) {
 // None) gets the fraction of cases done; Ctrl-C stops after the cases being run.
 py::object zoo_run(const py::dict& p, py::object progress) {
   ZooParams params;
-  get(p, "fast", params.fast);
-  get(p, "grid", params.grid);
-  get(p, "grid_points", params.grid_points);
-  get(p, "threads", params.threads);
-  get(p, "checkpoint", params.checkpoint);
-  if (has(p, "only"))
-    for (const auto& v : p["only"]) {
-      if (!py::isinstance<py::str>(v)) type_error("only must hold case names (strings)");
-      params.only.push_back(v.cast<std::string>());
-    }
+  read_parameters(p, params, zoo_parameters());
   auto callback = std::make_shared<py::object>(std::move(progress));
   return call([&] {
     ZooRun run = run_zoo(params, [&](std::size_t done, std::size_t total, const chaos::ZooCase&,
@@ -513,8 +516,7 @@ py::object zoo_run(const py::dict& p, py::object progress) {
 py::tuple zoo_series(const std::string& name, const py::dict& p) {
   ZooSeriesParams params;
   params.name = name;
-  get(p, "fast", params.fast);
-  get(p, "threads", params.threads);
+  read_parameters(p, params, zoo_series_parameters());
   std::optional<ZooSeriesRun> run;
   {
     py::gil_scoped_release release;
@@ -663,9 +665,9 @@ py::dict simulate_scene(const std::string& toml, const std::vector<std::string>&
 // study sweep: the spec as `study sweep` builds it from its options (scene text and source, --set,
 // --axis, --initial, --periods, --keep, --signals, --analysis and its options), run into `directory`
 // on `threads` threads (ResultStore, run_sweep, assemble: the code behind the command), returning
-// the counts the command's summary reports. `progress` (a callable or None) gets the fraction of
+// the command's summary (study::summary_json) and the scene's warnings. `progress` (a callable or None) gets the fraction of
 // points done; Ctrl-C stops the sweep after the points being computed (a --resume finishes it).
-py::dict study_sweep(const std::string& toml, const std::string& source, const std::vector<std::string>& overrides,
+py::tuple study_sweep(const std::string& toml, const std::string& source, const std::vector<std::string>& overrides,
                      const std::vector<std::string>& axes, const py::dict& p, const std::string& directory, bool resume,
                      std::size_t threads, py::object progress) {
   study::SweepSpec spec;
@@ -702,7 +704,8 @@ py::dict study_sweep(const std::string& toml, const std::string& source, const s
   get(p, "seed", spec.analysis.seed);
   if (threads == 0) value_error("threads must be at least 1 (got 0)");
   auto callback = std::make_shared<py::object>(std::move(progress));
-  study::SweepProgress done;
+  study::SweepSummary summary;
+  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     spec.validate();
@@ -715,6 +718,7 @@ py::dict study_sweep(const std::string& toml, const std::string& source, const s
       if (!callback->is_none() && at.to_do)
         (*callback)(static_cast<double>(at.done) / static_cast<double>(at.to_do));
     };
+    study::SweepProgress done;
     try {
       done = study::run_sweep(spec, store, exec);
     } catch (const Interrupted&) {
@@ -722,15 +726,13 @@ py::dict study_sweep(const std::string& toml, const std::string& source, const s
       throw py::error_already_set();
     }
     store.assemble();
+    summary = study::summarise_sweep(spec, store, done.done, done.skipped);
   }
-  py::dict out;
-  out["points"] = spec.grid.size();
-  out["computed"] = done.done;
-  out["resumed_from_disk"] = done.skipped;
-  out["failed"] = done.failed;
-  out["threads"] = threads;
-  out["warnings"] = mechanism::scene_warnings(study::point_scene(spec, 0));
-  return out;
+  // The command's summary (study::summary_json), key for key; the scene's warnings beside it.
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::ordered_json json =
+      nlohmann::ordered_json::parse(study::summary_json(summary, directory, threads, 1, wall).dump());
+  return py::make_tuple(to_python(json), mechanism::scene_warnings(study::point_scene(spec, 0)));
 }
 
 // The time of the library's own work for one command, without the Python layer: the shared

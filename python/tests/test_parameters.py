@@ -17,7 +17,8 @@ from conftest import run_cli
 COMMANDS = {"mutual": "mutual", "autocorrelation": "autocorrelation", "cao": "cao", "fnn": "fnn", "d2": "d2",
             "lyapunov": "lyapunov", "lyapunov_maps": "lyapunov-maps", "analyze": "analyze",
             "surrogates": "surrogates", "nonlinearity": "nonlinearity", "generate": "generate",
-            "spectrum": "spectrum", "density": "density", "section": "section"}
+            "spectrum": "spectrum", "density": "density", "section": "section", "validate": "validate",
+            "zoo": "zoo", "zoo_series": "zoo"}
 
 # An option line of CLI11's help: "  -m,--min-dimension UINT=1   text": the names, then the type in
 # capitals with the default after "=" (none for a flag), then the description.
@@ -51,7 +52,9 @@ def test_python_defaults_are_the_command_lines(function):
     assert table, function
     for name, default, flags in table:
         parameter = signature.parameters[name]
-        assert parameter.kind is inspect.Parameter.KEYWORD_ONLY, (function, name)
+        # Keyword-only, unless the function takes it by position (chaos.zoo's only, chaos.validate's
+        # filter): then with the table's default all the same.
+        assert parameter.kind in (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD), (function, name)
         assert parameter.default == default, (function, name)
         option = long_name(flags)
         assert option in shown, (function, option)
@@ -96,3 +99,33 @@ def test_keyword_left_out_and_given_as_its_default_agree():
 def test_unknown_command_has_no_table():
     with pytest.raises(ValueError, match="no parameter table"):
         _core.parameters("no_such_command")
+
+
+# Each command's result names every parameter of its table under the keyword argument's name (the
+# report writes the table, then what the command chose for those left out: report_parameters.hpp).
+RESULTS = {
+    "mutual": lambda x, h: chaos.mutual(x),
+    "autocorrelation": lambda x, h: chaos.autocorrelation(x),
+    "cao": lambda x, h: chaos.cao(x, max_dimension=4),
+    "fnn": lambda x, h: chaos.fnn(x, max_dimension=4),
+    "d2": lambda x, h: chaos.d2(x, max_dimension=3, reference_points=300),
+    "lyapunov": lambda x, h: chaos.lyapunov(h, dimension=2, delay=1, theiler=10, reference_points=200),
+    "lyapunov_maps": lambda x, h: chaos.lyapunov_maps(h, dimension=2, delay=1),
+    "analyze": lambda x, h: chaos.analyze(x, max_dimension=4, surrogates=3),
+    "surrogates": lambda x, h: chaos.surrogates(x, count=1),
+    "nonlinearity": lambda x, h: chaos.nonlinearity(x, count=3),
+    "generate": lambda x, h: chaos.generate("henon", length=10),
+    "spectrum": lambda x, h: chaos.spectrum("henon", iterations=2000),
+    "density": lambda x, h: chaos.density(np.repeat([1.0, 2.0], 100), np.concatenate([x[:100], x[100:200]])),
+    "section": lambda x, h: chaos.section(np.column_stack([x, np.roll(x, 7)]), hyperplane=1, level=float(np.mean(x))),
+    "zoo_series": lambda x, h: chaos.zoo_series("henon", fast=True),
+}
+
+
+@pytest.mark.parametrize("function", sorted(RESULTS))
+def test_results_name_every_parameter_of_the_table(function, lorenz, data_dir):
+    henon = chaos.read(data_dir / "henon.txt")[0]
+    names = [name for name, _, _ in _core.parameters(function)]
+    result = RESULTS[function](lorenz[:3000], henon).to_dict()
+    missing = [name for name in names if name not in result["parameters"]]
+    assert not missing, (function, missing, list(result["parameters"]))

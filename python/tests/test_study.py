@@ -1,5 +1,6 @@
 """chaos.study.sweep against `study sweep` with the same options: the same files, byte for byte (the
 same library code writes them), and the arrays equal to the command's tables read back."""
+import json
 import os
 import subprocess
 from pathlib import Path
@@ -38,7 +39,7 @@ def same_files(a, b, names):
 def test_sweep_writes_the_command_s_files(tmp_path):
     args = ["--axis", "joint.slider.clearance=1e-4:4e-4:3", "--periods", 6, "--keep", 2, "--analysis",
             "--analysis-periods", 3, "--analysis-samples-per-period", 40, "--max-dimension", 6, "--threads", 1, "-q"]
-    run_study("sweep", *sets(FAST), *args, "-o", tmp_path / "cli")
+    cli_summary = run_study("sweep", *sets(FAST), *args, "-o", tmp_path / "cli").stdout
     s = study.sweep(set=FAST, axis="joint.slider.clearance=1e-4:4e-4:3", periods=6, keep=2, analysis=True,
                     analysis_periods=3, analysis_samples_per_period=40, max_dimension=6, threads=2,
                     output=tmp_path / "py")
@@ -52,7 +53,12 @@ def test_sweep_writes_the_command_s_files(tmp_path):
         np.testing.assert_array_equal(s.samples[name], table[:, k])
     assert s.samples["point"].dtype == np.int64 and not s.samples["slider_y"].flags.writeable
     assert list(s.points["status"]) == ["completed"] * 3
-    assert s.summary == dict(points=3, computed=3, resumed_from_disk=0, failed=0, analysis_failed=0, threads=2)
+    # The command's summary, key for key (its printed JSON), with the values of this run.
+    cli = json.loads(cli_summary)
+    assert set(s.summary) == set(cli)
+    assert {k: v for k, v in s.summary.items() if k not in ("directory", "wall_seconds")} == dict(
+        points=3, computed=3, resumed_from_disk=0, failed=0, analysis_failed=0, lyapunov_failed=0, threads=2, ranks=1)
+    assert s.summary["directory"] == str(tmp_path / "py") and s.summary["wall_seconds"] > 0
     assert len(s.analysis["d2_status"]) == 3 and s.analysis["E1_6"].dtype == float
 
 

@@ -188,72 +188,22 @@ int run(int argc, char** argv) {
     if (!root) return ok;
     store->assemble();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    // Failed points counted from the assembled tables, so every rank's failures are included.
-    const auto statuses = [&](const char* table) {
-      std::vector<std::string> out;
-      std::ifstream in(store->dir() / table);
-      const std::size_t status_column = 1 + spec.grid.axes().size();
-      for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream f(line);
-        std::string field;
-        for (std::size_t k = 0; k <= status_column; ++k) std::getline(f, field, '\t');
-        out.push_back(field);
-      }
-      return out;
-    };
-    std::size_t failed = 0, point = 0, first_failed = 0;
-    std::string first_status;
-    for (const std::string& s : statuses("points.tsv")) {
-      if (s != "completed" && failed++ == 0) {
-        first_failed = point;
-        first_status = s;
-      }
-      ++point;
-    }
-    // An analysis failed where the estimators refused the series or the options ("stopped at",
-    // "series too short"); a constant series or one without a mutual-information minimum is an
-    // answer about the data, and a point not analysed is counted among the failed simulations.
-    std::size_t analysed = 0, analysis_failed = 0;
-    std::string first_failure;
-    if (spec.analyse)
-      for (const std::string& s : statuses("analysis.tsv")) {
-        if (s.rfind("not analysed", 0) == 0) continue;
-        ++analysed;
-        if (s.rfind("stopped at", 0) == 0 || s.rfind("series too short", 0) == 0) {
-          ++analysis_failed;
-          if (first_failure.empty()) first_failure = s;
-        }
-      }
-    // A Lyapunov run failed where a period could not be integrated; not_computed follows a failed
-    // simulation, already counted; refused: the perturbation was below the point's floor. nonlinear,
-    // not_finite and invariant_subspace are answers with a warning.
-    std::size_t lyapunov_failed = 0;
-    if (spec.lyapunov)
-      for (const std::string& s : statuses("lyapunov.tsv")) lyapunov_failed += s == "trajectory_failed" || s == "refused";
-    nlohmann::json summary = {{"directory", store->dir().string()},
-                              {"points", spec.grid.size()},
-                              {"computed", computed},
-                              {"resumed_from_disk", resumed},
-                              {"failed", failed},
-                              {"analysis_failed", analysis_failed},
-                              {"lyapunov_failed", lyapunov_failed},
-                              {"threads", exec.threads},
-                              {"ranks", mpi.size()},
-                              {"wall_seconds", wall}};
-    std::cout << summary.dump(2) << "\n";
+    const study::SweepSummary summary = study::summarise_sweep(spec, *store, computed, resumed);
+    std::cout << study::summary_json(summary, store->dir().string(), exec.threads, mpi.size(), wall).dump(2) << "\n";
     // Every analysis failing says the options do not fit the series (exit 0 with no
     // analysis at all); some failing is a per-point answer that analysis.tsv gives.
-    const bool no_analysis = analysed > 0 && analysis_failed == analysed;
+    const bool no_analysis = summary.analysed > 0 && summary.analysis_failed == summary.analysed;
     // Exit 5 says why, also under -q (a corrupt-file run of the tier exited 5 with no word).
-    if (failed)
-      std::cerr << "study: " << failed << " of " << spec.grid.size() << " points did not complete (the first: point "
-                << first_failed << ", " << first_status << "); points.tsv's status and message columns say why\n";
+    if (summary.failed)
+      std::cerr << "study: " << summary.failed << " of " << summary.points << " points did not complete (the first: point "
+                << summary.first_failed << ", " << summary.first_failed_status
+                << "); points.tsv's status and message columns say why\n";
     if (no_analysis)
-      std::cerr << "study: the analysis failed at all " << analysed << " analysed points (the first: " << first_failure
+      std::cerr << "study: the analysis failed at all " << summary.analysed << " analysed points (the first: "
+                << summary.first_analysis_failure
                 << "); --max-delay, --max-dimension and the analysed series (--analysis-periods, "
                    "--analysis-interval) decide what it needs\n";
-    return failed || no_analysis ? points_failed : ok;
+    return summary.failed || no_analysis ? points_failed : ok;
   } catch (const study::StudyError& e) {
     std::cerr << "study: " << e.what() << "\n";
     return e.kind() == study::StudyError::Kind::io ? io_error : invalid_request;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <exception>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -71,6 +73,62 @@ SweepProgress run_sweep(const SweepSpec& spec, const ResultStore& store, const S
     }
   });
   return progress;
+}
+
+SweepSummary summarise_sweep(const SweepSpec& spec, const ResultStore& store, std::size_t computed,
+                             std::size_t resumed) {
+  // The status column of an assembled table: after the point index and one column per axis.
+  const auto statuses = [&](const char* table) {
+    std::vector<std::string> out;
+    std::ifstream in(store.dir() / table);
+    const std::size_t status_column = 1 + spec.grid.axes().size();
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream f(line);
+      std::string field;
+      for (std::size_t k = 0; k <= status_column; ++k) std::getline(f, field, '\t');
+      out.push_back(field);
+    }
+    return out;
+  };
+  SweepSummary s;
+  s.points = spec.grid.size();
+  s.computed = computed;
+  s.resumed_from_disk = resumed;
+  std::size_t point = 0;
+  for (const std::string& status : statuses("points.tsv")) {
+    if (status != "completed" && s.failed++ == 0) {
+      s.first_failed = point;
+      s.first_failed_status = status;
+    }
+    ++point;
+  }
+  if (spec.analyse)
+    for (const std::string& status : statuses("analysis.tsv")) {
+      if (status.rfind("not analysed", 0) == 0) continue;
+      ++s.analysed;
+      if (status.rfind("stopped at", 0) == 0 || status.rfind("series too short", 0) == 0) {
+        if (s.analysis_failed++ == 0) s.first_analysis_failure = status;
+      }
+    }
+  if (spec.lyapunov)
+    for (const std::string& status : statuses("lyapunov.tsv"))
+      s.lyapunov_failed += status == "trajectory_failed" || status == "refused";
+  return s;
+}
+
+nlohmann::json summary_json(const SweepSummary& s, const std::string& directory, std::size_t threads,
+                            std::size_t ranks, double wall_seconds) {
+  return {{"directory", directory},
+          {"points", s.points},
+          {"computed", s.computed},
+          {"resumed_from_disk", s.resumed_from_disk},
+          {"failed", s.failed},
+          {"analysis_failed", s.analysis_failed},
+          {"lyapunov_failed", s.lyapunov_failed},
+          {"threads", threads},
+          {"ranks", ranks},
+          {"wall_seconds", wall_seconds}};
 }
 
 }  // namespace study

@@ -70,11 +70,14 @@ SeriesAnalysis analyse_series_with_curves(std::span<const double> x, double inte
     // C(eps, m) with D2 per m for m = 1..max_dimension on the pipeline's radii. These are for the
     // figures only: the D2 above is the pipeline's, read from m = 1..Cao's m + 3.
     stage = "mutual information";
-    chaos::MutualInformationOptions mi;
-    mi.boxes = options.boxes;
-    mi.max_delay = std::max<std::size_t>(
-        1, a.delay_searched ? a.delay_searched : std::min(options.max_delay, x.size() / 10));
-    r.mutual_information = chaos::mutual_information(x, mi).information;
+    if (!a.delay_information.information.empty()) {
+      r.mutual_information = a.delay_information.information;
+    } else {  // the autocorrelation gave delay 1 without a search
+      chaos::MutualInformationOptions mi;
+      mi.boxes = options.boxes;
+      mi.max_delay = std::max<std::size_t>(1, std::min(options.max_delay, x.size() / 10));
+      r.mutual_information = chaos::mutual_information(x, mi).information;
+    }
     if (!r.delay) {
       r.status = a.stopped;
       return r;

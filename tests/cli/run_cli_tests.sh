@@ -640,8 +640,8 @@ fi
 # The README's order, options first and the file last, read the file as another
 # value of a list option (d2 --radius-list a,b FILE, section -c 1 FILE). Each list option takes
 # one argument per occurrence (comma-separated), so the file is the file.
-a=$("$CHAOS" d2 --radius-list 0.05,0.1,0.2 "$work/henon.dat" -d 1 -M 3 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
-b=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --radius-list 0.05,0.1,0.2 --json | jq -c "[.parameters.r_min, .parameters.r_max, .parameters.radii]")
+a=$("$CHAOS" d2 --radius-list 0.05,0.1,0.2 "$work/henon.dat" -d 1 -M 3 --json | jq -c "[.parameters.min_radius, .parameters.max_radius, .parameters.radii]")
+b=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --radius-list 0.05,0.1,0.2 --json | jq -c "[.parameters.min_radius, .parameters.max_radius, .parameters.radii]")
 [[ -n $a && $a == "$b" ]] && pass || fail "d2 --radius-list a,b FILE: '$a', expected '$b'"
 "$CHAOS" generate lorenz -l 2000 --components all > "$work/xyz.dat"
 a=$("$CHAOS" section -c 1,2 "$work/xyz.dat" --stroboscopic 10 | grep -vc '^#')

@@ -10,12 +10,14 @@
 // Henon x at N = 20000 is consistent at m = 2; Lorenz x at N = 20000 (tau 19, w 31) is inconsistent
 // at m = 3 and at m = 4; white noise is not_deterministic. The tests assert those preconditions, so
 // a change to the estimator that moves a series to another branch fails loudly instead of testing
-// nothing.
+// nothing. The last test checks a property of the whole pipeline: a step that refuses the series
+// keeps what the others found.
 #include "chaos/automatic_analysis.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -118,6 +120,30 @@ TEST(AutomaticAnalysis, NoiseIsNotRunAgainAtMPlusOne) {
   EXPECT_FALSE(a.local_maps_at_m);
   EXPECT_EQ(a.local_maps->status, LocalMapStatus::not_deterministic);
   EXPECT_EQ(a.local_maps->explanation, at_2.explanation);
+}
+
+TEST(AutomaticAnalysis, AStepThatRefusesTheSeriesKeepsWhatTheOthersFound) {
+  // A property of the pipeline: an estimator's refusal (here the correlation sums and the divergence
+  // curves, whose embedding of m = 40 at delay 100 spans more than the 3000 samples) is reported in
+  // `stopped`, and the delay, window and dimension already chosen stand, as do the steps after it
+  // (the local maps refuse too and say so in their own field).
+  chaos::Random random(11);
+  std::vector<double> x(3000);
+  for (double& v : x) v = random.gaussian();
+  AutomaticAnalysisOptions o;
+  o.delay = 100;
+  o.theiler = 5;
+  o.dimension = 40;
+  const AutomaticAnalysis a = chaos::analyse_series(x, std::nullopt, o);
+  EXPECT_EQ(a.delay, std::optional<std::size_t>(100));
+  EXPECT_EQ(a.theiler, 5u);
+  EXPECT_EQ(a.dimension, std::optional<std::size_t>(40));
+  EXPECT_FALSE(a.d2);
+  EXPECT_FALSE(a.d2_estimate);
+  EXPECT_NE(a.stopped.find("correlation dimension not estimated: "), std::string::npos) << a.stopped;
+  EXPECT_NE(a.stopped.find("; largest Lyapunov exponent not estimated: "), std::string::npos) << a.stopped;
+  EXPECT_FALSE(a.local_maps);
+  EXPECT_FALSE(a.local_maps_refusal.empty());
 }
 
 }  // namespace

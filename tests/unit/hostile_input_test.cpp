@@ -16,6 +16,7 @@
 #include "chaos/correlation_dimension.hpp"
 #include "chaos/correlation_sum.hpp"
 #include "chaos/embedding.hpp"
+#include "chaos/fnn.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/models/systems.hpp"
 #include "chaos/neighbors.hpp"
@@ -149,6 +150,32 @@ TEST(Ties, ExplanationsSayMostPairsTie) {
             std::string::npos);
   s.radii = chaos::log_radii(0.5, 15.0, 12);
   EXPECT_EQ(chaos::correlation_dimension(chaos::correlation_sum(x, s)).explanation.find(note), std::string::npos);
+}
+
+// ... and so do Cao's method, FNN and the surrogate test, whose neighbours are chosen among the same
+// ties (a property: the note is ties_note's sentence exactly where most pairs tie).
+TEST(Ties, CaoFnnAndTheSurrogateTestSayMostPairsTie) {
+  const std::vector<double> x = lorenz_x(3000), q = quantised(x, 3);
+  ASSERT_TRUE(chaos::value_ties(q).most_pairs_tie());
+  ASSERT_FALSE(chaos::value_ties(x).most_pairs_tie());
+  const std::string note = chaos::ties_note(chaos::value_ties(q));
+  chaos::CaoOptions c;
+  c.delay = 10;
+  c.theiler = 10;
+  c.max_dimension = 4;
+  EXPECT_EQ(chaos::cao(q, c).value_ties, note);
+  EXPECT_EQ(chaos::cao(x, c).value_ties, "");
+  chaos::FnnOptions f;
+  f.delay = 10;
+  f.theiler = 10;
+  f.max_dimension = 4;
+  EXPECT_EQ(chaos::false_nearest_neighbors(q, f).value_ties, note);
+  EXPECT_EQ(chaos::false_nearest_neighbors(x, f).value_ties, "");
+  chaos::NonlinearityTestOptions t;
+  t.surrogates = 3;
+  t.statistic = chaos::NonlinearityStatistic::time_reversal_asymmetry;
+  EXPECT_EQ(chaos::nonlinearity_test(q, t).value_ties, note);
+  EXPECT_EQ(chaos::nonlinearity_test(x, t).value_ties, "");
 }
 
 // Brute force: the locally constant predictor written out with k_nearest_brute_force, whose

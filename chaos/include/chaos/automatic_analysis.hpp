@@ -20,6 +20,8 @@
 //      the embedding, not the exponent. A Rosenstein or Kantz slope stands only where the reported
 //      value is consistent and within 10% of it; beside maps that are not consistent, or that could
 //      not be run, it is unconfirmed as well.
+// A step that refuses the series (too short for its embedding) does not lose the others: `stopped`
+// says which refused and why, and what the steps before it found, and the steps after it, stand.
 // `chaos analyze`, `chaos zoo` and the study run this pipeline.
 
 #include <cstddef>
@@ -70,6 +72,7 @@ struct AutomaticAnalysis {
   std::optional<std::size_t> delay;
   std::string delay_source;
   std::size_t delay_searched = 0;  // the largest delay the search examined (0: the delay was given or 1)
+  MutualInformationResult delay_information;  // the search's curve, I(0..delay_searched) (choose_delay)
   std::size_t theiler = 0;
   std::string theiler_source;
   std::optional<std::size_t> dimension;  // Cao's, or the given one
@@ -89,7 +92,7 @@ struct AutomaticAnalysis {
   // lambda_1 from the three together, with one interval and status (lyapunov_answer.hpp); empty
   // where the Lyapunov step did not run.
   std::optional<LyapunovAnswer> lyapunov;
-  std::string stopped;  // empty when every step ran; otherwise why the pipeline stopped
+  std::string stopped;  // empty when every step ran; otherwise why it stopped, or which steps refused
 };
 
 // D2 as the pipeline computes it: correlation sums of x with `sums`, and, when D2 saturates, the

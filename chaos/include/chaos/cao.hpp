@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "chaos/norm.hpp"
@@ -51,6 +52,8 @@ struct CaoResult {
   std::optional<std::size_t> embedding_dimension;
   double max_E2_deviation = 0.0;       // max |E2(m) - 1|
   std::vector<std::size_t> points_without_neighbor;  // per m, see Ties above
+  // A sentence when most pairs of samples tie (quantised data; ties_note, series.hpp), else empty.
+  std::string value_ties;
 };
 
 CaoResult cao(std::span<const double> x, const CaoOptions& options = {});

@@ -36,6 +36,7 @@
 #include "chaos/correlation_sum.hpp"
 #include "chaos/lyapunov.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
+#include "chaos/mutual_information.hpp"
 #include "chaos/time_scales.hpp"
 
 namespace chaos {
@@ -52,6 +53,9 @@ struct DelayChoice {
   std::string source;                // the rule that gave it
   std::size_t searched = 0;          // the largest delay examined (0: the autocorrelation rule gave 1)
   std::string stopped;
+  // The information curve of the last search, I(0..searched), for a plot or an output that shows
+  // where the delay came from; empty where the autocorrelation rule gave 1.
+  MutualInformationResult information;
 };
 // The largest delays of the two searches: min(max_delay, N / 10), then min(windows * Theiler
 // window, N / 10); the second search is made only where it goes further than the first.

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "chaos/norm.hpp"
@@ -34,6 +35,8 @@ struct FnnResult {
   std::vector<std::size_t> dimension;
   std::vector<double> false_fraction;
   std::optional<std::size_t> embedding_dimension;  // nullopt: the fraction never fell to threshold
+  // A sentence when most pairs of samples tie (quantised data; ties_note, series.hpp), else empty.
+  std::string value_ties;
 };
 
 FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& options = {});

@@ -11,7 +11,9 @@ enum class Precision {
   shortest,    // the shortest text that reads back as the same double (0.15, not 0.14999999999999999)
   result,      // 10 significant digits: estimates and parameters in a report
   table,       // 12 significant digits: the study's result tables
+  message,     // 6 significant digits: a bound or a magnitude that a refusal names
   title,       // 4 significant digits: plot titles and the numbers inside an explanation
+  coarse,      // 3 significant digits: interval ends, percentages and times in the zoo report
 };
 
 std::string format_number(double value, Precision precision = Precision::round_trip);

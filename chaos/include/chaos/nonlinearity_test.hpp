@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "chaos/norm.hpp"
@@ -110,6 +111,8 @@ struct NonlinearityTestResult {
   std::vector<double> surrogate_spectral_deviations;
   std::size_t surrogates_not_converged = 0;  // IAAFT surrogates stopped by max_iterations
   NonlinearityTestOptions options;           // the settings used
+  // A sentence when most pairs of samples tie (quantised data; ties_note, series.hpp), else empty.
+  std::string value_ties;
 };
 
 // Refuses what the surrogates refuse (N < 4, non-finite, constant) and series too short for the

@@ -30,13 +30,9 @@ constexpr std::uint64_t max_exact = std::uint64_t{1} << 53;
 // Shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
 std::string num(double v) { return format_number(v, Precision::shortest); }
 
-[[noreturn]] void refuse(const std::string& message) {
-  throw InvalidInput(ErrorCode::invalid_parameter, message);
-}
-
 void require_samples(std::size_t n, std::size_t minimum, const char* what) {
   if (n < minimum)
-    refuse(std::string(what) + ": the number of samples n must be at least " + std::to_string(minimum) +
+    refuse_parameter(std::string(what) + ": the number of samples n must be at least " + std::to_string(minimum) +
            " (got n = " + std::to_string(n) + ")");
 }
 
@@ -92,10 +88,10 @@ std::string fraction(RationalPeriod period) {
 Reduced reduce(RationalPeriod period, const char* what) {
   const auto [p, q] = period;
   if (p == 0 || q == 0 || p > max_exact || q > max_exact)
-    refuse(std::string(what) + ": the numerator and denominator of the period must lie in 1 .. 2^53 (got P = " +
+    refuse_parameter(std::string(what) + ": the numerator and denominator of the period must lie in 1 .. 2^53 (got P = " +
            fraction(period) + ")");
   if (p <= 2 * q)
-    refuse(std::string(what) + ": the period P must be > 2 samples, below the Nyquist frequency (got P = " +
+    refuse_parameter(std::string(what) + ": the period P must be > 2 samples, below the Nyquist frequency (got P = " +
            fraction(period) + " = " + num(static_cast<double>(p) / static_cast<double>(q)) +
            "; at P = 2 the sine is sin(pi n) = 0 and 1 < P < 2 is an alias of P / (P - 1))");
   const std::uint64_t g = std::gcd(p, q);
@@ -104,7 +100,7 @@ Reduced reduce(RationalPeriod period, const char* what) {
 
 void require_real_period(double period, const char* what) {
   if (!(std::isfinite(period) && period > 2.0))
-    refuse(std::string(what) + ": the period P must be finite and > 2 samples, below the Nyquist frequency (got P = " +
+    refuse_parameter(std::string(what) + ": the period P must be finite and > 2 samples, below the Nyquist frequency (got P = " +
            num(period) + "; at P = 2 the sine is sin(pi n) = 0 and 1 < P < 2 is an alias of P / (P - 1))");
 }
 
@@ -113,19 +109,19 @@ void require_real_period(double period, const char* what) {
 template <class Below>
 void check_amplitudes(const std::vector<double>& a, const char* what, const std::string& period_text,
                       const Below& twice_h_below) {
-  if (a.empty()) refuse(std::string(what) + ": at least one amplitude is needed (got an empty list)");
+  if (a.empty()) refuse_parameter(std::string(what) + ": at least one amplitude is needed (got an empty list)");
   bool any = false;
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (!std::isfinite(a[i]))
-      refuse(std::string(what) + ": amplitudes must be finite (got a_" + std::to_string(i + 1) + " = " + num(a[i]) + ")");
+      refuse_parameter(std::string(what) + ": amplitudes must be finite (got a_" + std::to_string(i + 1) + " = " + num(a[i]) + ")");
     if (a[i] != 0.0) {
       any = true;
       if (!twice_h_below(i + 1))
-        refuse(std::string(what) + ": harmonic h = " + std::to_string(i + 1) + " has amplitude " + num(a[i]) +
+        refuse_parameter(std::string(what) + ": harmonic h = " + std::to_string(i + 1) + " has amplitude " + num(a[i]) +
                " but 2 h >= P = " + period_text + ": it lies at or above the Nyquist frequency and would alias");
     }
   }
-  if (!any) refuse(std::string(what) + ": the amplitudes are all zero (got " + std::to_string(a.size()) + " of them)");
+  if (!any) refuse_parameter(std::string(what) + ": the amplitudes are all zero (got " + std::to_string(a.size()) + " of them)");
 }
 
 // sum_h a_h sin(2 pi h r / p) for the reduced phase r.
@@ -149,9 +145,9 @@ double real_term(std::size_t h, std::size_t n, double period) {
 Trajectory power_law_noise(std::size_t n, double alpha, std::uint64_t seed) {
   require_samples(n, 2, "power_law_noise");
   if (n > static_cast<std::size_t>(INT_MAX))
-    refuse("power_law_noise: at most 2^31 - 1 samples are supported (FFTW's int sizes); got n = " + std::to_string(n));
+    refuse_parameter("power_law_noise: at most 2^31 - 1 samples are supported (FFTW's int sizes); got n = " + std::to_string(n));
   if (!(std::isfinite(alpha) && alpha >= 0.0))
-    refuse("power_law_noise: alpha must be finite and >= 0 (got alpha = " + num(alpha) + ")");
+    refuse_parameter("power_law_noise: alpha must be finite and >= 0 (got alpha = " + num(alpha) + ")");
   const std::size_t bins = n / 2 + 1;
   auto spectrum = detail::fftw_buffer<fftw_complex>(bins);
   auto real = detail::fftw_buffer<double>(n);
@@ -227,7 +223,7 @@ Trajectory periodic(std::size_t count, double period, const std::vector<double>&
 
 Trajectory quasi_periodic_signal(std::size_t count, std::span<const double> periods) {
   require_samples(count, 1, "quasi_periodic_signal");
-  if (periods.empty()) refuse("quasi_periodic_signal: at least one period is needed (got none)");
+  if (periods.empty()) refuse_parameter("quasi_periodic_signal: at least one period is needed (got none)");
   for (const double period : periods) require_real_period(period, "quasi_periodic_signal");
   std::vector<double> values(count);
   for (std::size_t n = 0; n < count; ++n) {
@@ -273,7 +269,7 @@ Trajectory two_torus_rational_first(std::size_t count, RationalPeriod first) {
 
 std::vector<double> add_noise(std::span<const double> x, double snr_db, std::uint64_t seed) {
   check_input(x, "add_noise", true);
-  if (!std::isfinite(snr_db)) refuse("add_noise: the SNR must be finite (got snr_db = " + num(snr_db) + ")");
+  if (!std::isfinite(snr_db)) refuse_parameter("add_noise: the SNR must be finite (got snr_db = " + num(snr_db) + ")");
   // The standard deviation on x / 2^e (exact), so squares neither overflow nor underflow.
   const int e = detail::scale_exponent(x);
   const auto scaled = detail::scaled_by_power_of_two(x, e);
@@ -285,7 +281,7 @@ std::vector<double> add_noise(std::span<const double> x, double snr_db, std::uin
   const double sd = std::ldexp(std::sqrt(var / static_cast<double>(scaled.size())), e);
   const double sigma = sd / std::pow(10.0, snr_db / 20.0);
   if (!std::isfinite(sigma))
-    refuse("add_noise: the noise standard deviation std(x) / 10^(snr_db / 20) = " + num(sd) + " / 10^(" +
+    refuse_parameter("add_noise: the noise standard deviation std(x) / 10^(snr_db / 20) = " + num(sd) + " / 10^(" +
            num(snr_db) + " / 20) overflows; raise the SNR");
   Random rng(seed);
   std::vector<double> y(x.begin(), x.end());
@@ -296,12 +292,12 @@ std::vector<double> add_noise(std::span<const double> x, double snr_db, std::uin
 std::vector<double> quantise_levels(std::span<const double> x, std::size_t levels) {
   check_input(x, "quantise_levels", true);
   if (levels < 2)
-    refuse("quantise_levels: the number of levels must be at least 2 (got levels = " + std::to_string(levels) + ")");
+    refuse_parameter("quantise_levels: the number of levels must be at least 2 (got levels = " + std::to_string(levels) + ")");
   const auto [lo_it, hi_it] = std::minmax_element(x.begin(), x.end());
   const double lo = *lo_it, hi = *hi_it;
   const double range = hi - lo;
   if (!std::isfinite(range))
-    refuse("quantise_levels: the range max - min = " + num(hi) + " - " + num(lo) + " overflows");
+    refuse_parameter("quantise_levels: the range max - min = " + num(hi) + " - " + num(lo) + " overflows");
   const double top = static_cast<double>(levels - 1);
   const double delta = range / top;
   std::vector<double> y(x.size());
@@ -316,12 +312,12 @@ std::vector<double> quantise_levels(std::span<const double> x, std::size_t level
 std::vector<double> quantise_step(std::span<const double> x, double step) {
   check_input(x, "quantise_step", false);
   if (!(std::isfinite(step) && step > 0.0))
-    refuse("quantise_step: the step must be finite and > 0 (got step = " + num(step) + ")");
+    refuse_parameter("quantise_step: the step must be finite and > 0 (got step = " + num(step) + ")");
   std::vector<double> y(x.size());
   for (std::size_t t = 0; t < x.size(); ++t) {
     const double k = x[t] / step;
     if (!std::isfinite(k))
-      refuse("quantise_step: sample " + std::to_string(t) + " = " + num(x[t]) + " divided by the step " + num(step) +
+      refuse_parameter("quantise_step: sample " + std::to_string(t) + " = " + num(x[t]) + " divided by the step " + num(step) +
              " is not finite; use a larger step");
     y[t] = step * std::round(k);
   }

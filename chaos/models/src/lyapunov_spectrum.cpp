@@ -3,26 +3,20 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
 
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "chaos/random.hpp"
 
 namespace chaos {
 
 namespace {
 
-std::string num(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
+std::string num(double v) { return format_number(v, Precision::shortest); }
 
 // Step counts beyond this would run for days; refusing them also keeps the casts exact.
 constexpr double max_count = 1e15;
@@ -32,10 +26,10 @@ std::size_t whole_multiple(double interval, double unit, const char* what, const
   const double ratio = interval / unit;
   const double k = std::round(ratio);
   if (k < 1.0 || std::abs(k * unit - interval) > 1e-9 * interval)
-    refuse(std::string("lyapunov spectrum: ") + what + " = " + num(interval) + " must be a whole multiple of the " +
+    refuse_parameter(std::string("lyapunov spectrum: ") + what + " = " + num(interval) + " must be a whole multiple of the " +
            unit_name + " " + num(unit) + " (within 1e-9 relative); the ratio is " + num(ratio));
   if (k > max_count)
-    refuse(std::string("lyapunov spectrum: ") + what + " = " + num(interval) + " is " + num(k) + " " + unit_name +
+    refuse_parameter(std::string("lyapunov spectrum: ") + what + " = " + num(interval) + " is " + num(k) + " " + unit_name +
            "s; at most 1e15 are allowed");
   return static_cast<std::size_t>(k);
 }
@@ -45,7 +39,7 @@ std::size_t whole_multiple(double interval, double unit, const char* what, const
 template <class Where>
 void require_bounded(double v, const Where& where) {
   if (std::isfinite(v) && std::abs(v) <= 1e100) return;
-  refuse("lyapunov spectrum: the orbit left every bounded region at " + where() + " (value " + num(v) +
+  refuse_parameter("lyapunov spectrum: the orbit left every bounded region at " + where() + " (value " + num(v) +
          "); the parameters have no bounded attractor from this initial condition, or the step is too large");
 }
 
@@ -74,7 +68,7 @@ template <int D>
 void require_finite_growth(const Vec<D>& sums) {
   for (Eigen::Index i = 0; i < sums.size(); ++i)
     if (std::isnan(sums[i]) || sums[i] == std::numeric_limits<double>::infinity())
-      refuse("lyapunov spectrum: the tangent vectors overflowed within one renormalisation interval (sum of ln|R_" +
+      refuse_parameter("lyapunov spectrum: the tangent vectors overflowed within one renormalisation interval (sum of ln|R_" +
              std::to_string(i + 1) + "| = " + num(sums[i]) + "); shorten the renormalisation interval");
 }
 
@@ -109,10 +103,10 @@ FlowPlan plan_flow(const FlowSpectrumOptions& o) {
   p.interval = static_cast<double>(p.steps_per_interval) * o.step;
   p.intervals = whole_multiple(o.time, o.renormalisation_interval, "time", "renormalisation interval");
   const double transient = std::round(o.transient / o.renormalisation_interval);
-  if (transient > max_count) refuse("lyapunov spectrum: transient = " + num(o.transient) + " is too many intervals");
+  if (transient > max_count) refuse_parameter("lyapunov spectrum: transient = " + num(o.transient) + " is too many intervals");
   p.transient_intervals = static_cast<std::size_t>(transient);
   if (static_cast<double>(p.intervals + p.transient_intervals) * static_cast<double>(p.steps_per_interval) > max_count)
-    refuse("lyapunov spectrum: time + transient = " + num(o.time + o.transient) + " is more than 1e15 steps of " +
+    refuse_parameter("lyapunov spectrum: time + transient = " + num(o.time + o.transient) + " is more than 1e15 steps of " +
            num(o.step));
   return p;
 }
@@ -195,20 +189,20 @@ LyapunovSpectrum iterate_map(Eigen::Index d, const Map& map, const Jacobian& jac
 
 void require_finite_parameter(double v, const char* system, const char* name) {
   if (!std::isfinite(v))
-    refuse(std::string(system) + " spectrum: " + name + " must be finite (got " + name + " = " + num(v) + ")");
+    refuse_parameter(std::string(system) + " spectrum: " + name + " must be finite (got " + name + " = " + num(v) + ")");
 }
 
 void check_system(std::size_t dimension, bool has_field, bool has_jacobian, std::span<const double> initial_state,
                   const char* kind) {
-  if (dimension == 0) refuse(std::string("lyapunov spectrum: the ") + kind + " needs dimension >= 1 (got 0)");
+  if (dimension == 0) refuse_parameter(std::string("lyapunov spectrum: the ") + kind + " needs dimension >= 1 (got 0)");
   if (!has_field || !has_jacobian)
-    refuse(std::string("lyapunov spectrum: the ") + kind + " needs both its equations and its Jacobian");
+    refuse_parameter(std::string("lyapunov spectrum: the ") + kind + " needs both its equations and its Jacobian");
   if (initial_state.size() != dimension)
-    refuse("lyapunov spectrum: the initial state has " + std::to_string(initial_state.size()) +
+    refuse_parameter("lyapunov spectrum: the initial state has " + std::to_string(initial_state.size()) +
            " components but the " + kind + " has dimension " + std::to_string(dimension));
   for (std::size_t i = 0; i < initial_state.size(); ++i)
     if (!std::isfinite(initial_state[i]))
-      refuse("lyapunov spectrum: initial state component " + std::to_string(i) + " is " + num(initial_state[i]) +
+      refuse_parameter("lyapunov spectrum: initial state component " + std::to_string(i) + " is " + num(initial_state[i]) +
              "; it must be finite");
 }
 
@@ -217,37 +211,37 @@ void check_system(std::size_t dimension, bool has_field, bool has_jacobian, std:
 void FlowSpectrumOptions::validate() const {
   const auto positive = [](double v, const char* name) {
     if (!(std::isfinite(v) && v > 0.0))
-      refuse(std::string("lyapunov spectrum: ") + name + " must be finite and positive (got " + name + " = " + num(v) +
+      refuse_parameter(std::string("lyapunov spectrum: ") + name + " must be finite and positive (got " + name + " = " + num(v) +
              ")");
   };
   positive(step, "step");
   positive(renormalisation_interval, "renormalisation_interval");
   positive(time, "time");
   if (!(std::isfinite(transient) && transient >= 0.0))
-    refuse("lyapunov spectrum: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
+    refuse_parameter("lyapunov spectrum: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
   whole_multiple(renormalisation_interval, step, "renormalisation_interval", "step");
   whole_multiple(time, renormalisation_interval, "time", "renormalisation interval");
 }
 
 void MapSpectrumOptions::validate() const {
   if (renormalisation_interval == 0)
-    refuse("lyapunov spectrum: renormalisation_interval must be at least 1 iteration (got 0)");
+    refuse_parameter("lyapunov spectrum: renormalisation_interval must be at least 1 iteration (got 0)");
   if (iterations == 0 || iterations % renormalisation_interval != 0)
-    refuse("lyapunov spectrum: iterations must be a positive whole multiple of renormalisation_interval (got "
+    refuse_parameter("lyapunov spectrum: iterations must be a positive whole multiple of renormalisation_interval (got "
            "iterations = " + std::to_string(iterations) + ", renormalisation_interval = " +
            std::to_string(renormalisation_interval) + ")");
   // As for flows' steps: a count no run could finish is refused rather than started.
   if (static_cast<double>(iterations) + static_cast<double>(transient) > max_count)
-    refuse("lyapunov spectrum: iterations + transient = " + num(static_cast<double>(iterations) + static_cast<double>(transient)) +
+    refuse_parameter("lyapunov spectrum: iterations + transient = " + num(static_cast<double>(iterations) + static_cast<double>(transient)) +
            " is more than 1e15 iterations");
 }
 
 double kaplan_yorke_dimension(std::span<const double> exponents) {
-  if (exponents.empty()) refuse("kaplan_yorke_dimension: no exponents given");
+  if (exponents.empty()) refuse_parameter("kaplan_yorke_dimension: no exponents given");
   std::vector<double> l(exponents.begin(), exponents.end());
   for (std::size_t i = 0; i < l.size(); ++i)
     if (std::isnan(l[i]) || l[i] == std::numeric_limits<double>::infinity())
-      refuse("kaplan_yorke_dimension: exponent " + std::to_string(i) + " is " + num(l[i]) +
+      refuse_parameter("kaplan_yorke_dimension: exponent " + std::to_string(i) + " is " + num(l[i]) +
              "; exponents must be finite or -inf");
   std::sort(l.begin(), l.end(), std::greater<>());
   double partial = 0.0;
@@ -373,7 +367,7 @@ LyapunovSpectrum logistic_spectrum(const LogisticParameters& p, const MapSpectru
                                    std::uint64_t seed) {
   options.validate();
   if (!(std::isfinite(p.r) && p.r > 0.0 && p.r <= 4.0))
-    refuse("logistic spectrum: r must lie in (0, 4] so that orbits stay in [0, 1] (got r = " + num(p.r) + ")");
+    refuse_parameter("logistic spectrum: r must lie in (0, 4] so that orbits stay in [0, 1] (got r = " + num(p.r) + ")");
   Random rng(seed);
   // The generator's rule (systems.cpp): an orbit that lands on 0, 1 or the unstable fixed point in
   // floating point, where the real map never stays, continues from a fresh draw of the same stream.
@@ -416,7 +410,7 @@ bool is_flow(SystemKind system) noexcept { return system == SystemKind::lorenz |
 
 LyapunovSpectrum spectrum(const SpectrumRequest& request) {
   if (!has_spectrum(request.system))
-    refuse(std::string("lyapunov spectrum: no equations for system '") + to_string(request.system) +
+    refuse_parameter(std::string("lyapunov spectrum: no equations for system '") + to_string(request.system) +
            "' (spectra exist for lorenz, rossler, henon, logistic, ikeda)");
   // The model parameters are the generator's parameters less its sampling settings.
   std::map<std::string, double> p;
@@ -427,7 +421,7 @@ LyapunovSpectrum spectrum(const SpectrumRequest& request) {
     if (!p.count(name)) {
       std::string valid;
       for (const auto& [known, unused] : p) valid += (valid.empty() ? "" : ", ") + known;
-      refuse(std::string("lyapunov spectrum: system ") + to_string(request.system) + " has no model parameter '" +
+      refuse_parameter(std::string("lyapunov spectrum: system ") + to_string(request.system) + " has no model parameter '" +
              name + "' (valid: " + valid + ")");
     }
     p[name] = value;
@@ -440,7 +434,7 @@ LyapunovSpectrum spectrum(const SpectrumRequest& request) {
     case SystemKind::logistic: return logistic_spectrum({p["r"]}, request.map, request.seed);
     default: break;
   }
-  refuse("lyapunov spectrum: unknown system");
+  refuse_parameter("lyapunov spectrum: unknown system");
 }
 
 }  // namespace chaos

@@ -16,22 +16,18 @@ namespace {
 // Shortest text that reads back as the same double: 0.15, not 0.14999999999999999.
 std::string num(double v) { return format_number(v, Precision::shortest); }
 
-[[noreturn]] void refuse(const std::string& message) {
-  throw InvalidInput(ErrorCode::invalid_parameter, message);
-}
-
 void require_samples(std::size_t n, const char* system) {
-  if (n == 0) refuse(std::string(system) + ": the number of samples n must be at least 1 (got n = 0)");
+  if (n == 0) refuse_parameter(std::string(system) + ": the number of samples n must be at least 1 (got n = 0)");
 }
 
 void require_positive(double v, const char* system, const char* name) {
   if (!(std::isfinite(v) && v > 0.0))
-    refuse(std::string(system) + ": " + name + " must be finite and positive (got " + name + " = " + num(v) + ")");
+    refuse_parameter(std::string(system) + ": " + name + " must be finite and positive (got " + name + " = " + num(v) + ")");
 }
 
 void require_finite_parameter(double v, const char* system, const char* name) {
   if (!std::isfinite(v))
-    refuse(std::string(system) + ": " + name + " must be finite (got " + name + " = " + num(v) + ")");
+    refuse_parameter(std::string(system) + ": " + name + " must be finite (got " + name + " = " + num(v) + ")");
 }
 
 // Whole number of steps in `interval`, which must be a multiple of `step` within 1e-9 relative;
@@ -43,10 +39,10 @@ std::size_t whole_steps(double interval, double step, const char* system, const 
   const double ratio = interval / step;
   const double k = std::round(ratio);
   if (k < 1.0 || std::abs(k * step - interval) > 1e-9 * interval)
-    refuse(std::string(system) + ": " + what + " = " + num(interval) + " must be a whole multiple of the step " +
+    refuse_parameter(std::string(system) + ": " + what + " = " + num(interval) + " must be a whole multiple of the step " +
            num(step) + " (within 1e-9 relative); the ratio is " + num(ratio));
   if (k > max_steps)
-    refuse(std::string(system) + ": " + what + " = " + num(interval) + " is " + num(k) + " steps of " + num(step) +
+    refuse_parameter(std::string(system) + ": " + what + " = " + num(interval) + " is " + num(k) + " steps of " + num(step) +
            "; at most 1e15 steps are allowed");
   return static_cast<std::size_t>(k);
 }
@@ -55,7 +51,7 @@ std::size_t whole_steps(double interval, double step, const char* system, const 
 std::size_t transient_steps(double time, double step, const char* system) {
   const double k = std::round(time / step);
   if (k > max_steps)
-    refuse(std::string(system) + ": transient = " + num(time) + " is " + num(k) + " steps of " + num(step) +
+    refuse_parameter(std::string(system) + ": transient = " + num(time) + " is " + num(k) + " steps of " + num(step) +
            "; at most 1e15 steps are allowed");
   return static_cast<std::size_t>(k);
 }
@@ -65,7 +61,7 @@ std::size_t transient_steps(double time, double step, const char* system) {
 template <class Where>
 void require_bounded(double v, const char* system, const Where& where, bool integrated) {
   if (std::isfinite(v) && std::abs(v) <= 1e100) return;
-  refuse(std::string(system) + ": the solution left every bounded region at " + where() + " (value " + num(v) +
+  refuse_parameter(std::string(system) + ": the solution left every bounded region at " + where() + " (value " + num(v) +
          "); the parameters have no bounded attractor from the documented initial condition" +
          (integrated ? ", or the step is too large for the integrator" : ""));
 }
@@ -127,7 +123,7 @@ void FlowSampling::validate() const {
   require_positive(dt, "flow sampling", "dt");
   require_positive(step, "flow sampling", "step");
   if (!(std::isfinite(transient) && transient >= 0.0))
-    refuse("flow sampling: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
+    refuse_parameter("flow sampling: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
   whole_steps(dt, step, "flow sampling", "sampling interval dt");
 }
 
@@ -196,7 +192,7 @@ Trajectory henon(std::size_t n, const HenonParameters& p, std::size_t transient)
 Trajectory logistic(std::size_t n, const LogisticParameters& p, std::size_t transient, std::uint64_t seed) {
   require_samples(n, "logistic");
   if (!(std::isfinite(p.r) && p.r > 0.0 && p.r <= 4.0))
-    refuse("logistic: r must lie in (0, 4] so that orbits stay in [0, 1] (got r = " + num(p.r) + ")");
+    refuse_parameter("logistic: r must lie in (0, 4] so that orbits stay in [0, 1] (got r = " + num(p.r) + ")");
   Random rng(seed);
   const auto collapsed = [&p](double previous, double current) {
     if (p.r > 1.0 && (current <= 0.0 || current >= 1.0)) return true;
@@ -263,9 +259,9 @@ Trajectory mackey_glass(std::size_t n, const MackeyGlassParameters& p, double dt
   require_positive(p.n, "mackey_glass", "n");
   require_positive(p.tau, "mackey_glass", "tau");
   require_positive(dt, "mackey_glass", "dt");
-  if (steps_per_delay == 0) refuse("mackey_glass: steps_per_delay must be at least 1 (got 0)");
+  if (steps_per_delay == 0) refuse_parameter("mackey_glass: steps_per_delay must be at least 1 (got 0)");
   if (!(std::isfinite(transient) && transient >= 0.0))
-    refuse("mackey_glass: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
+    refuse_parameter("mackey_glass: transient must be finite and >= 0 (got transient = " + num(transient) + ")");
   constexpr double history = 1.2;
   const std::size_t m = steps_per_delay;
   const double h = p.tau / static_cast<double>(m);
@@ -354,7 +350,7 @@ Trajectory uniform_noise(std::size_t n, std::uint64_t seed) {
 Trajectory ar1(std::size_t n, double phi, std::uint64_t seed) {
   require_samples(n, "ar1");
   if (!(std::isfinite(phi) && std::abs(phi) < 1.0))
-    refuse("ar1: |phi| must be < 1 for a stationary process (got phi = " + num(phi) + ")");
+    refuse_parameter("ar1: |phi| must be < 1 for a stationary process (got phi = " + num(phi) + ")");
   Random rng(seed);
   std::vector<double> values(n);
   // The stationary distribution N(0, 1 / (1 - phi^2)), so there is no transient to discard.

@@ -6,12 +6,12 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
 #include "chaos/error.hpp"
+#include "chaos/format.hpp"
 #include "zoo_model.hpp"
 
 namespace chaos {
@@ -22,13 +22,7 @@ constexpr const char* kZooTable =
 #include "zoo_table.inc"
     ;
 
-std::string num(double v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
-}
-
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
+std::string num(double v) { return format_number(v, Precision::shortest); }
 
 double parse_number(const std::string& text) {
   if (text.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -95,7 +89,7 @@ bool is_sampling_key(const ZooEntry& e, const std::string& name) {
 
 std::size_t whole(double value, const std::string& name) {
   if (!(value >= 0.0) || value != std::floor(value) || value > 1e15)
-    refuse("parameter " + name + " must be a non-negative whole number (got " + num(value) + ")");
+    refuse_parameter("parameter " + name + " must be a non-negative whole number (got " + num(value) + ")");
   return static_cast<std::size_t>(value);
 }
 
@@ -116,13 +110,13 @@ std::optional<SystemKind> delegate_kind(Delegate d) {
 std::size_t steps_in(double interval, double step, const std::string& what) {
   const double k = std::round(interval / step);
   if (k < 1.0 || std::abs(k * step - interval) > 1e-9 * interval || k > 1e15)
-    refuse("zoo: " + what + " = " + num(interval) + " must be a whole multiple of the step " + num(step));
+    refuse_parameter("zoo: " + what + " = " + num(interval) + " must be a whole multiple of the step " + num(step));
   return static_cast<std::size_t>(k);
 }
 
 void require_bounded(const ZooEntry& e, double v, const std::string& where) {
   if (std::isfinite(v) && std::abs(v) <= 1e100) return;
-  refuse(e.name + ": the solution left every bounded region at " + where + " (value " + num(v) +
+  refuse_parameter(e.name + ": the solution left every bounded region at " + where + " (value " + num(v) +
          "); the parameters have no bounded attractor from the documented initial condition" +
          (e.kind == ZooKind::flow ? ", or the step is too large for the integrator" : ""));
 }
@@ -153,7 +147,7 @@ std::map<std::string, double> model_overrides(const ZooEntry& e, const std::map<
   std::map<std::string, double> model;
   for (const auto& [name, value] : overrides) {
     if (is_sampling_key(e, name)) {
-      if (!std::isfinite(value)) refuse(e.name + ": parameter " + name + " must be finite (got " + num(value) + ")");
+      if (!std::isfinite(value)) refuse_parameter(e.name + ": parameter " + name + " must be finite (got " + num(value) + ")");
       sampling[name] = value;
     } else {
       model[name] = value;
@@ -236,7 +230,7 @@ std::string zoo_names() {
 
 const ZooEntry& zoo_system(std::string_view name) {
   if (const ZooEntry* e = find_zoo_system(name)) return *e;
-  refuse("unknown system '" + std::string(name) + "' (valid: " + zoo_names() + ")");
+  refuse_parameter("unknown system '" + std::string(name) + "' (valid: " + zoo_names() + ")");
 }
 
 std::vector<double> zoo_parameters(const ZooEntry& entry, const std::map<std::string, double>& overrides) {
@@ -248,11 +242,11 @@ std::vector<double> zoo_parameters(const ZooEntry& entry, const std::map<std::st
     if (it == entry.parameters.end()) {
       std::string valid;
       for (const auto& q : entry.parameters) valid += (valid.empty() ? "" : ", ") + q.name;
-      refuse("system " + entry.name + " has no model parameter '" + name + "' (valid: " +
+      refuse_parameter("system " + entry.name + " has no model parameter '" + name + "' (valid: " +
              (valid.empty() ? "none" : valid) + ")");
     }
     if (!std::isfinite(value))
-      refuse("system " + entry.name + ": parameter " + name + " must be finite (got " + num(value) + ")");
+      refuse_parameter("system " + entry.name + ": parameter " + name + " must be finite (got " + num(value) + ")");
     p[static_cast<std::size_t>(it - entry.parameters.begin())] = value;
   }
   return p;
@@ -260,7 +254,7 @@ std::vector<double> zoo_parameters(const ZooEntry& entry, const std::map<std::st
 
 Trajectory zoo_trajectory(const ZooEntry& entry, std::size_t n, const std::map<std::string, double>& overrides,
                           std::uint64_t seed) {
-  if (n == 0) refuse(entry.name + ": the number of samples n must be at least 1 (got n = 0)");
+  if (n == 0) refuse_parameter(entry.name + ": the number of samples n must be at least 1 (got n = 0)");
   std::map<std::string, double> sampling;
   const auto model_values = model_overrides(entry, overrides, sampling);
   std::vector<double> p;
@@ -341,7 +335,7 @@ Trajectory zoo_trajectory(const ZooEntry& entry, std::size_t n, const std::map<s
 
 FlowSystem zoo_flow_system(const ZooEntry& entry, const std::map<std::string, double>& overrides) {
   if (entry.kind != ZooKind::flow || entry.delay || !entry.model->evaluate)
-    refuse("zoo_flow_system: " + entry.name + " is not an ordinary differential equation of the zoo");
+    refuse_parameter("zoo_flow_system: " + entry.name + " is not an ordinary differential equation of the zoo");
   const auto p = std::make_shared<std::vector<double>>(zoo_parameters(entry, overrides));
   const auto model = entry.model;
   FlowSystem s;
@@ -352,7 +346,7 @@ FlowSystem zoo_flow_system(const ZooEntry& entry, const std::map<std::string, do
 }
 
 MapSystem zoo_map_system(const ZooEntry& entry, const std::map<std::string, double>& overrides) {
-  if (entry.kind != ZooKind::map || !entry.model->evaluate) refuse("zoo_map_system: " + entry.name + " is not a map of the zoo");
+  if (entry.kind != ZooKind::map || !entry.model->evaluate) refuse_parameter("zoo_map_system: " + entry.name + " is not a map of the zoo");
   const auto p = std::make_shared<std::vector<double>>(zoo_parameters(entry, overrides));
   const auto model = entry.model;
   MapSystem s;
@@ -366,7 +360,7 @@ LyapunovSpectrum zoo_spectrum(const ZooEntry& entry, const std::map<std::string,
                               const ZooSpectrumOptions& options) {
   for (const auto& [name, value] : overrides)
     if (is_sampling_key(entry, name))
-      refuse("zoo spectrum: " + name + " is a sampling setting of " + entry.name +
+      refuse_parameter("zoo spectrum: " + name + " is a sampling setting of " + entry.name +
              ", not a model parameter; set the spectrum's own options instead");
   const std::vector<double> p = zoo_parameters(entry, overrides);
   const FlowSpectrumOptions flow = options.flow.value_or(entry.flow_spectrum);
@@ -393,7 +387,7 @@ LyapunovSpectrum zoo_spectrum(const ZooEntry& entry, const std::map<std::string,
 double zoo_mean_divergence(const ZooEntry& entry, const std::map<std::string, double>& overrides,
                            const ZooSpectrumOptions& options) {
   if (entry.delay || entry.model->delegate == Delegate::logistic || !entry.model->evaluate)
-    refuse("zoo_mean_divergence: not available for " + entry.name);
+    refuse_parameter("zoo_mean_divergence: not available for " + entry.name);
   const std::vector<double> p = zoo_parameters(entry, overrides);
   const std::size_t dim = entry.dimension;
   std::vector<double> x = entry.initial_state, j(dim * dim);

@@ -22,8 +22,6 @@ namespace {
 constexpr int kSlots = 8;  // at most 8 exponents
 using D = Dual<kSlots>;
 
-[[noreturn]] void refuse(const std::string& message) { throw InvalidInput(ErrorCode::invalid_parameter, message); }
-
 template <class T>
 struct MackeyGlassScheme {
   double beta, gamma, n, h;
@@ -64,15 +62,15 @@ LyapunovSpectrum delay_spectrum(const std::vector<double>& p, std::size_t steps_
                                 const FlowSpectrumOptions& options) {
   options.validate();
   if (exponents < 1 || exponents > static_cast<std::size_t>(kSlots))
-    refuse("delay spectrum: the number of exponents must be 1.." + std::to_string(kSlots) + " (got " +
+    refuse_parameter("delay spectrum: the number of exponents must be 1.." + std::to_string(kSlots) + " (got " +
            std::to_string(exponents) + ")");
-  if (steps_per_delay < 2) refuse("delay spectrum: steps_per_delay must be at least 2 (got " + std::to_string(steps_per_delay) + ")");
+  if (steps_per_delay < 2) refuse_parameter("delay spectrum: steps_per_delay must be at least 2 (got " + std::to_string(steps_per_delay) + ")");
   for (std::size_t i = 0; i < 4; ++i)
-    if (!(std::isfinite(p[i]) && p[i] > 0.0)) refuse("delay spectrum: beta, gamma, n and tau must be finite and positive");
+    if (!(std::isfinite(p[i]) && p[i] > 0.0)) refuse_parameter("delay spectrum: beta, gamma, n and tau must be finite and positive");
   MackeyGlassScheme<D> s(p, steps_per_delay);
   const double h = s.h;
   const auto per = static_cast<std::size_t>(std::lround(options.renormalisation_interval / h));
-  if (per < 1) refuse("delay spectrum: the renormalisation interval is shorter than one step h = " + std::to_string(h));
+  if (per < 1) refuse_parameter("delay spectrum: the renormalisation interval is shorter than one step h = " + std::to_string(h));
   const double interval = static_cast<double>(per) * h;
   const auto transient = static_cast<std::size_t>(std::lround(options.transient / interval));
   const auto intervals = static_cast<std::size_t>(std::lround(options.time / interval));
@@ -96,7 +94,7 @@ LyapunovSpectrum delay_spectrum(const std::vector<double>& p, std::size_t steps_
       double norm = 0.0;
       for_each_component([&](D& v) { norm += v.d[a] * v.d[a]; });
       norm = std::sqrt(norm);
-      if (!(norm > 0.0) || !std::isfinite(norm)) refuse("delay spectrum: a tangent vector lost all its length or overflowed");
+      if (!(norm > 0.0) || !std::isfinite(norm)) refuse_parameter("delay spectrum: a tangent vector lost all its length or overflowed");
       if (accumulate) sums[a] += std::log(norm);
       for_each_component([&](D& v) { v.d[a] /= norm; });
     }
@@ -115,7 +113,7 @@ LyapunovSpectrum delay_spectrum(const std::vector<double>& p, std::size_t steps_
   for (std::size_t r = transient / 2; r < transient + intervals; ++r) {
     for (std::size_t i = 0; i < per; ++i) s.step();
     if (!std::isfinite(s.x.v) || std::abs(s.x.v) > 1e100)
-      refuse("delay spectrum: the solution left every bounded region at t = " + std::to_string(static_cast<double>(s.k) * h));
+      refuse_parameter("delay spectrum: the solution left every bounded region at t = " + std::to_string(static_cast<double>(s.k) * h));
     orthonormalise(r >= transient);
   }
   LyapunovSpectrum out;

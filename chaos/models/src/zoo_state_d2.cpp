@@ -42,6 +42,34 @@ std::vector<std::vector<double>> zoo_state(const ZooEntry& entry, std::size_t n)
   return state;
 }
 
+std::vector<StateCoding> state_codings(const std::vector<std::vector<double>>& components, bool map) {
+  std::vector<StateCoding> out;
+  if (components.empty()) return out;
+  if (components.size() > 1) {
+    double largest = 0.0;
+    for (const auto& c : components) largest = std::max(largest, range_of(c));
+    StateCoding scaled{"common range", {}};
+    for (const auto& c : components) {
+      const double range = range_of(c);
+      const double factor = range > 0.0 ? largest / range : 1.0;
+      std::vector<double> v(c.size());
+      for (std::size_t i = 0; i < c.size(); ++i) v[i] = c[i] * factor;
+      scaled.components.push_back(std::move(v));
+    }
+    out.push_back(std::move(scaled));
+  }
+  const std::size_t n = components.front().size();
+  if (map && n >= 2) {
+    StateCoding graph{"with its image", {}};
+    for (const std::size_t shift : {std::size_t{0}, std::size_t{1}})
+      for (const auto& c : components)
+        graph.components.emplace_back(c.begin() + static_cast<std::ptrdiff_t>(shift),
+                                      c.begin() + static_cast<std::ptrdiff_t>(shift + n - 1));
+    out.push_back(std::move(graph));
+  }
+  return out;
+}
+
 std::vector<double> state_radii(const std::vector<std::vector<double>>& components, std::size_t count) {
   double range = 0.0;
   for (const auto& c : components) range = std::max(range, range_of(c));

@@ -8,11 +8,11 @@
 #include <chrono>
 #include <numbers>
 #include <cmath>
-#include <sstream>
 
 #include "chaos/automatic_analysis.hpp"
 #include "chaos/d2_answer.hpp"
 #include "chaos/detail/parallel.hpp"
+#include "chaos/format.hpp"
 #include "chaos/lyapunov_answer.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/models/control_signals.hpp"
@@ -62,12 +62,7 @@ constexpr std::size_t full_length = 100000;
 constexpr std::size_t fast_length = 10000;
 constexpr std::size_t short_length = 500;
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return format_number(v, Precision::title); }
 
 // The series of a zoo system: its default component at its default sampling.
 std::function<std::vector<double>(std::size_t)> system_series(const ZooEntry& e) {
@@ -337,14 +332,15 @@ ZooEstimate not_run(const std::string& why) {
 
 // The D2 references of a row at N = n for each Theiler window: the plateau of the state's own
 // correlation sums over its first n samples (zoo_state_d2.hpp), with the band they give (within 0.1
-// of the reference's interval); where the state gives no value, the case's band from the literature
-// or D_KY.
+// of the reference's interval). Where the state gives no value, or where another coding of the same
+// samples (state_codings) reads more than 0.1 away or no plateau at all, the case's band from the
+// literature or D_KY.
 struct D2Reference {
   ZooEstimate reference;
   ZooBand band;
 };
 
-std::vector<D2Reference> d2_references(const std::vector<std::vector<double>>& state, std::size_t n,
+std::vector<D2Reference> d2_references(const std::vector<std::vector<double>>& state, bool map, std::size_t n,
                                        const std::vector<std::size_t>& windows, const ZooBand& fallback) {
   std::vector<D2Reference> out(windows.size(), D2Reference{not_run("none: no state vector"), fallback});
   if (state.empty()) return out;
@@ -352,9 +348,18 @@ std::vector<D2Reference> d2_references(const std::vector<std::vector<double>>& s
   for (const auto& c : state) prefix.emplace_back(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(n));
   // A cap of 10^6 pairs per radius: exact sums of the state cost 50-90 s per system at N = 10^5, the
   // capped ones 3-10 s, with the same reference to 0.01 on Lorenz, Rossler, Henon and Duffing.
-  const std::vector<CorrelationSumResult> sums = state_correlation_sums(prefix, state_radii(prefix), windows, 1000000);
+  const auto references = [&](const std::vector<std::vector<double>>& components) {
+    std::vector<Estimate> e;
+    for (const CorrelationSumResult& sums :
+         state_correlation_sums(components, state_radii(components), windows, 1000000))
+      e.push_back(state_d2_reference(sums));
+    return e;
+  };
+  const std::vector<Estimate> own = references(prefix);
+  std::vector<std::pair<std::string, std::vector<Estimate>>> others;
+  for (const StateCoding& coding : state_codings(prefix, map)) others.emplace_back(coding.name, references(coding.components));
   for (std::size_t q = 0; q < windows.size(); ++q) {
-    const Estimate e = state_d2_reference(sums[q]);
+    const Estimate& e = own[q];
     out[q].reference.value = e.value;
     out[q].reference.interval = e.interval;
     out[q].reference.status = to_string(e.status);
@@ -362,12 +367,25 @@ std::vector<D2Reference> d2_references(const std::vector<std::vector<double>>& s
       out[q].band.source = "the state shows no plateau (" + e.reason + "); " + fallback.source;
       continue;
     }
+    std::string readings = "own " + fmt(*e.value);
+    bool depends = false;
+    for (const auto& [name, estimates] : others) {
+      const Estimate& o = estimates[q];
+      readings += ", " + name + " " + (o.value ? fmt(*o.value) : std::string("no plateau"));
+      if (!o.value || std::abs(*o.value - *e.value) > 0.1) depends = true;
+    }
+    if (depends) {
+      out[q].reference = not_run("none: the state's D2 depends on its coordinates (" + readings + ")");
+      out[q].band.source = "the state's D2 depends on its coordinates at N = " + std::to_string(n) + ", w = " +
+                           std::to_string(windows[q]) + " (" + readings + "); " + fallback.source;
+      continue;
+    }
     // The reference is the plateau with its own interval: within 0.1 of that interval.
     const Interval i = e.interval.value_or(Interval{*e.value, *e.value});
     out[q].band.accepted = {Interval{i.low - 0.1, i.high + 0.1}};
     out[q].band.source = "the state's own D2 = " + fmt(*e.value) + " [" + fmt(i.low) + ", " + fmt(i.high) + "] (" +
                          to_string(e.status) + ") at N = " + std::to_string(n) + ", w = " + std::to_string(windows[q]) +
-                         ", +-0.1";
+                         " (" + readings + "), +-0.1";
   }
   return out;
 }
@@ -470,7 +488,7 @@ ZooCaseResult run_zoo_case(const ZooCase& c, std::size_t case_index, const ZooSu
       };
       const std::vector<D2Reference> references =
           c.kind == ZooCaseKind::chaotic
-              ? d2_references(state, n, used_windows, c.d2_band)
+              ? d2_references(state, !c.dt.has_value(), n, used_windows, c.d2_band)
               : std::vector<D2Reference>(used.size(), D2Reference{not_run("none: not a chaotic system"), c.d2_band});
       base.d2_reference = references.front().reference;
       base.d2_band = references.front().band;

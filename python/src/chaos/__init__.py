@@ -45,13 +45,15 @@ def _parameters(command):
     as ``**params``, every one of them present (its default where the caller left it out), and hands
     them to _core; ``inspect.signature`` and ``help`` show them with their defaults."""
     table = _core.parameters(command)
-    defaults = {name: default for name, default, _ in table}
 
     def decorate(function):
         own = inspect.signature(function).parameters.values()
         keyword = [p for p in own if p.kind is inspect.Parameter.KEYWORD_ONLY]
         leading = [p for p in own if p.kind in (inspect.Parameter.POSITIONAL_ONLY,
                                                 inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+        # A table parameter the function takes by position (chaos.zoo's ``only``) keeps its place and
+        # is handed on by the function itself; its default there is the table's (a test checks it).
+        defaults = {name: default for name, default, _ in table if name not in {p.name for p in leading}}
         accepted = set(defaults) | {p.name for p in own if p.kind is not inspect.Parameter.VAR_KEYWORD}
 
         @functools.wraps(function)
@@ -601,7 +603,8 @@ def section(data, *, skip=0, length=None, **params):
     return _make(_core.section(values, times, ARRAY_NAME, params))
 
 
-def validate(filter=None, *, progress=None):
+@_parameters("validate")
+def validate(filter=None, *, progress=None, **params):
     """Runs the reference cases of references/references.tsv on this machine (``chaos validate``).
 
     Each case regenerates its data from the row's conditions (system, parameters, N, seed), runs the
@@ -617,7 +620,7 @@ def validate(filter=None, *, progress=None):
     """
     bar = _progress_bar(progress, "validate")
     try:
-        return _make(_core.validate(dict(filter=filter), bar))
+        return _make(_core.validate(dict(params, filter=filter), bar))
     finally:
         if bar is not None and not callable(progress):
             sys.stderr.write("\n")
@@ -629,13 +632,15 @@ def validation_cases(filter=None):
     return _core.validate_list(dict(filter=filter))
 
 
-def zoo(only=None, *, fast=False, grid=True, grid_points=2, threads=1, checkpoint=None, progress=None):
+@_parameters("zoo")
+def zoo(only=None, *, progress=None, **params):
     """The out-of-sample regression suite (``chaos zoo``): every chaotic system of the zoo and the
     controls (noise, IAAFT surrogates, random walks, periodic, quasi-periodic, noisy, quantised and
     short chaos) through the automatic pipeline of ``analyze``, each confident estimate judged
     against a band fixed in advance (chaos/models/include/chaos/models/zoo_suite.hpp): D2 within +-0.1 of the
     attractor's own D2 at the same N, Theiler window and scales (the plateau of its full state's
-    correlation sums, from the equations), else of a cited literature D2, else not above D_KY + 0.1
+    correlation sums, from the equations, where another coding of the same samples reads it within
+    0.1), else of a cited literature D2, else not above D_KY + 0.1
     (Kaplan and Yorke 1979, from the equations); lambda_1
     within 10% of lambda_1 from the equations (``spectrum``); noise, surrogates and random walks:
     no confident value; periodic and quasi-periodic signals: D2 equal to the torus dimension
@@ -660,16 +665,18 @@ def zoo(only=None, *, fast=False, grid=True, grid_points=2, threads=1, checkpoin
     """
     if isinstance(only, str):
         only = [name for name in only.split(",") if name]
+    if params["checkpoint"] is not None:
+        params["checkpoint"] = os.fspath(params["checkpoint"])
     bar = _progress_bar(progress, "zoo")
     try:
-        return _make(_core.zoo(dict(only=None if only is None else list(only), fast=fast, grid=grid,
-                                    grid_points=grid_points, threads=threads, checkpoint=None if checkpoint is None else os.fspath(checkpoint)), bar))
+        return _make(_core.zoo(dict(params, only=None if only is None else list(only)), bar))
     finally:
         if bar is not None and not callable(progress):
             sys.stderr.write("\n")
 
 
-def zoo_series(name, *, fast=False, threads=1):
+@_parameters("zoo_series")
+def zoo_series(name, **params):
     """The exact series a case of the zoo regression suite is analysed with (``chaos zoo --series
     NAME``; ``fast=True``: the CI subset's case at N = 10^4), so that any row of docs/validation/zoo.md can be
     reproduced with ``d2``, ``lyapunov`` or ``analyze``. ``name``: a case of docs/validation/zoo.md's first
@@ -680,7 +687,7 @@ def zoo_series(name, *, fast=False, threads=1):
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a string (got {type(name).__name__})")
-    json, values = _core.zoo_series(name, dict(fast=fast, threads=threads))
+    json, values = _core.zoo_series(name, params)
     values.flags.writeable = False
     return _make(json, {"x": values})
 

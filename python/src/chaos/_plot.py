@@ -248,7 +248,7 @@ def section(r, ax=None):
     return map (value of point k against point k + 1)."""
     ax = _axes(ax)
     points = r.points
-    columns = r.parameters["columns"].split(",")
+    columns = [str(int(c)) for c in np.atleast_1d(r.parameters["columns"])]
     if points.ndim == 2 and points.shape[1] >= 2:
         ax.plot(points[:, 0], points[:, 1], "o", ms=2)
         ax.set_xlabel(f"column {columns[0]}")

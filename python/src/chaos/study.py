@@ -60,10 +60,11 @@ def read_table(path):
 class Sweep:
     """A finished sweep: ``samples``, ``points`` and ``analysis`` (None without ``analysis=True``),
     each a read-only mapping column name -> array, as the command's tables hold them; ``summary``
-    (points, computed, resumed_from_disk, failed, analysis_failed, threads: the command's summary
-    without its directory, ranks and wall time); ``spec`` (spec.txt, the canonical text of the
-    sweep); ``warnings`` (what the command prints about the scene); ``directory`` (None when the
-    result went to a temporary directory, since removed)."""
+    (the command's summary, key for key: directory, points, computed, resumed_from_disk, failed,
+    analysis_failed, lyapunov_failed, threads, ranks, wall_seconds); ``spec`` (spec.txt, the
+    canonical text of the sweep); ``warnings`` (what the command prints about the scene);
+    ``directory`` (None, in the summary too, when the result went to a temporary directory, since
+    removed)."""
 
     def __init__(self, directory, summary, warnings, keep_directory):
         self.samples = read_table(os.path.join(directory, "samples.tsv"))
@@ -72,14 +73,9 @@ class Sweep:
         self.analysis = read_table(analysis) if os.path.exists(analysis) else None
         with open(os.path.join(directory, "spec.txt"), encoding="utf-8") as f:
             self.spec = f.read()
-        # An analysis failed where the estimators refused the series ("stopped at", "series too
-        # short"); a point not analysed is counted among the failed simulations (study/cli/main.cpp).
-        failed = 0
-        if self.analysis is not None:
-            failed = sum(1 for s in self.analysis["status"] if s.startswith(("stopped at", "series too short")))
-        self.summary = dict(summary, analysis_failed=failed)
-        self.warnings = tuple(warnings)
         self.directory = directory if keep_directory else None
+        self.summary = dict(summary, directory=self.directory)
+        self.warnings = tuple(warnings)
 
     def __repr__(self):
         return (f"<Sweep {self.summary['points']} points, {self.summary['failed']} failed"
@@ -161,9 +157,8 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     directory = os.fspath(output) if output is not None else tempfile.mkdtemp(prefix="chaos-sweep-")
     bar = _progress_bar(progress, "sweep")
     try:
-        summary = _core.study_sweep(toml, source, overrides, _axes(axis), params, directory,
-                                    bool(resume) if output is not None else False, threads, bar)
-        warnings = summary.pop("warnings")
+        summary, warnings = _core.study_sweep(toml, source, overrides, _axes(axis), params, directory,
+                                              bool(resume) if output is not None else False, threads, bar)
         return Sweep(directory, summary, warnings, output is not None)
     finally:
         if bar is not None and not callable(progress):

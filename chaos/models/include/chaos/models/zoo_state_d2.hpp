@@ -14,6 +14,16 @@
 // No embedding is involved, so the reference shares none of the embedding's choices (delay,
 // dimension, saturation), only the record.
 //
+// The reading must not depend on how the state is written down. D2 is invariant under a smooth change
+// of coordinates, but a plateau at finite N and scales is not: with each component scaled to a
+// common range, Sprott E reads 1.733 instead of 1.575, Sprott's jerk flow 1.276 instead of 1.748 and
+// Moore-Spiegel 1.668 instead of 1.314 at N = 10^5 (docs/notes/zoo-state-space.md), and the Ricker
+// map's state, a tenth of whose values lie within 0.0072 of 0 in a range of 3, reads 0.54 where the
+// map's graph (x_i, x_{i+1}) stretches that cluster 27-fold. So the reference is also read in other
+// codings of the same samples (state_codings); where one of them differs from the state's own by
+// more than the band's 0.1, or shows no plateau, the reading belongs to the coordinates, not to the
+// attractor, and the zoo holds the row to its fallback band instead (zoo_suite.hpp).
+//
 // The state: every variable of the equations, except that a forced flow's phase phi (which grows
 // without bound) becomes (A cos phi, A sin phi), with A half the largest range of the other
 // variables: a smooth embedding of the circle it lives on, which keeps D2, at a scale comparable
@@ -22,6 +32,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "chaos/correlation_sum.hpp"
@@ -48,6 +59,19 @@ std::vector<CorrelationSumResult> state_correlation_sums(const std::vector<std::
                                                          const std::vector<double>& radii,
                                                          std::span<const std::size_t> theilers,
                                                          std::uint64_t pairs_per_radius = 0, std::uint64_t seed = 1);
+
+// A way of writing down the same states: its name, as the report gives it, and its components.
+struct StateCoding {
+  std::string name;
+  std::vector<std::vector<double>> components;
+};
+
+// The codings the reference is read in besides the state's own: every component scaled to the
+// largest one's range (a linear change of coordinates; only where there are two or more), and, for
+// a map, each state beside its image, (s_i, s_{i+1}) for i < n - 1 (the graph of the map, a smooth
+// embedding of the same attractor; a flow sampled finely moves too little in one sample for this
+// coding to differ from its own, so flows are not read in it).
+std::vector<StateCoding> state_codings(const std::vector<std::vector<double>>& components, bool map);
 
 // The radii of the reference for n samples of a state: choose_radii's grid (range/1000 to range/4,
 // `count` radii) for the state's max-norm range (the largest range of its components).

@@ -5,7 +5,9 @@
 // confident estimate judged against a band fixed in advance:
 //   - D2 within 0.1 of the attractor's own D2 at the same N, Theiler window and scales: the
 //     plateau of the full state's correlation sums from the equations (zoo_state_d2.hpp), per N and
-//     window, with its own interval (the band is that interval widened by 0.1 at each end). Where the state has none (a delay equation, or no plateau), within +-0.1 of a cited
+//     window, with its own interval (the band is that interval widened by 0.1 at each end). Where the
+//     state has none (a delay equation, no plateau, or a reading that moves by more than 0.1 in
+//     another coding of the same samples: zoo_state_d2.hpp), within +-0.1 of a cited
 //     literature D2, or, where none is cited, not above D_KY + 0.1 (D_KY from the equations). The
 //     zero-scale values (literature, D_KY) stay in the report for information;
 //   - lambda_1 within 10% of the spectrum's lambda_1 from the equations (each estimator's strict fit,
