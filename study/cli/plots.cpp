@@ -83,6 +83,11 @@ Table read_table(const std::string& path) {
     t.text.push_back(std::move(f));
   }
   if (t.names.empty()) throw StudyError("study plot", path, "has no '# point' header line: not a study table");
+  // gnuplot given no data fails without a word: the table is refused here, naming it.
+  if (t.rows.empty())
+    throw StudyError("study plot", path,
+                     "has no data rows under its header: nothing to draw (a table cut short loses them; "
+                     "`study sweep ... --resume` with the sweep's options assembles it again from the point files)");
   return t;
 }
 

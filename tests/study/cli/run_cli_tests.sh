@@ -205,6 +205,12 @@ grep -q 'probability density (per m)' "$work/density_units.svg" || fail "density
 expect_code 3 "plot without analysis" "$STUDY" plot "$work/a" --figure d2 -o "$work/none.svg"
 expect_message "cannot be read" "plot without analysis"
 expect_code 3 "bad plot extension" "$STUDY" plot "$work/a" --figure bifurcation -o "$work/fig.pdf"
+# A samples table cut short after its header has nothing to draw: refused naming it (gnuplot given no
+# data failed with only "is gnuplot-nox installed?").
+cp -r "$work/a" "$work/header_only"
+grep '^#' "$work/a/samples.tsv" > "$work/header_only/samples.tsv"
+expect_code 3 "plot of a header-only table" "$STUDY" plot "$work/header_only" --figure density -o "$work/empty.svg"
+expect_message "samples.tsv: has no data rows" "plot of a header-only table"
 
 # The one-scene pipeline (seed Fig. 7): a JSON summary with every stage, and the six panels.
 expect_code 3 "pipeline analysing more than it runs" "$STUDY" pipeline --periods 4 --analysis-periods 5
