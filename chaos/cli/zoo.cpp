@@ -26,9 +26,6 @@ struct ZooArgs {
   bool json = false;   // --series as one JSON object
 };
 
-// A time in seconds for the progress lines.
-std::string seconds(double v, Precision precision) { return format_number(v, precision); }
-
 // The exact series a case is analysed with (the N = 10^4 rows use its first 10^4 samples), so that
 // any row of docs/validation/zoo.md can be reproduced with chaos d2, lyapunov or analyze.
 void write_case_series(const ZooArgs& args) {
@@ -56,7 +53,7 @@ void run(const ZooArgs& args) {
   if (args.json) throw InvalidInput(ErrorCode::invalid_parameter, "zoo: --json writes a case's series: give --series NAME");
   const ZooRun run = run_zoo(args.params, [&](std::size_t done, std::size_t total, const ZooCase& c, const ZooCaseResult& r) {
     if (!args.quiet)
-      std::cerr << "zoo: " << done << "/" << total << " " << c.name << " (" << seconds(r.seconds, Precision::coarse) << " s)"
+      std::cerr << "zoo: " << done << "/" << total << " " << c.name << " (" << format_number(r.seconds, Precision::coarse) << " s)"
                 << (r.error.empty() ? "" : " error: " + r.error) << "\n";
   });
   if (args.output.empty()) {
@@ -66,7 +63,7 @@ void run(const ZooArgs& args) {
   }
   if (!args.quiet)
     std::cerr << "zoo: " << run.wrong << " confident and wrong; D2 coverage " << run.d2_covered << "/" << run.chaotic
-              << ", lambda coverage " << run.lambda_covered << "/" << run.chaotic << "; " << seconds(run.wall_seconds, Precision::title)
+              << ", lambda coverage " << run.lambda_covered << "/" << run.chaotic << "; " << format_number(run.wall_seconds, Precision::title)
               << " s" << (run.resumed > 0 ? " (" + std::to_string(run.resumed) + " case(s) read from " + args.params.checkpoint + ")" : "")
               << "\n";
   if (run.wrong > 0) throw ValidationFailed{};

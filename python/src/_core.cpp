@@ -730,8 +730,7 @@ py::tuple study_sweep(const std::string& toml, const std::string& source, const 
   }
   // The command's summary (study::summary_json), key for key; the scene's warnings beside it.
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::ordered_json json =
-      nlohmann::ordered_json::parse(study::summary_json(summary, directory, threads, 1, wall).dump());
+  const nlohmann::ordered_json json(study::summary_json(summary, directory, threads, 1, wall));
   return py::make_tuple(to_python(json), mechanism::scene_warnings(study::point_scene(spec, 0)));
 }
 
