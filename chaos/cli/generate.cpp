@@ -81,7 +81,7 @@ void register_generate(CLI::App& app) {
   command->add_option("system", args->params.system, "lorenz, rossler, henon, logistic, ikeda, mackey_glass, sine, quasi_periodic, "
                                                "white_noise, uniform_noise, ar1, or a zoo system (--list)");
   command->add_flag("--list", args->list, "list the zoo systems with their parameters, sampling and citation");
-  add_options(*command, args->params, generate_parameters());
+  add_options(*command, args->params, generate_parameters(), parse_settings);
   add_output_options(*command, args->output);
   command->footer(systems_help());
   command->callback([args] { run(*args); });

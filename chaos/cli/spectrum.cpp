@@ -42,7 +42,7 @@ void register_spectrum(CLI::App& app) {
   add_quiet_option(*command);
   command->add_option("system", args->params.system, "lorenz, rossler, henon, logistic, ikeda or any zoo system "
                                                "(chaos generate --list)")->required();
-  add_options(*command, args->params, spectrum_parameters());
+  add_options(*command, args->params, spectrum_parameters(), parse_settings);
   add_output_options(*command, args->output);
   command->callback([args] { run(*args); });
 }

@@ -5,7 +5,7 @@
 // fills a Report: its parameters (the '#' header / "parameters") and its JSON body, exactly what
 // `chaos X --json` writes. The command line adds the text table and the plot; the Python package
 // hands the JSON over as the result. X_parameters() is the command's parameter table
-// (parameter_table.hpp, parameter_tables.cpp): its options and Python keyword arguments.
+// (support/parameters/parameter_table.hpp, parameter_tables.cpp): its options and Python keyword arguments.
 
 #include <cstddef>
 #include <cstdint>
@@ -38,6 +38,11 @@
 #include "report.hpp"
 
 namespace chaos::cli {
+
+using cli_support::field;
+using cli_support::Parameter;
+using cli_support::ParameterField;
+using cli_support::ParameterTable;
 
 // chaos mutual
 // Without max_delay, the delay search of choose_delay (100 samples, then on to two Theiler windows,

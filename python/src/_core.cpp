@@ -36,6 +36,7 @@
 #include "study/run_sweep.hpp"
 #include "study/sweep.hpp"
 #include "summary_json.hpp"
+#include "sweep_parameters.hpp"
 
 namespace py = pybind11;
 using namespace chaos::cli;
@@ -189,6 +190,7 @@ py::list parameters(const std::string& command) {
   if (command == "validate") return describe(validate_parameters());
   if (command == "zoo") return describe(zoo_parameters());
   if (command == "zoo_series") return describe(zoo_series_parameters());
+  if (command == "study_sweep") return describe(study::sweep_parameters());
   value_error("no parameter table for '" + command + "'");
 }
 
@@ -663,45 +665,24 @@ py::dict simulate_scene(const std::string& toml, const std::vector<std::string>&
 }
 
 // study sweep: the spec as `study sweep` builds it from its options (scene text and source, --set,
-// --axis, --initial, --periods, --keep, --signals, --analysis and its options), run into `directory`
+// --axis, and the keyword arguments of its parameter table, study::sweep_parameters), run into `directory`
 // on `threads` threads (ResultStore, run_sweep, assemble: the code behind the command), returning
 // the command's summary (study::summary_json) and the scene's warnings. `progress` (a callable or None) gets the fraction of
 // points done; Ctrl-C stops the sweep after the points being computed (a --resume finishes it).
 py::tuple study_sweep(const std::string& toml, const std::string& source, const std::vector<std::string>& overrides,
                      const std::vector<std::string>& axes, const py::dict& p, const std::string& directory, bool resume,
                      std::size_t threads, py::object progress) {
-  study::SweepSpec spec;
+  study::SweepParams params;
+  read_parameters(p, params, study::sweep_parameters());
   if (!toml.empty()) {
-    spec.scene_text = toml;
-    spec.scene_source = source;
+    params.spec.scene_text = toml;
+    params.spec.scene_source = source;
   }
-  spec.overrides = overrides;
+  params.spec.overrides = overrides;
   std::vector<study::Axis> parsed;
   for (const auto& a : axes) parsed.push_back(study::parse_axis(a));
-  spec.grid = study::Grid(std::move(parsed));
-  std::string initial = "fresh";
-  get(p, "initial", initial);
-  if (initial != "fresh" && initial != "continuation")
-    value_error("initial must be fresh or continuation (got '" + initial + "')");
-  spec.initial = initial == "fresh" ? study::InitialConditions::fresh : study::InitialConditions::continuation;
-  get(p, "periods", spec.periods);
-  get(p, "keep", spec.keep);
-  if (has(p, "signals")) {
-    spec.signals.clear();
-    for (const auto& v : p["signals"]) {
-      if (!py::isinstance<py::str>(v)) type_error("signals must be strings");
-      spec.signals.push_back(v.cast<std::string>());
-    }
-  }
-  get(p, "analysis", spec.analyse);
-  get(p, "analysis_periods", spec.analysis.periods);
-  get(p, "analysis_interval", spec.analysis.interval);
-  get(p, "analysis_samples_per_period", spec.analysis.samples_per_period);
-  get(p, "max_delay", spec.analysis.max_delay);
-  get(p, "max_dimension", spec.analysis.max_dimension);
-  get(p, "surrogates", spec.analysis.surrogates);
-  get(p, "test_length", spec.analysis.test_length);
-  get(p, "seed", spec.analysis.seed);
+  params.spec.grid = study::Grid(std::move(parsed));
+  const study::SweepSpec spec = study::sweep_spec(std::move(params));
   if (threads == 0) value_error("threads must be at least 1 (got 0)");
   auto callback = std::make_shared<py::object>(std::move(progress));
   study::SweepSummary summary;

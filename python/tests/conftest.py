@@ -11,6 +11,7 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 CLI = Path(os.environ.get("CHAOS_CLI", REPO / "build" / "chaos" / "chaos"))
+STUDY = Path(os.environ.get("STUDY_CLI", CLI.parent.parent / "study" / "study"))
 
 
 @pytest.fixture(scope="session", autouse=True)
@@ -25,14 +26,24 @@ def ctrl_c_raises():
     signal.signal(signal.SIGINT, previous)
 
 
-def run_cli(*args, check=True):
-    """Runs the command; returns the CompletedProcess."""
-    if not CLI.exists():
-        pytest.skip(f"the chaos command is not built at {CLI} (set CHAOS_CLI)")
-    p = subprocess.run([str(CLI), *map(str, args)], capture_output=True, text=True)
+def _run(tool, variable, args, check):
+    name = tool.name  # "chaos" or "study"
+    if not tool.exists():
+        pytest.skip(f"the {name} command is not built at {tool} (set {variable})")
+    p = subprocess.run([str(tool), *map(str, args)], capture_output=True, text=True)
     if check and p.returncode != 0:
-        raise AssertionError(f"chaos {' '.join(map(str, args))} failed ({p.returncode}): {p.stderr}")
+        raise AssertionError(f"{name} {' '.join(map(str, args))} failed ({p.returncode}): {p.stderr}")
     return p
+
+
+def run_cli(*args, check=True):
+    """Runs the chaos command; returns the CompletedProcess."""
+    return _run(CLI, "CHAOS_CLI", args, check)
+
+
+def run_study(*args, check=True):
+    """Runs the study command (STUDY_CLI, or beside the chaos command's build); returns the CompletedProcess."""
+    return _run(STUDY, "STUDY_CLI", args, check)
 
 
 def cli_json(*args):

@@ -1,5 +1,6 @@
 """The functions' keyword arguments come from the commands' parameter tables
-(chaos/commands/parameter_tables.cpp), the same tables the `chaos` commands' options come from: the
+(chaos/commands/parameter_tables.cpp, study/commands/sweep_parameters.cpp), the same tables the
+`chaos` commands' and `study sweep`'s options come from: the
 Python defaults are checked against the defaults the command line itself prints in its --help (CLI11
 renders the bound field's value), so that Python and the command line cannot drift apart."""
 import inspect
@@ -9,16 +10,20 @@ import numpy as np
 import pytest
 
 import chaos
-from chaos import _core
+from chaos import _core, study
 
-from conftest import run_cli
+from conftest import run_cli, run_study
 
 # Python function -> `chaos` command, for every function built from a parameter table.
 COMMANDS = {"mutual": "mutual", "autocorrelation": "autocorrelation", "cao": "cao", "fnn": "fnn", "d2": "d2",
             "lyapunov": "lyapunov", "lyapunov_maps": "lyapunov-maps", "analyze": "analyze",
             "surrogates": "surrogates", "nonlinearity": "nonlinearity", "generate": "generate",
             "spectrum": "spectrum", "density": "density", "section": "section", "validate": "validate",
-            "zoo": "zoo", "zoo_series": "zoo"}
+            "zoo": "zoo", "zoo_series": "zoo", "study_sweep": "study sweep"}
+
+
+def function_of(name):
+    return study.sweep if name == "study_sweep" else getattr(chaos, name)
 
 # An option line of CLI11's help: "  -m,--min-dimension UINT=1   text": the names, then the type in
 # capitals with the default after "=" (none for a flag), then the description.
@@ -26,9 +31,11 @@ OPTION = re.compile(r"^  (-[^ ]+)(?: ([A-Z][A-Za-z|]*(?:=[^ ]*)?)(?= |$))?")
 
 
 def cli_options(command):
-    """{long name: the default the help shows, or None} of `chaos COMMAND --help`."""
+    """{long name: the default the help shows, or None} of `chaos COMMAND --help` (`study sweep --help`)."""
     options = {}
-    for line in run_cli(command, "--help").stdout.splitlines():
+    study_command = command.startswith("study ")
+    shown = run_study(command.split()[1], "--help") if study_command else run_cli(command, "--help")
+    for line in shown.stdout.splitlines():
         m = OPTION.match(line)
         if not m:
             continue
@@ -47,7 +54,7 @@ def long_name(flags):
 @pytest.mark.parametrize("function", sorted(COMMANDS))
 def test_python_defaults_are_the_command_lines(function):
     table = _core.parameters(function)
-    signature = inspect.signature(getattr(chaos, function))
+    signature = inspect.signature(function_of(function))
     shown = cli_options(COMMANDS[function])
     assert table, function
     for name, default, flags in table:

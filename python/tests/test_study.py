@@ -9,22 +9,12 @@ import numpy as np
 import pytest
 
 from chaos import mechanism, study
-from conftest import CLI
+from conftest import run_study
 
-STUDY = Path(os.environ.get("STUDY_CLI", CLI.parent.parent / "study" / "study"))
 # The fast scene of tests/study/cli/run_cli_tests.sh: dopri5 at 1e-5 with a small sigma1 velocity.
 FAST = ["joint.slider.friction.sigma1_velocity=1e-3", 'integrator.method="dopri5"',
         "integrator.relative_tolerance=1e-5"]
 TABLES = ["spec.txt", "samples.tsv", "points.tsv"]
-
-
-def run_study(*args, check=True):
-    if not STUDY.exists():
-        pytest.skip(f"the study command is not built at {STUDY} (set STUDY_CLI)")
-    p = subprocess.run([str(STUDY), *map(str, args)], capture_output=True, text=True)
-    if check and p.returncode != 0:
-        raise AssertionError(f"study {' '.join(map(str, args))} failed ({p.returncode}): {p.stderr}")
-    return p
 
 
 def sets(overrides):
@@ -103,6 +93,9 @@ def test_temporary_directory_resume_and_refusals(tmp_path):
     (["--signals", "slider_height"], dict(signals="slider_height")),
     (["--analysis", "--max-delay", 0], dict(analysis=True, max_delay=0)),
     (["--surrogates", 19], dict(surrogates=19)),
+    (["--initial", "bogus"], dict(initial="bogus")),
+    # The seed scene's phase space has 6 dimensions (the slider's 3 coordinates and their rates).
+    (["--lyapunov", "--lyapunov-exponents", 7], dict(lyapunov=True, lyapunov_exponents=7)),
 ])
 def test_refused_sweeps_raise_the_command_s_message(tmp_path, cli_args, kwargs):
     p = run_study("sweep", *cli_args, "-o", tmp_path / "cli", check=False)
@@ -164,3 +157,16 @@ def test_a_sweep_into_a_full_file_system_raises_with_the_path_and_reason(tmp_pat
     assert "spec.txt" in p.stdout and "File too large" in p.stdout, p.stdout
     left = [f.name for f in out.rglob("*")] if out.exists() else []
     assert "spec.txt" not in left and not any(".tmp." in f for f in left), left
+
+
+def test_lyapunov_exponents_per_point_as_the_command_writes_them(tmp_path):
+    # The keyword arguments of --lyapunov and its options come from the same table as the command's
+    # options (study/commands/sweep_parameters.cpp): the same lyapunov.tsv, byte for byte.
+    options = ["--periods", 12, "--keep", 1, "--lyapunov", "--lyapunov-periods", 10, "--lyapunov-exponents", 2,
+               "--lyapunov-intervals", 20]
+    run_study("sweep", *sets(FAST), *options, "-q", "-o", tmp_path / "cli")
+    s = study.sweep(set=FAST, periods=12, keep=1, lyapunov=True, lyapunov_periods=10, lyapunov_exponents=2,
+                    lyapunov_intervals=20, output=tmp_path / "py")
+    same_files(tmp_path / "cli", tmp_path / "py", TABLES + ["lyapunov.tsv"])
+    assert list(s.lyapunov["status"]) == ["completed"] and np.isfinite(s.lyapunov["lambda_2"]).all()
+    assert s.summary["lyapunov_failed"] == 0

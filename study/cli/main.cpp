@@ -27,12 +27,14 @@
 #include "mechanism/error.hpp"
 #include "mpi_session.hpp"
 #include "option_checks.hpp"
+#include "parameter_options.hpp"
 #include "pipeline.hpp"
 #include "progress_bar.hpp"
 #include "plots.hpp"
 #include "safe_output.hpp"
 #include "study/error.hpp"
 #include "study/run_sweep.hpp"
+#include "sweep_parameters.hpp"
 
 namespace {
 
@@ -55,38 +57,16 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "study 0.1.0");
 
-  study::SweepSpec spec;
-  std::string scene_file, initial = "fresh", out_dir, signals = "slider_y,slider_vy";
+  study::SweepParams params;
+  std::string scene_file, out_dir;
   std::vector<std::string> axes;
   bool resume = false, quiet = false;
   std::size_t threads = 0;
   auto* sweep = app.add_subcommand("sweep", "run a one- or two-dimensional sweep over scene keys into a result directory");
   sweep->add_option("scene", scene_file, "scene file (TOML); without one, the built-in seed scene");
-  sweep->add_option("--set", spec.overrides, "override a scene key for every point: --set joint.slider.friction.sigma1_velocity=1e-3");
+  sweep->add_option("--set", params.spec.overrides, "override a scene key for every point: --set joint.slider.friction.sigma1_velocity=1e-3");
   sweep->add_option("--axis", axes, "a swept key: key=from:to:count or key=v1,v2,... (at most two; the first varies fastest)");
-  sweep->add_option("--initial", initial, "fresh (the seed's Eq. 29 at every point) or continuation (from the previous point's final state along the first axis)")
-      ->check(CLI::IsMember({"fresh", "continuation"}));
-  sweep->add_option("--periods", spec.periods, "crank revolutions per point, transient included (the seed: 1000)");
-  sweep->add_option("--keep", spec.keep, "stroboscopic revolutions kept at the end of each point (the seed: 500 for the PDF, 50 plotted)");
-  sweep->add_option("--signals", signals, "comma-separated signals sampled once per kept revolution (mechanism simulate's names)");
-  sweep->add_flag("--analysis", spec.analyse, "also analyse slider_y over the last --analysis-periods revolutions: MI delay, Cao E1/E2, D2");
-  sweep->add_option("--analysis-periods", spec.analysis.periods, "revolutions analysed (the seed: 5)");
-  sweep->add_option("--analysis-interval", spec.analysis.interval, "s between samples of the analysed series");
-  sweep->add_option("--analysis-samples-per-period", spec.analysis.samples_per_period,
-                    "sample the analysed series this many times per crank revolution instead of every --analysis-interval");
-  sweep->add_option("--max-delay", spec.analysis.max_delay, "largest mutual-information delay of the first search, samples (with no minimum there, the search goes on to two Theiler windows)");
-  sweep->add_option("--max-dimension", spec.analysis.max_dimension, "Cao and D2 up to this embedding dimension");
-  sweep->add_option("--surrogates", spec.analysis.surrogates,
-                    "with --analysis: the IAAFT surrogate test for nonlinearity with this many surrogates (19: one-sided 5%; 0: none)");
-  sweep->add_option("--test-length", spec.analysis.test_length, "samples given to the surrogate test (the first ones of the analysed series)");
-  sweep->add_option("--seed", spec.analysis.seed, "seed of the surrogates");
-  sweep->add_flag("--lyapunov", spec.lyapunov,
-                  "also compute each point's Lyapunov exponents from the equations, from its final state (mechanism lyapunov)");
-  sweep->add_option("--lyapunov-periods", spec.lyapunov_options.periods, "crank periods averaged (>= 10)");
-  sweep->add_option("--lyapunov-exponents", spec.lyapunov_options.exponents, "leading exponents per point");
-  sweep->add_option("--lyapunov-perturbation", spec.lyapunov_options.perturbation,
-                    "separation relative to each coordinate's scale");
-  sweep->add_option("--lyapunov-intervals", spec.lyapunov_options.intervals_per_period, "renormalisations per crank period");
+  cli_support::add_options(*sweep, params, study::sweep_parameters());
   sweep->add_option("--threads", threads, "worker threads (default: the cores available, divided among MPI ranks)");
   sweep->add_option("-o,--output", out_dir, "result directory (docs/reference/study.md lists its files)")->required();
   sweep->add_flag("--resume", resume, "continue the sweep already in the directory (its spec must match)");
@@ -125,17 +105,13 @@ int run(int argc, char** argv) {
       return ok;
     }
     if (!scene_file.empty()) {
-      spec.scene_text = read_text(scene_file);
-      spec.scene_source = scene_file;
+      params.spec.scene_text = read_text(scene_file);
+      params.spec.scene_source = scene_file;
     }
     std::vector<study::Axis> parsed;
     for (const auto& a : axes) parsed.push_back(study::parse_axis(a));
-    spec.grid = study::Grid(std::move(parsed));
-    spec.initial = initial == "fresh" ? study::InitialConditions::fresh : study::InitialConditions::continuation;
-    spec.signals.clear();
-    std::stringstream list(signals);
-    for (std::string s; std::getline(list, s, ',');)
-      if (!s.empty()) spec.signals.push_back(s);
+    params.spec.grid = study::Grid(std::move(parsed));
+    const study::SweepSpec spec = study::sweep_spec(std::move(params));
     spec.validate();
     if (root && !quiet)
       for (const auto& w : mechanism::scene_warnings(study::point_scene(spec, 0))) std::cerr << "study: warning: " << w << "\n";

@@ -67,9 +67,9 @@ PointResult run_point(const SweepSpec& spec, std::size_t point, const mechanism:
       o.periods = ls.periods;
       o.transient_periods = ls.transient_periods;
       o.perturbation = ls.perturbation;
-      o.intervals_per_period = ls.intervals_per_period;
-      const int dimension = system.phase_dimension();
-      o.exponents = std::min(ls.exponents, dimension);
+      o.intervals_per_period = static_cast<int>(ls.intervals_per_period);  // at most 10000 (validate)
+      const auto dimension = static_cast<std::size_t>(system.phase_dimension());
+      o.exponents = static_cast<int>(std::min(ls.exponents, dimension));
       o.start.assign(r.summary.final_state.data(), r.summary.final_state.data() + r.summary.final_state.size());
       try {
         l = mechanism::scene_lyapunov(from_end, o);

@@ -277,7 +277,7 @@ void ResultStore::write(const PointResult& r) const {
     // status, periods, then K exponents, K standard errors ('-' past the phase space or -inf), D_KY
     // of the attractor and of the section, the largest separation, the message.
     const mechanism::SceneLyapunov& l = *r.lyapunov;
-    const auto k = static_cast<std::size_t>(spec_.lyapunov_options.exponents);
+    const std::size_t k = spec_.lyapunov_options.exponents;
     auto at = [](const std::vector<double>& v, std::size_t i) {
       return i < v.size() && std::isfinite(v[i]) ? number(v[i]) : std::string("-");
     };
@@ -358,7 +358,7 @@ void ResultStore::assemble() const {
   std::string lyapunov = head + "# Lyapunov exponents from the equations (docs/reference/mechanism/lyapunov.md), 1/s; '-': none\n# point" +
                          axes_header + "\tstatus\tperiods";
   for (const char* name : {"lambda_", "se_"})
-    for (int k = 1; k <= spec_.lyapunov_options.exponents; ++k) {
+    for (std::size_t k = 1; k <= spec_.lyapunov_options.exponents; ++k) {
       lyapunov += '\t';  // appended piece by piece: "\t" + name + ... trips GCC 12's -Wrestrict
       lyapunov += name;
       lyapunov += std::to_string(k);

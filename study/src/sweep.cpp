@@ -102,6 +102,15 @@ void SweepSpec::validate() const {
                        "point " + std::to_string(p) + ": a sweep needs a driven crank (its samples are stroboscopic)");
     if (p > 0) continue;
     const mechanism::SliderCrank system(scene);
+    // More exponents than the phase space has would only widen lyapunov.tsv with empty columns
+    // (--lyapunov-exponents 2000000000 ran for minutes writing them).
+    const auto phase_dimension = static_cast<std::size_t>(system.phase_dimension());
+    if (lyapunov && phase_dimension == 0)
+      throw StudyError("--lyapunov", "true",
+                       "the scene has no phase space (every joint ideal and the crank driven): no exponent to compute");
+    if (lyapunov && lyapunov_options.exponents > phase_dimension)
+      throw StudyError("--lyapunov-exponents", std::to_string(lyapunov_options.exponents),
+                       "must be at most the scene's phase-space dimension, " + std::to_string(phase_dimension));
     const auto table = mechanism::signal_table(system);
     for (const std::string& s : signals)
       if (std::find(table.names.begin(), table.names.end(), s) == table.names.end()) {

@@ -6,6 +6,7 @@
     s.samples["slider_y"], s.samples["joint.slider.clearance"]    # one row per point and kept revolution
     s.points["status"], s.points["max_penetration"]              # one row per point
     s.analysis["d2"]                                             # with analysis=True
+    s.lyapunov["lambda_1"]                                       # with lyapunov=True
 
 The sweep runs the code behind ``study sweep`` (ResultStore, run_sweep, assemble) with the GIL
 released: the result directory holds exactly the files the command writes for the same options
@@ -18,7 +19,7 @@ import types
 
 import numpy as np
 
-from . import _core
+from . import _core, _parameters
 from .mechanism import Scene
 
 __all__ = ["sweep", "Sweep", "read_table"]
@@ -58,7 +59,8 @@ def read_table(path):
 
 
 class Sweep:
-    """A finished sweep: ``samples``, ``points`` and ``analysis`` (None without ``analysis=True``),
+    """A finished sweep: ``samples``, ``points``, ``analysis`` (None without ``analysis=True``) and
+    ``lyapunov`` (None without ``lyapunov=True``),
     each a read-only mapping column name -> array, as the command's tables hold them; ``summary``
     (the command's summary, key for key: directory, points, computed, resumed_from_disk, failed,
     analysis_failed, lyapunov_failed, threads, ranks, wall_seconds); ``spec`` (spec.txt, the
@@ -71,6 +73,8 @@ class Sweep:
         self.points = read_table(os.path.join(directory, "points.tsv"))
         analysis = os.path.join(directory, "analysis.tsv")
         self.analysis = read_table(analysis) if os.path.exists(analysis) else None
+        lyapunov = os.path.join(directory, "lyapunov.tsv")
+        self.lyapunov = read_table(lyapunov) if os.path.exists(lyapunov) else None
         with open(os.path.join(directory, "spec.txt"), encoding="utf-8") as f:
             self.spec = f.read()
         self.directory = directory if keep_directory else None
@@ -99,10 +103,8 @@ def _axes(axis):
     return axes
 
 
-def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=500, signals=("slider_y", "slider_vy"),
-          analysis=False, analysis_periods=None, analysis_interval=None, analysis_samples_per_period=None,
-          max_delay=None, max_dimension=None, surrogates=None, test_length=None, seed=None, threads=None,
-          output=None, resume=False, progress=None):
+@_parameters("study_sweep")
+def sweep(scene=None, *, axis=(), set=(), threads=None, output=None, resume=False, progress=None, **params):
     """A one- or two-dimensional sweep over scene keys (``study sweep``; the protocol of docs/reference/study.md).
 
     Every point's scene is ``scene`` (the seed's when None; a ``mechanism.Scene`` with its settings,
@@ -111,7 +113,7 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     most two (the first varies fastest), or a dict key -> values. ``initial``: ``fresh`` (the
     seed's Eq. 29 at every point) or ``continuation`` (from the previous point's final state along
     the first axis). Each point runs ``periods`` crank revolutions and keeps the stroboscopic
-    samples of ``signals`` over the last ``keep``; ``analysis=True`` also analyses slider_y over
+    samples of ``signals`` (None: slider_y and slider_vy) over the last ``keep``; ``analysis=True`` also analyses slider_y over
     the last ``analysis_periods`` revolutions (mutual-information delay, Fraser and Swinney 1986;
     Cao's E1/E2, Cao 1997; D2 from the correlation sums C(eps, m), Grassberger and Procaccia 1983),
     sampled every ``analysis_interval`` s or ``analysis_samples_per_period`` times a revolution,
@@ -119,7 +121,11 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     on to two Theiler windows (``--max-delay``). ``surrogates=K`` (with ``analysis``) adds
     the IAAFT surrogate test for nonlinearity on the first ``test_length`` samples, surrogates drawn
     from ``seed`` (``--surrogates``, ``--test-length``, ``--seed``; Theiler et al. 1992, Schreiber and
-    Schmitz 2000). ``None`` keeps the command's default.
+    Schmitz 2000). ``lyapunov=True`` adds each point's Lyapunov exponents from the equations
+    (``lyapunov_periods``, ``lyapunov_exponents``, ``lyapunov_perturbation``,
+    ``lyapunov_intervals``; ``mechanism lyapunov``). These keyword arguments and their defaults are
+    the command's options (study/commands/sweep_parameters.cpp); ``signals`` may also be one
+    comma-separated string.
 
     ``output``: the result directory (kept; ``resume=True`` continues a sweep already there, as
     ``--resume``); None writes to a temporary directory, read and removed. ``threads``: worker
@@ -146,14 +152,10 @@ def sweep(scene=None, *, axis=(), set=(), initial="fresh", periods=1000, keep=50
     if isinstance(set, str):
         set = [set]
     overrides += list(set)
-    if isinstance(signals, str):
-        signals = signals.split(",")
+    if isinstance(params["signals"], str):  # "slider_y,slider_vy", as the command takes them
+        params["signals"] = params["signals"].split(",")
     if threads is None:
         threads = os.cpu_count() or 1
-    params = dict(initial=initial, periods=periods, keep=keep, signals=list(signals), analysis=analysis,
-                  analysis_periods=analysis_periods, analysis_interval=analysis_interval,
-                  analysis_samples_per_period=analysis_samples_per_period, max_delay=max_delay,
-                  max_dimension=max_dimension, surrogates=surrogates, test_length=test_length, seed=seed)
     directory = os.fspath(output) if output is not None else tempfile.mkdtemp(prefix="chaos-sweep-")
     bar = _progress_bar(progress, "sweep")
     try:

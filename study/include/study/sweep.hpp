@@ -33,9 +33,9 @@ enum class InitialConditions { fresh, continuation };
 struct LyapunovSpec {
   std::size_t periods = 100;            // crank periods averaged
   std::size_t transient_periods = 20;   // periods that align the directions
-  int exponents = 4;
+  std::size_t exponents = 4;           // at most the scene's phase-space dimension
   double perturbation = 1e-8;
-  int intervals_per_period = 50;
+  std::size_t intervals_per_period = 50;
 };
 const char* to_string(InitialConditions ic) noexcept;
 

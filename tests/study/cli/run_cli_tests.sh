@@ -33,6 +33,14 @@ expect_code 3 "unknown signal" "$STUDY" sweep --signals slider_height -o "$work/
 expect_message "is not a signal" "unknown signal"
 expect_code 3 "missing scene file" "$STUDY" sweep "$work/none.toml" -o "$work/x"
 expect_message "cannot be opened" "missing scene file"
+# More exponents than the phase space has (the seed scene's: 6) ran for minutes writing empty columns;
+# a scene with every joint ideal and the crank driven has no phase space at all.
+expect_code 3 "exponents beyond the phase space" "$STUDY" sweep --lyapunov --lyapunov-exponents 2000000000 -o "$work/x"
+expect_message "at most the scene's phase-space dimension, 6" "exponents beyond the phase space"
+expect_code 3 "no phase space" "$STUDY" sweep --set joint.slider.type=ideal --lyapunov -o "$work/x"
+expect_message "no phase space" "no phase space"
+expect_code 3 "unknown initial conditions" "$STUDY" sweep --initial restart -o "$work/x"
+expect_message "must be fresh or continuation" "unknown initial conditions"
 # An unknown command is named (exit 2), also with --help after it.
 expect_code 2 "unknown command" "$STUDY" foo --help
 expect_message "unknown command 'foo'; the commands are: sweep, pipeline, plot" "unknown command"

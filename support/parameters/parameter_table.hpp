@@ -2,11 +2,12 @@
 // A command's parameter table: one entry per parameter that both the command line and the Python
 // package take, the only place its Python name, command-line flags and help text are written, with
 // the field of the command's parameters struct it sets. From the table the command line registers
-// its options (chaos/cli/parameter_options.hpp) and the Python package reads its keyword arguments
+// its options (support/parameter_options.hpp) and the Python package reads its keyword arguments
 // and builds each function's signature (python/src/_core.cpp, python/src/chaos/__init__.py). A
 // parameter's default is its field's value in a default-constructed parameters struct: it is
-// written once, in the struct. The checks of the values stay in the shared computation (run_X),
-// which both front ends call.
+// written once, in the struct. The checks of the values stay in the shared computation (run_X in
+// chaos/commands, study::sweep_spec for `study sweep`), which both front ends call. Standard
+// library only: the Python module reads the tables without the command line's parser.
 
 #include <cstddef>
 #include <cstdint>
@@ -18,7 +19,7 @@
 #include <variant>
 #include <vector>
 
-namespace chaos::cli {
+namespace cli_support {
 
 static_assert(std::is_same_v<std::uint64_t, std::size_t>, "seeds and counts share the std::size_t field type");
 
@@ -64,4 +65,4 @@ std::function<ParameterField(Params&)> field(Member Params::*member, Rest... res
   return [=](Params& params) -> ParameterField { return &field_path::follow(params, member, rest...); };
 }
 
-}  // namespace chaos::cli
+}  // namespace cli_support
