@@ -187,15 +187,10 @@ void run(AnalyzeArgs& args) {
   const std::optional<NonlinearityTestResult>& nonlinear = run.nonlinear;
   const std::optional<EndMatch>& segment = run.segment;
   if (!args.plot.empty()) render_plot(plot_script(a, run.mutual, fnn, fnn_options.threshold, series.dt), args.plot);
-  run.report.open(args.output);
-  Report& report = run.report;
-  std::ostream& out = report.stream();
+  std::ostream* table = run.report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   const bool per_time = series.dt.has_value();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
   const auto in_time = [&](std::size_t samples) {
     return series.dt ? " (" + number(static_cast<double>(samples) * *series.dt) + " time units)" : std::string();
   };

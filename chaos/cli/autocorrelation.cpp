@@ -56,13 +56,9 @@ void run(const AutocorrelationArgs& args) {
   auto [result, zero, decay, report] =
       run_autocorrelation({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, decay, zero, series.dt), args.plot);
-  report.open(args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# first_zero_crossing = " << (zero ? std::to_string(*zero) : "none within the range") << "\n";
   out << "# decorrelation_time (1/e, samples) = " << (decay ? number(*decay) : "none within the range") << "\n";
   out << "# lag\tautocorrelation\n";

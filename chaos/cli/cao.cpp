@@ -41,13 +41,9 @@ void run(CaoArgs& args) {
   args.params.options.progress = progress.callback("Cao's method");
   auto [result, report] = run_cao({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result), args.plot);
-  report.open(args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# embedding_dimension = " << describe_dimension(result) << "\n";
   out << "# max_E2_deviation = " << number(result.max_E2_deviation) << "\n";
   if (!result.value_ties.empty()) out << "# value_ties = " << result.value_ties << "\n";

@@ -68,13 +68,9 @@ void run(D2Args& args) {
   params.halves_progress = progress.callback("correlation sums of the record's halves");
   auto [sums, d2, estimate, report, run_fast] = run_d2({x, args.input.file, series.column, series.dt}, std::move(params), mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(sums, d2), args.plot);
-  report.open(args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# D2 = " << estimate_text(estimate) << ": " << estimate.reason << "\n";
   out << "# status = " << to_string(d2.status) << ": " << d2.explanation << "\n";
   out << "# d2 = " << (d2.d2 ? number(*d2.d2) : "none") << "  interval " << interval_text(d2.d2_interval)

@@ -77,14 +77,9 @@ void run(DensityArgs& a) {
   const DensityMap& m = run.map;
   const auto& samples = run.samples;
   if (!a.plot.empty()) render_plot(plot_script(m, run.method), a.plot);
-  run.report.open(a.output);
-  Report& report = run.report;
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = run.report.open_table(a.output);
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# parameter\tbin_centre\tdensity\n";
   for (std::size_t p = 0; p < m.parameters.size(); ++p) {
     out << "# parameter = " << number(m.parameters[p]) << ": " << samples[p].size() << " values, " << m.in_range[p] << " in range";

@@ -42,13 +42,9 @@ void run(FnnArgs& args) {
   args.params.options.progress = progress.callback("false nearest neighbours");
   auto [result, report] = run_fnn({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, args.params.options.threshold), args.plot);
-  report.open(args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# embedding_dimension = "
       << (result.embedding_dimension ? std::to_string(*result.embedding_dimension) : "none (fraction stays above threshold)")
       << "\n";

@@ -57,12 +57,9 @@ void run(const GenerateArgs& args) {
     return;
   }
   auto [trajectory, chosen, report] = run_generate(args.params, args.output, args.output.json);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   std::vector<std::string> names;
   std::vector<std::span<const double>> columns;
   for (const std::size_t k : chosen) {

@@ -99,16 +99,12 @@ void run(LyapunovArgs& args) {
   args.params.maps_progress = progress.callback("cross-check (local maps)");
   auto [r, check, maps, maps_refusal, estimate, answer, report] = run_lyapunov({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(r), args.plot);
-  report.open(args.output);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   const bool per_time = r.dt.has_value();
   const std::optional<double> lambda = per_time ? r.lambda_per_time : r.fit.lambda;
   const std::optional<Interval> lambda_interval = per_time ? r.lambda_per_time_interval : r.fit.lambda_interval;
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
   // The answers first, then the strict fit behind them.
   const std::string per = per_time ? "time unit" : "sample";
   if (answer) {

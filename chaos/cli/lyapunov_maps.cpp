@@ -21,13 +21,9 @@ void run(const LyapunovMapsArgs& args) {
   const Series series = load_series(args.input);  // checked there: finite, with a scale
   auto [r, report] =
       run_lyapunov_maps({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
-  report.open(args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   const bool per_time = r.dt.has_value();
   const double scale = per_time ? 1.0 / *r.dt : 1.0;
   const auto lambda = per_time ? r.lambda_per_time : r.lambda;

@@ -41,14 +41,10 @@ void run(MutualArgs& args) {
   auto [result, minimum, no_minimum, report] =
       run_mutual({series.values, args.input.file, series.column, series.dt}, args.params, mode_of(args.output));
   if (!args.plot.empty()) render_plot(plot_script(result, minimum, series.dt), args.plot);
-  report.open(args.output);
-  std::ostream& out = report.stream();
+  std::ostream* table = report.open_table(args.output);
+  if (!table) return;
+  std::ostream& out = *table;
   const double dt = series.dt.value_or(1.0);
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
   out << "# first_minimum = " << (minimum ? std::to_string(*minimum) : "none: " + no_minimum) << "\n";
   if (minimum && series.dt) out << "# first_minimum_time = " << number(static_cast<double>(*minimum) * dt) << "\n";
   out << (series.dt ? "# delay\tdelay_time\tmutual_information\n" : "# delay\tmutual_information\n");

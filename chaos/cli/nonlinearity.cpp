@@ -29,12 +29,9 @@ void run(NonlinearityArgs& args) {
   args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("surrogates");
   auto [r, report] = run_nonlinearity({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   // Ties are what keep the data from rejecting when, counted as neither side, they are all that
   // stands between its value and the tested end of the order (nonlinearity_test.hpp, rank_test).
   const RankTest& t = r.test;

@@ -28,14 +28,10 @@ void run(SectionArgs& a) {
   const SectionColumns input = read_section_columns(text, name, a.params, a.skip, a.length);
   const std::vector<std::span<const double>> data(input.columns.begin(), input.columns.end());
   SectionRun run = run_section(data, input.times, a.file, a.params, a.output);
-  Report& report = run.report;
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
+  std::ostream* table = run.report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   const bool hyperplane = a.params.hyperplane.has_value();
-  report.write_header(out);
   if (hyperplane) out << "# return_time: since the previous crossing; none for the first\n";
   out << "# time";
   for (std::size_t c : a.params.columns) out << "\tcolumn_" << c;

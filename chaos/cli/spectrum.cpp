@@ -22,12 +22,9 @@ struct SpectrumArgs {
 
 void run(SpectrumArgs& args) {
   auto [s, report] = run_spectrum(args.params, args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   out << "# sum = " << number(s.sum) << "\n# kaplan_yorke_dimension = " << number(s.kaplan_yorke_dimension) << "\n"
       << "# renormalisations = " << s.renormalisations << "\n# index\texponent\n";
   for (std::size_t i = 0; i < s.exponents.size(); ++i) out << i + 1 << "\t" << number(s.exponents[i]) << "\n";

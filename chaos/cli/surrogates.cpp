@@ -31,16 +31,13 @@ void run(SurrogatesArgs& args) {
   args.params.options.progress = progress.callback("surrogates");
   auto [made, match, length, report] =
       run_surrogates({series.values, args.input.file, series.column, series.dt}, args.params, args.output);
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
+  std::ostream* table = report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   const auto& j = report.json();
   const auto status = j["status"].get<std::vector<std::string>>();
   const auto iterations = j["iterations"].get<std::vector<std::size_t>>();
   const auto deviation = j["spectral_deviation"].get<std::vector<double>>();
-  report.write_header(out);
   out << "# surrogate\tstatus\titerations\tspectral_deviation\n";
   for (std::size_t k = 0; k < made.size(); ++k)
     out << "# " << k + 1 << "\t" << status[k] << "\t" << iterations[k] << "\t" << number(deviation[k]) << "\n";

@@ -33,13 +33,9 @@ void write_case_series(const ZooArgs& args) {
   output.json = args.json;
   output.path = args.output;
   ZooSeriesRun run = run_zoo_series({args.series, args.params.fast, args.params.threads}, output);
-  Report& report = run.report;
-  std::ostream& out = report.stream();
-  if (report.json_mode()) {
-    report.write_json(out);
-    return;
-  }
-  report.write_header(out);
+  std::ostream* table = run.report.begin_table();
+  if (!table) return;
+  std::ostream& out = *table;
   write_columns(out, {"x"}, {std::span<const double>(run.x)});
 }
 

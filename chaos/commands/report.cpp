@@ -70,6 +70,21 @@ void Report::write_header(std::ostream& out) const {
 
 void Report::write_json(std::ostream& out) const { out << json_.dump(2) << "\n"; }
 
+std::ostream* Report::open_table(const OutputOptions& output) {
+  open(output);
+  return begin_table();
+}
+
+std::ostream* Report::begin_table() {
+  std::ostream& out = stream();
+  if (json_mode()) {
+    write_json(out);
+    return nullptr;
+  }
+  write_header(out);
+  return &out;
+}
+
 nlohmann::ordered_json interval_json(const std::optional<Interval>& i) {
   return i ? nlohmann::ordered_json::array({i->low, i->high}) : nlohmann::ordered_json(nullptr);
 }

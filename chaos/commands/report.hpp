@@ -66,6 +66,12 @@ class Report {
   // Writes the JSON object (JSON mode) to `out`.
   void write_json(std::ostream& out) const;
   std::ostream& stream();
+  // The command line's output step: in JSON mode writes the JSON object and returns null (the
+  // command is done), else writes the '#' header lines and returns the stream the command writes
+  // its table to.
+  std::ostream* begin_table();
+  // open(output), then begin_table().
+  std::ostream* open_table(const OutputOptions& output);
 
  private:
   template <class T>
