@@ -264,7 +264,7 @@ ZooRun run_zoo(const ZooParams& params,
     md << "\n";
   }
   md << "## Chaotic systems, automatic choices\n\n"
-     << "tau, m and w are the pipeline's choices (MI minimum, Cao, max(1/e time, half period)); lambda per time unit "
+     << "tau, m and w are the pipeline's choices (MI minimum, Cao, the longer of the 1/e time and half the period, at least tau); lambda per time unit "
      << "for flows, per iteration for maps, with the range of the local slopes over the fitted stretch (Rosenstein, "
      << "Kantz) or of the estimator's variants (local maps).\n\n"
      << "| system | N | tau | m | w | D2 answer | D2 | D2 of the state | D2 band | lambda_1 answer | lambda Rosenstein | lambda Kantz | lambda local maps | lambda_1 eq. | D_KY eq. | literature lambda_1 / D2 | dysts lambda_1 / D2 | s |\n"
