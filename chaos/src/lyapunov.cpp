@@ -11,12 +11,15 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <span>
 
 #include "chaos/embedding.hpp"
 #include "chaos/error.hpp"
 #include "chaos/neighbors.hpp"
 #include "chaos/series.hpp"
 #include "chaos/detail/parallel.hpp"
+#include "lyapunov_ties.hpp"
 #include "numeric.hpp"
 
 namespace chaos {
@@ -160,97 +163,12 @@ struct PairDistances {
 // Work space of one thread.
 struct Scratch {
   PairDistances pair;
-  std::vector<std::size_t> neighbourhood, kept, thinned;
-  std::vector<double> mean, weight;
+  std::vector<std::size_t> neighbourhood, kept;
+  std::vector<double> mean, kept_weight;
   std::vector<std::pair<double, std::size_t>> by_distance;
+  lyapunov_detail::Thinned thinned;
+  lyapunov_detail::ClassNeighbourhood classes;
 };
-
-// The distance of delay vectors i and j (k = 0 of PairDistances::compute, the same operations).
-double start_distance(std::span<const double> y, std::size_t i, std::size_t j, std::size_t m, std::size_t tau,
-                      Norm norm) {
-  double d = 0.0;
-  for (std::size_t l = 0; l < m; ++l) {
-    const double e = std::abs(y[i + l * tau] - y[j + l * tau]);
-    d = norm == Norm::max ? std::max(d, e) : d + e * e;
-  }
-  return norm == Norm::euclidean ? std::sqrt(d) : d;
-}
-
-// Kantz: thins each group of more than `cap` members at one exact distance from reference i to
-// `cap` of them, evenly spaced in index order (G[floor(r |G| / cap)]), into s.thinned, with
-// s.weight[r] = |G| / cap for the kept ones of a thinned group and 1 otherwise, all in index order.
-// False, touching nothing, when no group is that large: the caller then averages as before.
-bool thin_ties(std::span<const double> y, std::size_t i, const std::vector<std::size_t>& members, std::size_t m,
-               std::size_t tau, Norm norm, std::size_t cap, Scratch& s) {
-  if (cap == 0 || members.size() <= cap) return false;
-  s.by_distance.clear();
-  for (const std::size_t j : members) s.by_distance.emplace_back(start_distance(y, i, j, m, tau, norm), j);
-  // Is any distance shared by more than `cap` members? Tied data have a few distinct distances, so
-  // they are counted in a short list; past 16 distinct ones the sort below decides.
-  std::array<std::pair<double, std::size_t>, 16> seen;
-  std::size_t distinct = 0;
-  bool any = false, many = false;
-  for (const auto& [d, j] : s.by_distance) {
-    std::size_t at = 0;
-    while (at < distinct && seen[at].first != d) ++at;
-    if (at == distinct) {
-      if (distinct == seen.size()) {
-        many = true;
-        break;
-      }
-      seen[distinct++] = {d, 0};
-    }
-    if (++seen[at].second > cap) any = true;
-  }
-  if (!many && !any) return false;
-  if (!many) {
-    // Members come in index order, so each group's r-th member is met in order: keep the ones at
-    // ranks floor(t |G| / cap), t = 0, 1, ..., and the kept list is in index order too.
-    std::array<std::size_t, 16> rank{}, next{};
-    s.thinned.clear();
-    s.weight.clear();
-    for (const auto& [d, j] : s.by_distance) {
-      std::size_t g = 0;
-      while (seen[g].first != d) ++g;
-      const std::size_t size = seen[g].second;
-      if (size <= cap) {
-        s.thinned.push_back(j);
-        s.weight.push_back(1.0);
-      } else if (rank[g]++ == next[g] * size / cap) {
-        ++next[g];
-        s.thinned.push_back(j);
-        s.weight.push_back(static_cast<double>(size) / static_cast<double>(cap));
-      }
-    }
-    return true;
-  }
-  std::sort(s.by_distance.begin(), s.by_distance.end());  // by distance, then index
-  for (std::size_t g = 0, end = 0; g < s.by_distance.size(); g = end) {
-    for (end = g; end < s.by_distance.size() && s.by_distance[end].first == s.by_distance[g].first;) ++end;
-    any = any || end - g > cap;
-  }
-  if (!any) return false;
-  // Keep (index, weight) pairs, then restore index order so the sum runs as the plain one does.
-  std::vector<std::pair<std::size_t, double>> kept;
-  for (std::size_t g = 0, end = 0; g < s.by_distance.size(); g = end) {
-    for (end = g; end < s.by_distance.size() && s.by_distance[end].first == s.by_distance[g].first;) ++end;
-    const std::size_t size = end - g;
-    if (size <= cap) {
-      for (std::size_t r = g; r < end; ++r) kept.emplace_back(s.by_distance[r].second, 1.0);
-    } else {
-      const double weight = static_cast<double>(size) / static_cast<double>(cap);
-      for (std::size_t r = 0; r < cap; ++r) kept.emplace_back(s.by_distance[g + r * size / cap].second, weight);
-    }
-  }
-  std::sort(kept.begin(), kept.end());
-  s.thinned.resize(kept.size());
-  s.weight.resize(kept.size());
-  for (std::size_t r = 0; r < kept.size(); ++r) {
-    s.thinned[r] = kept[r].first;
-    s.weight[r] = kept[r].second;
-  }
-  return true;
-}
 
 // Runs work(reference index, partial, scratch) for every reference point, in blocks, on `threads`
 // threads, and adds the blocks' partial sums in block order. An exception in a worker is
@@ -338,8 +256,13 @@ struct Embedded {
   DelayEmbedding candidates;  // reference points and neighbours
   KdTree tree;
   std::vector<std::size_t> references;
+  lyapunov_detail::DelayVectors vectors;
+  // For Kantz on quantised data: the points grouped by their delay vector, so that a neighbourhood
+  // is a few whole classes instead of a list of most of the points (lyapunov_ties.hpp).
+  std::optional<lyapunov_detail::IdenticalVectors> identical;
 
-  Embedded(std::span<const double> x, const LyapunovOptions& options)
+  // `kantz`: a Kantz curve will be computed on it (the only method that uses `identical`).
+  Embedded(std::span<const double> x, const LyapunovOptions& options, bool kantz)
       // An exact power-of-two rescaling keeps Euclidean sums of squares finite for any magnitude;
       // ln d then shifts by exponent * ln 2, added back at the end.
       : exponent(detail::scale_exponent(x)),
@@ -347,7 +270,9 @@ struct Embedded {
         log_scale(exponent * std::log(2.0)),
         points(x.size() - detail::mul_sat(options.dimension - 1, options.delay) - options.steps),
         candidates(y, options.dimension, options.delay, points),
-        tree(candidates, options.norm) {
+        tree(candidates, options.norm),
+        vectors{y, options.dimension, options.delay, options.norm},
+        identical(kantz ? lyapunov_detail::identical_vectors(vectors, points) : std::nullopt) {
     // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
     // nodes (in index order a chaotic series jumps across the whole tree at every query, and the
     // searches wait on memory). The order is fixed by the data, so the sums stay deterministic.
@@ -402,11 +327,28 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
       p.add_logs(s.pair.d.data());
     });
   } else {
+    // Neighbour counts at radius r on at most 1000 evenly spaced reference points.
+    const std::vector<std::size_t> sample = reference_indices(points, std::min<std::size_t>(1000, points));
+    struct Census {
+      double mean = 0.0, covered = 0.0;  // mean neighbours, fraction with min_neighbours
+    };
+    const auto census = [&](double r) {
+      Census c;
+      for (const std::size_t i : sample) {
+        const std::size_t count = tree.count_within(i, r, query);
+        c.mean += static_cast<double>(count);
+        c.covered += count >= options.min_neighbours ? 1.0 : 0.0;
+      }
+      c.mean /= static_cast<double>(sample.size());
+      c.covered /= static_cast<double>(sample.size());
+      return c;
+    };
     double eps = 0.0;
+    std::optional<Census> at_eps;
     if (options.radius) {
       eps = std::ldexp(*options.radius, -exponent);
     } else {
-      // range / 1000, then adjusted on at most 1000 evenly spaced reference points: doubled while
+      // range / 1000, then adjusted on the census' reference points: doubled while
       // fewer than half of them have min_neighbours neighbours (a curve from a few rare close
       // returns is not representative of the attractor), else halved while they have more than
       // default_neighbours on average and would keep that coverage (the cost grows with the
@@ -415,21 +357,6 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
       // range / 1000 * 2^h.
       const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
       eps = (*hi - *lo) / 1000.0;
-      const std::vector<std::size_t> sample = reference_indices(points, std::min<std::size_t>(1000, points));
-      struct Census {
-        double mean = 0.0, covered = 0.0;  // mean neighbours, fraction with min_neighbours
-      };
-      const auto census = [&](double r) {
-        Census c;
-        for (const std::size_t i : sample) {
-          const std::size_t count = tree.count_within(i, r, query);
-          c.mean += static_cast<double>(count);
-          c.covered += count >= options.min_neighbours ? 1.0 : 0.0;
-        }
-        c.mean /= static_cast<double>(sample.size());
-        c.covered /= static_cast<double>(sample.size());
-        return c;
-      };
       Census c = census(eps);
       // Beyond the embedded set's diameter every point is already a neighbour, so doubling on
       // cannot cover more (min_neighbours above the points' count: 60 censuses of every pair).
@@ -443,38 +370,70 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
         eps /= 2.0;
         c = smaller;
       }
+      at_eps = c;
     }
     curve.radius = std::ldexp(eps, exponent);
+    const lyapunov_detail::DelayVectors& vectors = e.vectors;
+    // Whole classes of one delay vector where scanning them costs less than listing the members: a
+    // reference point meets every class once, and a listed neighbourhood costs its members.
+    bool by_class = false;
+    if (e.identical) {
+      if (!at_eps) at_eps = census(eps);
+      by_class = static_cast<double>(e.identical->representative.size()) <= 4.0 * at_eps->mean;
+    }
     total = for_each_reference(references, steps, options.threads, options.progress, [&](std::size_t i, Partial& p, Scratch& s) {
-      tree.within(i, eps, s.neighbourhood, query);
-      if (s.neighbourhood.size() < options.min_neighbours || s.neighbourhood.empty()) return;
+      // The neighbourhood: listed by the tree, or on quantised data as whole classes of one delay
+      // vector (the same members, counted instead of listed).
+      std::size_t found = 0;
+      if (by_class) {
+        lyapunov_detail::class_neighbourhood(*e.identical, vectors, i, eps, w, s.classes);
+        found = s.classes.found;
+      } else {
+        tree.within(i, eps, s.neighbourhood, query);
+        found = s.neighbourhood.size();
+      }
+      if (found < options.min_neighbours || found == 0) return;
       ++p.used;
-      p.neighbours += static_cast<double>(s.neighbourhood.size());
-      // A neighbourhood above max_neighbours is represented by that many of its members, evenly
-      // spaced in time (index order): its mean distance from a sample that does not favour the
-      // nearest ones, at a cost bounded per reference point.
-      const std::vector<std::size_t>* members = &s.neighbourhood;
-      if (options.max_neighbours != 0 && s.neighbourhood.size() > options.max_neighbours) {
-        const std::size_t found = s.neighbourhood.size(), cap = options.max_neighbours;
+      p.neighbours += static_cast<double>(found);
+      // Tie groups larger than max_tied_neighbours are represented by that many members, weighted
+      // (lyapunov_ties.hpp); the rest of the neighbourhood is followed member by member.
+      const std::size_t tie_cap = options.max_tied_neighbours;
+      const bool tied = by_class ? lyapunov_detail::thin_classes(*e.identical, s.classes, tie_cap, s.thinned)
+                                    : lyapunov_detail::thin_ties(vectors, i, s.neighbourhood, tie_cap, s.by_distance,
+                                                                 s.thinned);
+      if (!tied && by_class) lyapunov_detail::list_members(*e.identical, s.classes, s.neighbourhood);
+      if (tied) ++p.tied;
+      std::span<const std::size_t> members = tied ? std::span<const std::size_t>(s.thinned.index) : s.neighbourhood;
+      std::span<const double> weights = tied ? std::span<const double>(s.thinned.weight) : std::span<const double>();
+      // What is left above max_neighbours is represented by that many of its members, evenly spaced
+      // in time (index order): a mean that does not favour the nearest ones, at a cost bounded per
+      // reference point.
+      if (options.max_neighbours != 0 && members.size() > options.max_neighbours) {
+        const std::size_t size = members.size(), cap = options.max_neighbours;
         s.kept.resize(cap);
-        for (std::size_t r = 0; r < cap; ++r) s.kept[r] = s.neighbourhood[r * found / cap];
-        members = &s.kept;
+        s.kept_weight.resize(weights.empty() ? 0 : cap);
+        for (std::size_t r = 0; r < cap; ++r) {
+          s.kept[r] = members[r * size / cap];
+          if (!weights.empty()) s.kept_weight[r] = weights[r * size / cap];
+        }
+        members = s.kept;
+        if (!weights.empty()) weights = s.kept_weight;
         ++p.capped;
       }
+      p.pairs += members.size();
       s.mean.assign(steps + 1, 0.0);
-      const double size = static_cast<double>(members->size());
-      if (thin_ties(y, i, *members, m, tau, options.norm, options.max_tied_neighbours, s)) {
-        ++p.tied;
-        p.pairs += s.thinned.size();
-        for (std::size_t r = 0; r < s.thinned.size(); ++r) {
-          s.pair.compute(y, i, s.thinned[r], m, tau, steps, options.norm);
-          for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.weight[r] * s.pair.d[k];
-        }
-      } else {
-        p.pairs += members->size();
-        for (const std::size_t j : *members) {
+      double size = 0.0;
+      if (weights.empty()) {
+        size = static_cast<double>(members.size());
+        for (const std::size_t j : members) {
           s.pair.compute(y, i, j, m, tau, steps, options.norm);
           for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += s.pair.d[k];
+        }
+      } else {
+        for (std::size_t r = 0; r < members.size(); ++r) {
+          size += weights[r];
+          s.pair.compute(y, i, members[r], m, tau, steps, options.norm);
+          for (std::size_t k = 0; k <= steps; ++k) s.mean[k] += weights[r] * s.pair.d[k];
         }
       }
       // The sum of distances is 0 only if every one is: then the mean has no logarithm (a zero).
@@ -503,7 +462,7 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
 
 DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
   check_curve_input(x, options);
-  const Embedded e(x, options);
+  const Embedded e(x, options, options.method == LyapunovMethod::kantz);
   return curve_on(e, options);
 }
 
@@ -550,6 +509,9 @@ std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, con
   // same rule, as in a run alone.
   std::vector<std::vector<DivergenceCurve>> curves(runs.size());
   std::vector<std::size_t> dimensions;
+  const bool kantz = std::any_of(runs.begin(), runs.end(), [](const LyapunovOptions& o) {
+    return o.method == LyapunovMethod::kantz;
+  });
   for (std::size_t extra = 0; extra < fit.dimensions; ++extra) {
     LyapunovOptions at_m = options;
     at_m.dimension = options.dimension + extra;
@@ -558,7 +520,7 @@ std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, con
       c.dimension = at_m.dimension;
       check_curve_input(x, c);
     }
-    const Embedded e(x, at_m);
+    const Embedded e(x, at_m, kantz);
     for (std::size_t r = 0; r < runs.size(); ++r) {
       LyapunovOptions o = runs[r];
       o.dimension = at_m.dimension;

@@ -50,6 +50,51 @@ double distance(const std::vector<double>& x, std::size_t i, std::size_t j, std:
   return norm == Norm::max ? acc : std::sqrt(acc);
 }
 
+// Kantz's neighbourhood as lyapunov.hpp states it: members (ascending) at one exact distance from i
+// form a group; a group of more than max_tied_neighbours is represented by that many of its
+// members, ordered by delay vector (lexicographically) and then index, at ranks floor(r |G| / cap),
+// each weighted |G| / cap; then a list longer than max_neighbours by that many of its entries at
+// positions floor(r n / max_neighbours). Returns (j, weight) in index order.
+std::vector<std::pair<std::size_t, double>> kantz_followed(const std::vector<double>& x, std::size_t i,
+                                                           const std::vector<std::size_t>& partners,
+                                                           const LyapunovOptions& o) {
+  const std::size_t m = o.dimension, tau = o.delay, cap = o.max_tied_neighbours;
+  const auto vector_less = [&](std::size_t a, std::size_t b) {  // lexicographic, coordinates by <
+    for (std::size_t l = 0; l < m; ++l) {
+      if (x[a + l * tau] < x[b + l * tau]) return true;
+      if (x[b + l * tau] < x[a + l * tau]) return false;
+    }
+    return false;
+  };
+  std::vector<std::pair<std::size_t, double>> followed;
+  if (cap == 0 || partners.size() <= cap) {
+    for (const std::size_t j : partners) followed.emplace_back(j, 1.0);
+  } else {
+    std::vector<std::pair<double, std::size_t>> by_distance;
+    for (const std::size_t j : partners) by_distance.emplace_back(distance(x, i, j, m, tau, o.norm), j);
+    std::sort(by_distance.begin(), by_distance.end());
+    for (std::size_t g = 0, end = 0; g < by_distance.size(); g = end) {
+      std::vector<std::size_t> group;
+      for (end = g; end < by_distance.size() && by_distance[end].first == by_distance[g].first; ++end)
+        group.push_back(by_distance[end].second);
+      if (group.size() <= cap) {
+        for (const std::size_t j : group) followed.emplace_back(j, 1.0);
+        continue;
+      }
+      std::stable_sort(group.begin(), group.end(), vector_less);  // equal vectors keep index order
+      for (std::size_t r = 0; r < cap; ++r)
+        followed.emplace_back(group[r * group.size() / cap], static_cast<double>(group.size()) / static_cast<double>(cap));
+    }
+    std::sort(followed.begin(), followed.end());
+  }
+  if (o.max_neighbours != 0 && followed.size() > o.max_neighbours) {
+    std::vector<std::pair<std::size_t, double>> kept;
+    for (std::size_t r = 0; r < o.max_neighbours; ++r) kept.push_back(followed[r * followed.size() / o.max_neighbours]);
+    followed = kept;
+  }
+  return followed;
+}
+
 // The definitions, by brute force: reference points and neighbours among the first
 // P = N - (m-1) tau - K points; neighbours need |i - j| > w and a positive distance; the nearest
 // one (smallest index among equals) for Rosenstein, all closer than eps for Kantz.
@@ -79,6 +124,8 @@ BruteCurve brute_force(const std::vector<double>& x, const LyapunovOptions& o) {
     }
     if (partners.empty() || partners.size() < (o.method == LyapunovMethod::kantz ? o.min_neighbours : 1)) continue;
     ++c.used;
+    const auto followed = o.method == LyapunovMethod::kantz ? kantz_followed(x, i, partners, o)
+                                                             : std::vector<std::pair<std::size_t, double>>{};
     for (std::size_t k = 0; k <= K; ++k) {
       if (o.method == LyapunovMethod::rosenstein) {
         const double d = distance(x, i + k, partners[0] + k, m, tau, o.norm);
@@ -89,10 +136,13 @@ BruteCurve brute_force(const std::vector<double>& x, const LyapunovOptions& o) {
           ++c.zeros[k];
         }
       } else {
-        double mean = 0.0;
-        for (const std::size_t j : partners) mean += distance(x, i + k, j + k, m, tau, o.norm);
+        double mean = 0.0, weight = 0.0;
+        for (const auto& [j, w] : followed) {
+          mean += w * distance(x, i + k, j + k, m, tau, o.norm);
+          weight += w;
+        }
         if (mean > 0.0) {
-          sum[k] += std::log(mean / static_cast<double>(partners.size()));
+          sum[k] += std::log(mean / weight);
           ++c.terms[k];
         } else {
           ++c.zeros[k];
@@ -204,6 +254,55 @@ TEST(LargestLyapunov, KantzEqualsTheDefinition) {
     // hostile_input_test.cpp) is a representation of that mean, so it is off here.
     o.max_tied_neighbours = 0;
     expect_matches_definition(*c.x, o, c.name);
+  }
+}
+
+// Ties and the neighbour cap (lyapunov.hpp, max_tied_neighbours and max_neighbours) against the
+// definition coded above. Lorenz x on three levels holds 12 distinct delay vectors in m = 3 and
+// Hénon rounded to 0.05 about 300 in m = 2, so the library groups the points by vector and never
+// lists a neighbourhood; Hénon rounded to 0.005 holds too many, so the kd-tree lists them and the
+// groups are thinned from the list. Both must give the definition's members and weights, with and
+// without the cap.
+TEST(LargestLyapunov, KantzTiesAndCapEqualTheDefinition) {
+  std::vector<double> levels = chaos::lorenz(3000).components[0];
+  const auto [lo, hi] = std::minmax_element(levels.begin(), levels.end());
+  const double low = *lo, span = *hi - *lo;
+  for (double& v : levels) v = std::min(2.0, std::floor(3.0 * (v - low) / span));
+  const auto henon = chaos::henon(3000).components[0];
+  const auto rounded = quantised(henon, 0.05), fine = quantised(henon, 0.005);
+  struct Case {
+    const char* name;
+    const std::vector<double>* x;
+    std::size_t m, tau, w, steps, max_neighbours;
+    double radius;
+    Norm norm;
+  };
+  const std::vector<Case> cases{
+      {"three levels max", &levels, 3, 8, 20, 12, 0, 1.5, Norm::max},
+      {"three levels euclid capped", &levels, 3, 8, 20, 12, 10, 1.5, Norm::euclidean},
+      {"three levels capped", &levels, 3, 8, 20, 12, 5, 2.5, Norm::max},
+      {"rounded henon", &rounded, 2, 1, 3, 10, 0, 0.12, Norm::max},
+      {"rounded henon capped", &rounded, 2, 1, 3, 10, 20, 0.12, Norm::euclidean},
+      {"finely rounded henon", &fine, 2, 1, 3, 10, 0, 0.03, Norm::max},
+      {"finely rounded henon capped", &fine, 2, 1, 3, 10, 12, 0.03, Norm::max},
+  };
+  for (const auto& c : cases) {
+    LyapunovOptions o;
+    o.method = LyapunovMethod::kantz;
+    o.dimension = c.m;
+    o.delay = c.tau;
+    o.theiler = c.w;
+    o.steps = c.steps;
+    o.radius = c.radius;
+    o.norm = c.norm;
+    o.max_neighbours = c.max_neighbours;
+    o.reference_points = 400;
+    expect_matches_definition(*c.x, o, c.name);
+    const chaos::DivergenceCurve curve = chaos::divergence_curve(*c.x, o);
+    EXPECT_GT(curve.tied_neighbourhoods, 0u) << c.name << ": the case does not exercise the thinning";
+    if (c.max_neighbours != 0) {
+      EXPECT_GT(curve.capped_neighbourhoods, 0u) << c.name << ": nor the cap";
+    }
   }
 }
 
@@ -725,7 +824,9 @@ void expect_identical(const chaos::LyapunovResult& a, const chaos::LyapunovResul
   ASSERT_EQ(a.curve.divergence.size(), b.curve.divergence.size());
   for (std::size_t k = 0; k < a.curve.divergence.size(); ++k) {
     ASSERT_EQ(a.curve.divergence[k].has_value(), b.curve.divergence[k].has_value()) << "step " << k;
-    if (a.curve.divergence[k]) EXPECT_EQ(*a.curve.divergence[k], *b.curve.divergence[k]) << "step " << k;
+    if (a.curve.divergence[k]) {
+      EXPECT_EQ(*a.curve.divergence[k], *b.curve.divergence[k]) << "step " << k;
+    }
   }
   EXPECT_EQ(a.curve.terms, b.curve.terms);
   EXPECT_EQ(a.curve.zero_distances, b.curve.zero_distances);

@@ -70,7 +70,8 @@ struct LyapunovOptions {
   std::optional<double> radius;
   std::size_t min_neighbours = 1;
   // Kantz only: at most this many neighbours per reference point (0: no bound). A neighbourhood
-  // with more is represented by max_neighbours of its members evenly spaced in index order
+  // with more (after the thinning of ties below) is represented by max_neighbours of its members,
+  // with their weights, evenly spaced in index order
   // (U[floor(r |U| / max_neighbours)], r = 0, 1, ...), so a curve costs at most reference points x
   // max_neighbours x (K + 1) distances whatever eps and the data (a given eps on drifting data can
   // put most of the record in every neighbourhood). The curve counts the reference points affected
@@ -79,10 +80,11 @@ struct LyapunovOptions {
   // Kantz only: members of a neighbourhood that share one exact distance from the reference point
   // (ties: in quantised data most pairs lie at one of a few distances, and a radius just above the
   // smallest of them takes thousands of points at once) are represented, when more than this many,
-  // by this many of them evenly spaced in index order, each standing for its share of the group, so
-  // the mean over the neighbourhood keeps each distance's weight. Untied data never have such a
-  // group, so their curves are unchanged; the curve counts the reference points affected
-  // (tied_neighbourhoods). 0: no thinning.
+  // by this many of them, each standing for its share of the group, so the mean over the
+  // neighbourhood keeps each distance's weight: the group ordered by delay vector
+  // (lexicographically) and then by index, the members at ranks floor(r |G| / max_tied_neighbours).
+  // Untied data never have such a group, so their curves are unchanged; the curve counts the
+  // reference points affected (tied_neighbourhoods). 0: no thinning.
   std::size_t max_tied_neighbours = 8;
   // Reference points: 0 uses all P; otherwise this many, evenly spaced over 0..P-1 (deterministic).
   std::size_t reference_points = 0;
