@@ -257,12 +257,8 @@ struct Embedded {
   KdTree tree;
   std::vector<std::size_t> references;
   lyapunov_detail::DelayVectors vectors;
-  // For Kantz on quantised data: the points grouped by their delay vector, so that a neighbourhood
-  // is a few whole classes instead of a list of most of the points (lyapunov_ties.hpp).
-  std::optional<lyapunov_detail::IdenticalVectors> identical;
 
-  // `kantz`: a Kantz curve will be computed on it (the only method that uses `identical`).
-  Embedded(std::span<const double> x, const LyapunovOptions& options, bool kantz)
+  Embedded(std::span<const double> x, const LyapunovOptions& options)
       // An exact power-of-two rescaling keeps Euclidean sums of squares finite for any magnitude;
       // ln d then shifts by exponent * ln 2, added back at the end.
       : exponent(detail::scale_exponent(x)),
@@ -271,8 +267,7 @@ struct Embedded {
         points(x.size() - detail::mul_sat(options.dimension - 1, options.delay) - options.steps),
         candidates(y, options.dimension, options.delay, points),
         tree(candidates, options.norm),
-        vectors{y, options.dimension, options.delay, options.norm},
-        identical(kantz ? lyapunov_detail::identical_vectors(vectors, points) : std::nullopt) {
+        vectors{y, options.dimension, options.delay, options.norm} {
     // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
     // nodes (in index order a chaotic series jumps across the whole tree at every query, and the
     // searches wait on memory). The order is fixed by the data, so the sums stay deterministic.
@@ -374,19 +369,22 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
     }
     curve.radius = std::ldexp(eps, exponent);
     const lyapunov_detail::DelayVectors& vectors = e.vectors;
-    // Whole classes of one delay vector where scanning them costs less than listing the members: a
-    // reference point meets every class once, and a listed neighbourhood costs its members.
-    bool by_class = false;
-    if (e.identical) {
-      if (!at_eps) at_eps = census(eps);
-      by_class = static_cast<double>(e.identical->representative.size()) <= 4.0 * at_eps->mean;
-    }
+    // On quantised data, the points grouped by their delay vector, so that a neighbourhood is a few
+    // whole groups instead of a list of most of the points (lyapunov_ties.hpp). Only where scanning
+    // the groups costs less than listing: a reference point meets every group once, and a listed
+    // neighbourhood costs its members, so at most 4 times the census' mean neighbourhood (and an
+    // average of 4 points a group); untied data stop the grouping after that many probes.
+    if (!at_eps) at_eps = census(eps);
+    const auto max_classes = static_cast<std::size_t>(std::min(static_cast<double>(points / 4), 4.0 * at_eps->mean));
+    const std::optional<lyapunov_detail::IdenticalVectors> identical =
+        lyapunov_detail::identical_vectors(vectors, points, max_classes);
+    const bool by_class = identical.has_value();
     total = for_each_reference(references, steps, options.threads, options.progress, [&](std::size_t i, Partial& p, Scratch& s) {
       // The neighbourhood: listed by the tree, or on quantised data as whole classes of one delay
       // vector (the same members, counted instead of listed).
       std::size_t found = 0;
       if (by_class) {
-        lyapunov_detail::class_neighbourhood(*e.identical, vectors, i, eps, w, s.classes);
+        lyapunov_detail::class_neighbourhood(*identical, vectors, i, eps, w, s.classes);
         found = s.classes.found;
       } else {
         tree.within(i, eps, s.neighbourhood, query);
@@ -398,10 +396,10 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
       // Tie groups larger than max_tied_neighbours are represented by that many members, weighted
       // (lyapunov_ties.hpp); the rest of the neighbourhood is followed member by member.
       const std::size_t tie_cap = options.max_tied_neighbours;
-      const bool tied = by_class ? lyapunov_detail::thin_classes(*e.identical, s.classes, tie_cap, s.thinned)
+      const bool tied = by_class ? lyapunov_detail::thin_classes(*identical, s.classes, tie_cap, s.thinned)
                                     : lyapunov_detail::thin_ties(vectors, i, s.neighbourhood, tie_cap, s.by_distance,
                                                                  s.thinned);
-      if (!tied && by_class) lyapunov_detail::list_members(*e.identical, s.classes, s.neighbourhood);
+      if (!tied && by_class) lyapunov_detail::list_members(*identical, s.classes, s.neighbourhood);
       if (tied) ++p.tied;
       std::span<const std::size_t> members = tied ? std::span<const std::size_t>(s.thinned.index) : s.neighbourhood;
       std::span<const double> weights = tied ? std::span<const double>(s.thinned.weight) : std::span<const double>();
@@ -462,7 +460,7 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
 
 DivergenceCurve divergence_curve(std::span<const double> x, const LyapunovOptions& options) {
   check_curve_input(x, options);
-  const Embedded e(x, options, options.method == LyapunovMethod::kantz);
+  const Embedded e(x, options);
   return curve_on(e, options);
 }
 
@@ -509,9 +507,6 @@ std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, con
   // same rule, as in a run alone.
   std::vector<std::vector<DivergenceCurve>> curves(runs.size());
   std::vector<std::size_t> dimensions;
-  const bool kantz = std::any_of(runs.begin(), runs.end(), [](const LyapunovOptions& o) {
-    return o.method == LyapunovMethod::kantz;
-  });
   for (std::size_t extra = 0; extra < fit.dimensions; ++extra) {
     LyapunovOptions at_m = options;
     at_m.dimension = options.dimension + extra;
@@ -520,7 +515,7 @@ std::vector<LyapunovResult> largest_lyapunov_runs(std::span<const double> x, con
       c.dimension = at_m.dimension;
       check_curve_input(x, c);
     }
-    const Embedded e(x, at_m, kantz);
+    const Embedded e(x, at_m);
     for (std::size_t r = 0; r < runs.size(); ++r) {
       LyapunovOptions o = runs[r];
       o.dimension = at_m.dimension;

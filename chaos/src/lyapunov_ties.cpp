@@ -96,8 +96,8 @@ bool thin_ties(const DelayVectors& v, std::size_t i, std::span<const std::size_t
   return true;
 }
 
-std::optional<IdenticalVectors> identical_vectors(const DelayVectors& v, std::size_t points, std::size_t min_class_size) {
-  const std::size_t limit = min_class_size == 0 ? points : points / min_class_size;
+std::optional<IdenticalVectors> identical_vectors(const DelayVectors& v, std::size_t points, std::size_t max_classes) {
+  const std::size_t limit = max_classes;
   if (limit == 0) return std::nullopt;
   // A hash of the coordinates' bits, with -0 read as +0 so that values equal under == hash alike.
   const auto hash = [&](std::size_t j) {

@@ -53,11 +53,9 @@ struct IdenticalVectors {
   std::vector<std::vector<std::size_t>> members;  // per class, ascending
 };
 
-// The classes when they average at least `min_class_size` points, else nullopt (the search stops
-// as soon as there are too many distinct vectors, so untied data cost points / min_class_size
-// probes).
-std::optional<IdenticalVectors> identical_vectors(const DelayVectors& v, std::size_t points,
-                                                  std::size_t min_class_size = 4);
+// The classes when there are at most `max_classes` of them, else nullopt (the search stops at the
+// first one too many, so untied data cost about max_classes probes).
+std::optional<IdenticalVectors> identical_vectors(const DelayVectors& v, std::size_t points, std::size_t max_classes);
 
 // Kantz's neighbourhood of reference i as whole classes: those at distance 0 < d < eps, with their
 // members outside the Theiler window |i - j| <= w counted, not listed.
