@@ -215,7 +215,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
   params.options.delay = chosen.delay;
   params.options.theiler = chosen.theiler;
   params.options.dimension = *chosen.dimension;
-  const TimeScales& scales = chosen.scales;
+  // The steps and the period come from the time scales also where the delay and window were given.
+  const TimeScales scales = chosen.scales ? *chosen.scales : time_scales(x);
   std::string steps_source = "given (-s)", period_source = "given (--period)";
   if (!params.period) {
     params.fit.period = scales.period();

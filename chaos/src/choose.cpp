@@ -129,14 +129,14 @@ LocalMapOptions choose_local_map_options(std::size_t dimension, std::size_t dela
 EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional<std::size_t> delay,
                                         std::optional<std::size_t> theiler, const DelaySearch& search) {
   EmbeddingChoice out;
-  out.scales = time_scales(x);
+  if (!delay || !theiler) out.scales = time_scales(x);
   if (delay) {
     out.delay = *delay;
     out.delay_source = "given";
   } else {
     DelayChoice d;
     try {
-      d = choose_delay(x, out.scales, search);
+      d = choose_delay(x, *out.scales, search);
     } catch (const InvalidInput& e) {
       d.stopped = std::string("no delay can be chosen: ") + e.what();  // too short for the information
     }
@@ -153,7 +153,7 @@ EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional
     out.theiler = *theiler;
     out.theiler_source = "given";
   } else {
-    TheilerChoice w = choose_theiler_window(out.scales, out.delay);
+    TheilerChoice w = choose_theiler_window(*out.scales, out.delay);
     out.theiler = w.window;
     out.theiler_source = std::move(w.source);
   }

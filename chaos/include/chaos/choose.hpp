@@ -102,7 +102,9 @@ LocalMapOptions choose_local_map_options(std::size_t dimension, std::size_t dela
 // What a command needs to embed a series: the given values are kept, the others chosen by the rules
 // above, each with its source ("given" or the rule).
 struct EmbeddingChoice {
-  TimeScales scales;
+  // The series' time scales, where a rule needed them (a delay or window left out): with both given
+  // they are not computed (an autocorrelation by FFT that the estimate does not use).
+  std::optional<TimeScales> scales;
   std::size_t delay = 1;
   std::string delay_source;
   std::size_t theiler = 0;
