@@ -4,7 +4,6 @@
 #include "chaos/lyapunov.hpp"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -397,8 +396,8 @@ DivergenceCurve curve_on(const Embedded& e, const LyapunovOptions& options) {
       // (lyapunov_ties.hpp); the rest of the neighbourhood is followed member by member.
       const std::size_t tie_cap = options.max_tied_neighbours;
       const bool tied = by_class ? lyapunov_detail::thin_classes(*identical, s.classes, tie_cap, s.thinned)
-                                    : lyapunov_detail::thin_ties(vectors, i, s.neighbourhood, tie_cap, s.by_distance,
-                                                                 s.thinned);
+                                 : lyapunov_detail::thin_ties(vectors, i, s.neighbourhood, tie_cap, s.by_distance,
+                                                              s.thinned);
       if (!tied && by_class) lyapunov_detail::list_members(*identical, s.classes, s.neighbourhood);
       if (tied) ++p.tied;
       std::span<const std::size_t> members = tied ? std::span<const std::size_t>(s.thinned.index) : s.neighbourhood;

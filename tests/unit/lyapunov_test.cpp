@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <limits>
 #include <span>
 #include <string>
@@ -221,6 +222,21 @@ TEST(LargestLyapunov, RosensteinEqualsTheDefinition) {
   EXPECT_GT(zeros, 0u);
 }
 
+// Kantz's options for the definition tests: embedding, window, steps, radius (nullopt: the
+// automatic one) and norm; the rest at their defaults.
+LyapunovOptions kantz_options(std::size_t m, std::size_t tau, std::size_t w, std::size_t steps,
+                              std::optional<double> radius, Norm norm) {
+  LyapunovOptions o;
+  o.method = LyapunovMethod::kantz;
+  o.dimension = m;
+  o.delay = tau;
+  o.theiler = w;
+  o.steps = steps;
+  o.radius = radius;
+  o.norm = norm;
+  return o;
+}
+
 TEST(LargestLyapunov, KantzEqualsTheDefinition) {
   const auto henon = chaos::henon(700).components[0];
   const auto lorenz = chaos::lorenz(900).components[0];
@@ -240,16 +256,9 @@ TEST(LargestLyapunov, KantzEqualsTheDefinition) {
       {"henon rounded", &rounded, 2, 1, 0, 15, 0, 1, 0.12, Norm::max},
   };
   for (const auto& c : cases) {
-    LyapunovOptions o;
-    o.method = LyapunovMethod::kantz;
-    o.dimension = c.m;
-    o.delay = c.tau;
-    o.theiler = c.w;
-    o.steps = c.steps;
+    LyapunovOptions o = kantz_options(c.m, c.tau, c.w, c.steps, c.radius, c.norm);
     o.reference_points = c.references;
     o.min_neighbours = c.min_neighbours;
-    o.radius = c.radius;
-    o.norm = c.norm;
     // The definition averages every member; the thinning of large tie groups (tested in
     // hostile_input_test.cpp) is a representation of that mean, so it is off here.
     o.max_tied_neighbours = 0;
@@ -287,14 +296,7 @@ TEST(LargestLyapunov, KantzTiesAndCapEqualTheDefinition) {
       {"finely rounded henon capped", &fine, 2, 1, 3, 10, 12, 0.03, Norm::max},
   };
   for (const auto& c : cases) {
-    LyapunovOptions o;
-    o.method = LyapunovMethod::kantz;
-    o.dimension = c.m;
-    o.delay = c.tau;
-    o.theiler = c.w;
-    o.steps = c.steps;
-    o.radius = c.radius;
-    o.norm = c.norm;
+    LyapunovOptions o = kantz_options(c.m, c.tau, c.w, c.steps, c.radius, c.norm);
     o.max_neighbours = c.max_neighbours;
     o.reference_points = 400;
     expect_matches_definition(*c.x, o, c.name);
