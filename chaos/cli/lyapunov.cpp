@@ -89,7 +89,8 @@ void run(LyapunovArgs& args) {
   else
     progress.hint("lyapunov", series.values.size(),
                   "the automatic choices (Cao's method) and the neighbour searches run on all the samples and may "
-                  "take long; -m, -d and -t skip the choices, -l 100000 uses the first 10^5 samples (every other "
+                  "take long; -m, -d and -t skip the choices, --threads shares the searches, -l 100000 uses the "
+                  "first 10^5 samples (every other "
                   "part is bounded by --reference-points, at most 10^4 by default: the curves, their halves and "
                   "cross-checks average over that many points, the local maps follow at most 10 maps per point)");
   args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");

@@ -7,6 +7,7 @@
 
 #include "chaos/error.hpp"
 #include "common.hpp"
+#include "memory_policy.hpp"
 #include "option_checks.hpp"
 #include "safe_output.hpp"
 
@@ -80,6 +81,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli_support::keep_freed_memory_in_heap();
   safe_output::StandardOutput out;
   const int code = run(argc, argv);
   safe_output::discard_pending();  // a failed command leaves its -o targets as they were

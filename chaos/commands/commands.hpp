@@ -136,10 +136,11 @@ CorrelationSearch parse_search(const std::string& name);
 
 // chaos lyapunov
 struct LyapunovParams {
-  // m, m+1, m+2 must agree; Kantz neighbourhoods of at most 1000 points (lyapunov.hpp, max_neighbours)
+  // m, m+1, m+2 must agree; Kantz neighbourhoods of at most 1000 points, as chaos analyze
+  // (choose_lyapunov_options; lyapunov.hpp, max_neighbours)
   LyapunovParams() {
     fit.dimensions = 3;
-    options.max_neighbours = 1000;
+    options.max_neighbours = default_max_neighbours;
   }
   LyapunovOptions options;
   LyapunovFitOptions fit;

@@ -211,7 +211,8 @@ LyapunovRun run_lyapunov(const SeriesInput& in, LyapunovParams params, const Out
 
   // Left-out choices by the rules of choose.hpp, as in chaos analyze: delay, window and Cao's m, the
   // steps (20 correlation times or periods) and the period of the local slopes.
-  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension, {}, 10, params.choice_progress);
+  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension, {}, 10,
+                                                  params.choice_progress, params.options.threads);
   params.options.delay = chosen.delay;
   params.options.theiler = chosen.theiler;
   params.options.dimension = *chosen.dimension;
@@ -421,7 +422,8 @@ LyapunovMapsRun run_lyapunov_maps(const SeriesInput& in, LyapunovMapsParams para
   const std::span<const double> x = in.values;
   require_not_constant(x, in.file);
   params.options.norm = parse_norm(params.norm);
-  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension, {}, 10, params.choice_progress);
+  const EmbeddingChoice chosen = choose_embedding(x, params.delay, params.theiler, params.dimension, {}, 10,
+                                                  params.choice_progress, params.options.threads);
   params.options.delay = chosen.delay;
   params.options.theiler = chosen.theiler;
   params.options.dimension = *chosen.dimension;

@@ -56,6 +56,7 @@ const ParameterTable<CaoParams>& cao_parameters() {
        field(&CaoParams::options, &CaoOptions::saturation_change)},
       {"sigmas", "--sigmas", "stochastic when every |E2 - 1| is within this many standard errors",
        field(&CaoParams::options, &CaoOptions::stochastic_sigmas)},
+      {"threads", "--threads", threads_help, field(&CaoParams::options, &CaoOptions::threads)},
   };
   return table;
 }
@@ -74,6 +75,7 @@ const ParameterTable<FnnParams>& fnn_parameters() {
       {"norm", "--norm", "euclidean (Kennel et al.) or max", field(&FnnParams::norm)},
       {"threshold", "--threshold", "dimension chosen where the false fraction <= this",
        field(&FnnParams::options, &FnnOptions::threshold)},
+      {"threads", "--threads", threads_help, field(&FnnParams::options, &FnnOptions::threads)},
   };
   return table;
 }

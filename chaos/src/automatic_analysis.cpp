@@ -172,7 +172,8 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
     std::function<void(double)> progress;
     if (options.progress) progress = [&](double f) { options.progress("Cao's method", f); };
     try {
-      DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress));
+      DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress),
+                                                     options.threads);
       a.cao = std::move(m.cao);
       a.dimension = m.dimension;
       if (!a.dimension) a.stopped = std::move(m.stopped);

@@ -32,6 +32,7 @@ void CaoOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "cao: minimum embedding dimension must not exceed the maximum (got min m = " +
                            std::to_string(min_dimension) + " > max m = " + std::to_string(max_dimension) + ")");
+  if (threads == 0) throw InvalidInput(ErrorCode::invalid_parameter, "cao: threads must be at least 1 (got 0)");
   if (!(saturation_level > 0.0 && saturation_level < 1.0))
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "cao: saturation level must lie strictly between 0 and 1 (got " + number(saturation_level) + ")");
@@ -77,19 +78,19 @@ CaoResult cao(std::span<const double> x, const CaoOptions& options) {
     const DelayEmbedding embedded(y, m, tau, points);
     const DelayEmbedding extended(y, m + 1, tau, points);
     const KdTree tree(embedded, options.norm);
+    const auto progress = [&](double done) {
+      if (options.progress) options.progress((static_cast<double>(k) + done) / static_cast<double>(count + 1));
+    };
+    const std::vector<std::optional<Neighbor>> nearest = all_nearest(tree, query, progress, options.threads);
     double sum_a = 0.0, sum_star = 0.0, sum_star_squares = 0.0;
     std::size_t used = 0;
     for (std::size_t i = 0; i < points; ++i) {
-      if (options.progress && i % 4096 == 0)
-        options.progress((static_cast<double>(k) + static_cast<double>(i) / static_cast<double>(points)) /
-                         static_cast<double>(count + 1));
-      const auto neighbour = tree.nearest(i, query);
-      if (!neighbour) {
+      if (!nearest[i]) {
         ++without[k];
         continue;
       }
-      const std::size_t j = neighbour->index;
-      sum_a += extended.distance(i, j, options.norm) / neighbour->distance;
+      const std::size_t j = nearest[i]->index;
+      sum_a += extended.distance(i, j, options.norm) / nearest[i]->distance;
       const double step = std::abs(y[i + m * tau] - y[j + m * tau]);
       sum_star += step;
       sum_star_squares += step * step;

@@ -59,8 +59,10 @@ TheilerChoice choose_theiler_window(const TimeScales& scales, std::size_t delay)
 }
 
 DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_t delay, std::size_t theiler,
-                                           std::size_t max_dimension, std::function<void(double)> progress) {
+                                           std::size_t max_dimension, std::function<void(double)> progress,
+                                           std::size_t threads) {
   CaoOptions c;
+  c.threads = threads;
   c.delay = delay;
   c.theiler = theiler;
   c.max_dimension = max_dimension;
@@ -108,6 +110,10 @@ LyapunovOptions choose_lyapunov_options(const TimeScales& scales, std::size_t n,
   // The curve is a mean over the reference points; at 10^4 its sampling error is far below the 10%
   // the fit tolerates, and the cost of a long curve stays linear in N / 10^4 instead of N.
   l.reference_points = std::min<std::size_t>(n, 10000);
+  // A Kantz neighbourhood costs its size times the steps. At the automatic radius (at most 20
+  // neighbours on average) none reaches 1000 on Lorenz, Hénon or Rössler x at N = 10^5; a given radius
+  // on drifting or tied data can put most of the record in every one (docs/reference/lyapunov.md).
+  l.max_neighbours = default_max_neighbours;
   return l;
 }
 
@@ -163,7 +169,7 @@ EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional
 EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::size_t> delay,
                                  std::optional<std::size_t> theiler, std::optional<std::size_t> dimension,
                                  const DelaySearch& search, std::size_t max_dimension,
-                                 std::function<void(double)> progress) {
+                                 std::function<void(double)> progress, std::size_t threads) {
   EmbeddingChoice out = choose_delay_and_window(x, delay, theiler, search);
   if (dimension) {
     out.dimension = dimension;
@@ -172,7 +178,7 @@ EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::s
   }
   std::string stopped;
   try {
-    const DimensionChoice m = choose_embedding_dimension(x, out.delay, out.theiler, max_dimension, std::move(progress));
+    const DimensionChoice m = choose_embedding_dimension(x, out.delay, out.theiler, max_dimension, std::move(progress), threads);
     if (m.dimension) {
       out.dimension = m.dimension;
       out.dimension_source = "Cao's E1 saturation";

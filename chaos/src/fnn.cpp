@@ -33,6 +33,7 @@ double standard_deviation(const std::vector<double>& y) {
 }  // namespace
 
 void FnnOptions::validate() const {
+  if (threads == 0) throw InvalidInput(ErrorCode::invalid_parameter, "fnn: threads must be at least 1 (got 0)");
   if (delay == 0)
     throw InvalidInput(ErrorCode::invalid_parameter, "fnn: delay tau must be at least 1 sample (got tau = 0)");
   if (min_dimension == 0)
@@ -81,13 +82,14 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
     const DelayEmbedding embedded(y, m, tau, points);
     const DelayEmbedding extended(y, m + 1, tau, points);
     const KdTree tree(embedded, options.norm);
+    const std::vector<std::optional<Neighbor>> nearest = all_nearest(tree, query, [&](double done) {
+      if (options.progress)
+        options.progress((static_cast<double>(m - options.min_dimension) + done) /
+                         static_cast<double>(options.max_dimension - options.min_dimension + 1));
+    }, options.threads);
     std::size_t tested = 0, false_count = 0;
     for (std::size_t i = 0; i < points; ++i) {
-      if (options.progress && i % 4096 == 0)
-        options.progress((static_cast<double>(m - options.min_dimension) +
-                          static_cast<double>(i) / static_cast<double>(points)) /
-                         static_cast<double>(options.max_dimension - options.min_dimension + 1));
-      const auto neighbour = tree.nearest(i, query);
+      const auto& neighbour = nearest[i];
       if (!neighbour) continue;
       const std::size_t j = neighbour->index;
       ++tested;

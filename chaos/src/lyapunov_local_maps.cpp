@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <span>
 #include <sstream>
 #include <utility>
@@ -279,10 +280,24 @@ std::vector<LocalMapEstimate> estimates_on_chain(const Chain& chain, std::span<c
   std::vector<Workspace> workspace(detail::worker_count(threads, std::min(chain.length, round)));
   for (Workspace& ws : workspace) ws.fits.resize(runs);
 
+  // A round's neighbourhoods are searched in the tree's leaf order (as all_nearest does, neighbors.hpp),
+  // each written to its place in the chain, so the maps and their walk are those of chain order.
+  std::vector<std::size_t> leaf_position(chain.points);
+  {
+    const auto leaves = chain.tree.leaf_order();
+    for (std::size_t p = 0; p < leaves.size(); ++p) leaf_position[leaves[p]] = p;
+  }
+  std::vector<std::size_t> search_order;
   for (std::size_t first = 0; first < chain.length; first += round) {
     const std::size_t count = std::min(round, chain.length - first);
-    detail::parallel_tasks(threads, count, [&](std::size_t r, std::size_t worker) {
+    search_order.resize(count);
+    std::iota(search_order.begin(), search_order.end(), std::size_t{0});
+    std::sort(search_order.begin(), search_order.end(), [&](std::size_t a, std::size_t b) {
+      return leaf_position[(first + a) * s] < leaf_position[(first + b) * s];
+    });
+    detail::parallel_tasks(threads, count, [&](std::size_t task, std::size_t worker) {
       Workspace& ws = workspace[worker];
+      const std::size_t r = search_order[task];
       const std::size_t i = (first + r) * s;
       chain.tree.k_nearest(i, k_max, ws.found, chain.query);
       for (std::size_t c = 0; c < runs; ++c) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <type_traits>
 
+#include "chaos/detail/parallel.hpp"
 #include "chaos/error.hpp"
 #include "metric_dispatch.hpp"
 #include "spatial/kd_tree.hpp"
@@ -448,6 +449,21 @@ void KdTree::within(std::size_t i, double radius, std::vector<std::size_t>& out,
   for (std::size_t w = 0; w < bits.size(); ++w)
     for (std::uint64_t word = bits[w]; word != 0; word &= word - 1)
       out.push_back(w * 64 + static_cast<std::size_t>(std::countr_zero(word)));
+}
+
+std::vector<std::optional<Neighbor>> all_nearest(const KdTree& tree, const NeighborQuery& query,
+                                                 const std::function<void(double)>& progress, std::size_t threads) {
+  const std::span<const std::size_t> order = tree.leaf_order();
+  std::vector<std::optional<Neighbor>> out(order.size());
+  // Tasks of consecutive positions in leaf order, so a worker's searches stay close in space.
+  constexpr std::size_t chunk = 4096;
+  const std::size_t tasks = (order.size() + chunk - 1) / chunk;
+  if (progress) progress(0.0);  // parallel_tasks reports only as tasks end, so never for one task
+  detail::parallel_tasks(threads, tasks, [&](std::size_t t, std::size_t) {
+    const std::size_t end = std::min(order.size(), (t + 1) * chunk);
+    for (std::size_t p = t * chunk; p < end; ++p) out[order[p]] = tree.nearest(order[p], query);
+  }, &progress);
+  return out;
 }
 
 std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,

@@ -81,7 +81,7 @@ def test_signature_shows_the_defaults():
     # help(chaos.cao) shows them; the series and the Python-only arguments keep their places.
     signature = inspect.signature(chaos.cao)
     assert str(signature) == ("(x, *, delay=None, min_dimension=1, max_dimension=10, theiler=None, norm='max', "
-                              "level=0.8, change=0.1, sigmas=4.0, progress=None, dt=None, column=1, skip=0, "
+                              "level=0.8, change=0.1, sigmas=4.0, threads=1, progress=None, dt=None, column=1, skip=0, "
                               "length=None)")
     assert list(inspect.signature(chaos.generate).parameters)[:2] == ["system", "length"]
     assert list(inspect.signature(chaos.analyze).parameters)[0] == "x"

@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "mechanism/error.hpp"
+#include "memory_policy.hpp"
 #include "mpi_session.hpp"
 #include "option_checks.hpp"
 #include "parameter_options.hpp"
@@ -201,6 +202,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli_support::keep_freed_memory_in_heap();
   safe_output::StandardOutput out;
   const int code = run(argc, argv);
   if (const std::string why = out.finish(); !why.empty()) {

@@ -149,6 +149,31 @@ TEST(Cao, MatchesDefinitionOnLorenzAndQuantisedLorenz) {
   expect_matches_reference(x, o);
 }
 
+TEST(Cao, AnyNumberOfThreadsGivesTheSameResult) {
+  // A property of the design (cao.hpp): each point's neighbour is its own, and the sums run in index
+  // order, so 2 or 3 threads give the result of 1 bit for bit. N = 12000 makes three search tasks of
+  // 4096 points (all_nearest) at every m; the quantised copy has ties at distance 0.
+  auto x = chaos::lorenz(12000).components[0];
+  for (int pass = 0; pass < 2; ++pass) {
+    CaoOptions o;
+    o.delay = 5;
+    o.theiler = 20;
+    o.max_dimension = 4;
+    const auto one = chaos::cao(x, o);
+    for (const std::size_t threads : {2u, 3u}) {
+      o.threads = threads;
+      const auto many = chaos::cao(x, o);
+      EXPECT_EQ(many.E, one.E) << threads << " threads";
+      EXPECT_EQ(many.E_star, one.E_star) << threads << " threads";
+      EXPECT_EQ(many.points_without_neighbor, one.points_without_neighbor) << threads << " threads";
+    }
+    for (auto& v : x) v = std::round(v);
+  }
+  CaoOptions none;
+  none.threads = 0;
+  EXPECT_THROW(none.validate(), chaos::InvalidInput);
+}
+
 TEST(Cao, HenonSaturatesAtTwo) {
   // Hénon x[n+1] = 1 - 1.4 x[n]^2 + 0.3 x[n-1] is exactly two-dimensional in delay coordinates
   // (references.tsv: henon.x.cao.embedding_dimension = 2, N = 10000, tau = 1, w = 0, m = 1..8).

@@ -170,4 +170,22 @@ TEST(ChooseEmbedding, WhereNoRuleAnswersTheFallbackStandsInAndSaysWhy) {
   EXPECT_NE(tiny.delay_source.find("too short"), std::string::npos) << tiny.delay_source;
 }
 
+TEST(ChooseLyapunov, AnalyzeBoundsKantzNeighbourhoodsAsTheCommandDoes) {
+  // chaos lyapunov represents a Kantz neighbourhood of more than 1000 members by 1000 of them
+  // (--max-neighbours, lyapunov.hpp); chaos analyze and the zoo take their options from the same
+  // chooser, so the bound (choose.hpp's default_max_neighbours) must reach them too.
+  const auto x = chaos::henon(4000).components[0];
+  const chaos::TimeScales scales = chaos::time_scales(x);
+  const chaos::LyapunovOptions l =
+      chaos::choose_lyapunov_options(scales, x.size(), 2, 1, 1, chaos::LyapunovMethod::kantz);
+  EXPECT_EQ(l.max_neighbours, chaos::default_max_neighbours);
+  EXPECT_EQ(chaos::default_max_neighbours, 1000u);
+  AutomaticAnalysisOptions options;
+  options.rosenstein = false;
+  options.local_maps = false;
+  const chaos::AutomaticAnalysis a = chaos::analyse_series(x, std::nullopt, options);
+  ASSERT_TRUE(a.kantz.has_value()) << a.stopped;
+  EXPECT_EQ(a.kantz->options.max_neighbours, chaos::default_max_neighbours);
+}
+
 }  // namespace

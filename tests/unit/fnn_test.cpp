@@ -120,6 +120,24 @@ TEST(Fnn, MatchesDefinition) {
   }
 }
 
+TEST(Fnn, AnyNumberOfThreadsGivesTheSameResult) {
+  // Each point's neighbour is its own and the decisions are counted: 2 or 3 threads give the
+  // fractions of 1 exactly (N = 12000: three search tasks of 4096 points at every m).
+  const auto x = chaos::lorenz(12000).components[0];
+  FnnOptions o;
+  o.delay = 5;
+  o.theiler = 20;
+  o.max_dimension = 4;
+  const auto one = chaos::false_nearest_neighbors(x, o);
+  for (const std::size_t threads : {2u, 3u}) {
+    o.threads = threads;
+    EXPECT_EQ(chaos::false_nearest_neighbors(x, o).false_fraction, one.false_fraction) << threads << " threads";
+  }
+  FnnOptions none;
+  none.threads = 0;
+  EXPECT_THROW(none.validate(), chaos::InvalidInput);
+}
+
 TEST(Fnn, KnownEmbeddingDimensions) {
   // references.tsv: lorenz.x.fnn.embedding_dimension = 3 (N = 20000, tau = 17, w = 100, m = 1..8,
   // Kennel et al. 1992); Hénon is exactly two-dimensional in delay coordinates (x[n+1] = 1 - 1.4

@@ -47,6 +47,35 @@ TEST(KdTree, OneDimensionalHandCases) {
   expect_nearest(e, Norm::max, 4, {2, false}, 1, 7.0);  // w = 2 leaves j <= 1; |8 - 1| = 7
 }
 
+TEST(KdTree, AllNearestIsEveryPointsNearest) {
+  // all_nearest(tree, q)[i] is nearest_brute_force(i) by its definition (neighbors.hpp), whatever
+  // order it searches in: on random data, and on data quantised to 3 levels, where ties at distance 0
+  // and at equal distances decide; with and without the window and the zero-distance rule, and with
+  // a point that has no admissible neighbour (the window covers everything: nullopt).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> smooth(600), quantised(600);
+  for (std::size_t i = 0; i < smooth.size(); ++i) {
+    smooth[i] = u(rng);
+    quantised[i] = std::floor(3.0 * u(rng));
+  }
+  for (const auto* x : {&smooth, &quantised})
+    for (const Norm norm : {Norm::max, Norm::euclidean})
+      for (const NeighborQuery q : {NeighborQuery{0, false}, NeighborQuery{5, true}, NeighborQuery{700, false}}) {
+        const DelayEmbedding e(*x, 3, 2);
+        const KdTree tree(e, norm, 4);
+        const auto all = chaos::all_nearest(tree, q);
+        ASSERT_EQ(all.size(), e.size());
+        for (std::size_t i = 0; i < e.size(); ++i) {
+          const auto brute = chaos::nearest_brute_force(e, i, norm, q);
+          ASSERT_EQ(all[i].has_value(), brute.has_value()) << "point " << i;
+          if (!brute) continue;
+          EXPECT_EQ(all[i]->index, brute->index) << "point " << i;
+          EXPECT_EQ(all[i]->distance, brute->distance) << "point " << i;
+        }
+      }
+}
+
 TEST(KdTree, TieGoesToTheSmallerIndex) {
   // x = 0 1 2: point 1 is at distance 1 from both 0 and 2; the rule picks 0.
   const std::vector<double> x{0, 1, 2};

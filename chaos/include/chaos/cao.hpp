@@ -35,6 +35,7 @@ struct CaoOptions {
   // Stochastic series (Cao 1997): E2(m) = 1 for every m. Judged against E2's own sampling error:
   // stochastic when every |E2(m) - 1| <= stochastic_sigmas standard errors.
   double stochastic_sigmas = 4.0;
+  std::size_t threads = 1;  // share the neighbour searches; results identical for any number
   // Called with the fraction done (0 to 1), for a progress display; the result does not depend on it.
   std::function<void(double)> progress = nullptr;
   void validate() const;

@@ -23,7 +23,8 @@
 //             end; above a quarter of the range C(eps) is near 1 and carries no scaling).
 //   Lyapunov  the divergence curve followed for 20 of the longer of the correlation time and the
 //             dominant period (at least 20 steps, at most N / 10), local slopes over whole periods,
-//             fitted over m, m + 1, m + 2 at once, at most 10^4 evenly spaced reference points.
+//             fitted over m, m + 1, m + 2 at once, at most 10^4 evenly spaced reference points,
+//             Kantz neighbourhoods of at most 1000 members (lyapunov.hpp, max_neighbours).
 
 #include <cstddef>
 #include <functional>
@@ -77,9 +78,10 @@ struct DimensionChoice {
   CaoResult cao;
   std::string stopped;
 };
+// `threads` share Cao's neighbour searches (the result is the same for any number).
 DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_t delay, std::size_t theiler,
                                            std::size_t max_dimension = 10,
-                                           std::function<void(double)> progress = nullptr);
+                                           std::function<void(double)> progress = nullptr, std::size_t threads = 1);
 
 // The radii above over the range of x: the smallest and the largest, then the log-spaced grid.
 struct RadiusRange {
@@ -93,6 +95,7 @@ CorrelationSumOptions choose_correlation_sum_options(std::span<const double> x, 
 
 // The steps a divergence curve is followed (rule above); `correlation_time` = scales.theiler.
 std::size_t choose_lyapunov_steps(std::size_t correlation_time, std::size_t period, std::size_t n);
+inline constexpr std::size_t default_max_neighbours = 1000;
 LyapunovOptions choose_lyapunov_options(const TimeScales& scales, std::size_t n, std::size_t dimension,
                                         std::size_t delay, std::size_t theiler, LyapunovMethod method);
 LyapunovFitOptions choose_lyapunov_fit(const TimeScales& scales);
@@ -122,11 +125,11 @@ inline constexpr std::size_t fallback_delay = 1;
 inline constexpr std::size_t fallback_dimension = 2;
 EmbeddingChoice choose_delay_and_window(std::span<const double> x, std::optional<std::size_t> delay,
                                         std::optional<std::size_t> theiler, const DelaySearch& search = {});
-// ... and the dimension (Cao's method up to max_dimension when it is left out; `progress` is
-// called with Cao's fraction done, and may throw to stop it).
+// ... and the dimension (Cao's method up to max_dimension when it is left out, on `threads`;
+// `progress` is called with Cao's fraction done, and may throw to stop it).
 EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::size_t> delay,
                                  std::optional<std::size_t> theiler, std::optional<std::size_t> dimension,
                                  const DelaySearch& search = {}, std::size_t max_dimension = 10,
-                                 std::function<void(double)> progress = nullptr);
+                                 std::function<void(double)> progress = nullptr, std::size_t threads = 1);
 
 }  // namespace chaos

@@ -26,6 +26,7 @@ struct FnnOptions {
   Norm norm = Norm::euclidean;
   // The embedding dimension is the smallest m whose false fraction is at most this.
   double threshold = 0.01;
+  std::size_t threads = 1;  // share the neighbour searches; results identical for any number
   // Called with the fraction done (0 to 1), for a progress display; the result does not depend on it.
   std::function<void(double)> progress = nullptr;
   void validate() const;

@@ -10,6 +10,7 @@
 // valid only for Euclidean-type norms, hence our own tree).
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -67,6 +68,16 @@ class KdTree {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The nearest admissible neighbour of every point of the tree (element i: tree.nearest(i, query)).
+// The searches run in the tree's leaf order, so each finds the nodes the one before read still in
+// the cache (in index order a chaotic series jumps across the whole tree at every search): 1.6 times
+// faster for Cao's method on Lorenz x at N = 10^5, 2.6 times at 10^6. `progress`, if given, is
+// called with the fraction done (on the calling thread); `threads` share the searches, each point's
+// answer being its own, so any number gives the same result.
+std::vector<std::optional<Neighbor>> all_nearest(const KdTree& tree, const NeighborQuery& query = {},
+                                                 const std::function<void(double)>& progress = nullptr,
+                                                 std::size_t threads = 1);
 
 std::optional<Neighbor> nearest_brute_force(const DelayEmbedding& points, std::size_t i, Norm norm,
                                             const NeighborQuery& query = {});

@@ -1,0 +1,14 @@
+#pragma once
+// How the command-line tools ask the C library to manage freed memory.
+
+namespace cli_support {
+
+// Keeps large freed blocks in the process's heap instead of returning them to the system. The
+// analyses build and free one neighbour tree after another, tens of megabytes each at 10^6 samples;
+// by default glibc maps every such block afresh and unmaps it on free, so each tree paid for
+// zeroing and faulting in its pages again (a third of `chaos lyapunov`'s time at 10^6 samples,
+// docs/validation/performance-lyapunov.md). The peak memory is unchanged; memory freed late in a
+// run is returned when the process exits. A no-op outside glibc.
+void keep_freed_memory_in_heap();
+
+}  // namespace cli_support
