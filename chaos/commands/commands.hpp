@@ -244,6 +244,7 @@ struct AnalyzeParams {
   std::size_t builtin_length = 100000;  // of the built-in series, analysed without a file (enough for a confident lambda_1)
   bool delay_check = false;   // a saturated D2 must be reproduced at twice the delay too
   bool mutual_curve = false;  // also compute the information curve the delay was read from (for a plot)
+  std::size_t threads = 1;    // Cao, FNN, the correlation sums, the curves and the maps; results identical for any number
   // Called with each step's name and the fraction of it done (AutomaticAnalysisOptions::progress),
   // also for the false neighbours and the surrogate test; may throw to stop.
   std::function<void(const std::string&, double)> progress;

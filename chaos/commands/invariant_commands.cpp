@@ -477,7 +477,9 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   // The choices, D2 and both exponents come from the library's automatic pipeline, the one
   // `chaos zoo` validates (automatic_analysis.hpp); false neighbours and the surrogate test are
   // added here as corroboration.
+  if (params.threads == 0) throw InvalidInput(ErrorCode::invalid_parameter, "analyze: threads must be at least 1 (got 0)");
   AutomaticAnalysisOptions options;
+  options.threads = params.threads;
   options.delay = params.delay;
   options.theiler = params.theiler;
   options.delay_search.max_delay = params.max_delay;
@@ -501,6 +503,7 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
     run.fnn_options.delay = *a.delay;
     run.fnn_options.theiler = a.theiler;
     run.fnn_options.max_dimension = params.max_dimension;
+    run.fnn_options.threads = params.threads;
     FnnOptions fnn_options = run.fnn_options;
     fnn_options.progress = step("false nearest neighbours");
     run.fnn = false_nearest_neighbors(x, fnn_options);

@@ -258,6 +258,7 @@ const ParameterTable<AnalyzeParams>& analyze_parameters() {
       {"surrogates", "--surrogates", "surrogates of the one-sided nonlinearity test (19: 5%)",
        field(&AnalyzeParams::surrogates)},
       {"seed", "--seed", "seed of the surrogates", field(&AnalyzeParams::seed)},
+      {"threads", "--threads", threads_help, field(&AnalyzeParams::threads)},
   };
   return table;
 }

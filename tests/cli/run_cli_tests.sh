@@ -79,6 +79,12 @@ expect_json_keys autocorrelation "$work/lorenz.dat" -- lag autocorrelation first
 expect_json_keys analyze "$work/henon.dat" -d 1 -M 5 -- delay theiler embedding_dimension fnn_embedding_dimension lambda lambda_interval lambda_status nonlinearity
 l=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -c '[(.lambda > 0.35 and .lambda < 0.5), .lambda_per, .nonlinearity.rejected, .nonlinearity.ties]')
 [[ $l == '[true,"sample",true,0]' ]] && pass || fail "analyze on Hénon gave $l"
+# --threads shares the work and changes nothing else (each estimator's results are the same for any
+# number of threads): the JSON of 1 and 2 threads differ in parameters.threads alone; 0 threads is refused.
+one=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --json | jq -S 'del(.parameters.threads)')
+two=$("$CHAOS" analyze "$work/henon.dat" -d 1 -M 5 --threads 2 --json | jq -S 'del(.parameters.threads)')
+[[ -n $one && $one == "$two" ]] && pass || fail "analyze --threads 2 changed the result"
+expect_error 3 "threads must be at least 1" -- analyze "$work/henon.dat" --threads 0
 
 expect_json_keys d2 "$work/henon.dat" -d 1 -M 4 -- dimension radius correlation_sum local_slope d2_by_dimension d2 d2_interval scaling_region saturated
 r=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 2 --radius-list 0.01,0.02,0.05,0.1 --json | jq -c '.radius')
