@@ -28,31 +28,33 @@ const std::vector<double>& lorenz_x(std::size_t n) {
   return it->second;
 }
 
-void KdTreeAllNearest(benchmark::State& state) {
+// Builds the tree on the m-dimensional embedding and hands it to `search` once per iteration.
+template <class Search>
+void nearest_of_every_point(benchmark::State& state, const Search& search) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto m = static_cast<std::size_t>(state.range(1));
   const auto& x = lorenz_x(n);
   for (auto _ : state) {
     const chaos::DelayEmbedding points(x, m, tau);
     const chaos::KdTree tree(points, chaos::Norm::max);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) sum += tree.nearest(i, {theiler, true})->distance;
-    benchmark::DoNotOptimize(sum);
+    search(points, tree);
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
 }
 
+void KdTreeAllNearest(benchmark::State& state) {
+  nearest_of_every_point(state, [](const chaos::DelayEmbedding& points, const chaos::KdTree& tree) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) sum += tree.nearest(i, {theiler, true})->distance;
+    benchmark::DoNotOptimize(sum);
+  });
+}
+
 void AllNearest(benchmark::State& state) {
-  const auto n = static_cast<std::size_t>(state.range(0));
-  const auto m = static_cast<std::size_t>(state.range(1));
-  const auto& x = lorenz_x(n);
-  for (auto _ : state) {
-    const chaos::DelayEmbedding points(x, m, tau);
-    const chaos::KdTree tree(points, chaos::Norm::max);
+  nearest_of_every_point(state, [](const chaos::DelayEmbedding&, const chaos::KdTree& tree) {
     const auto nearest = chaos::all_nearest(tree, {theiler, true});
     benchmark::DoNotOptimize(nearest.data());
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
+  });
 }
 
 void Cao(benchmark::State& state) {

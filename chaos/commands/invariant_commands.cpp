@@ -477,7 +477,6 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   // The choices, D2 and both exponents come from the library's automatic pipeline, the one
   // `chaos zoo` validates (automatic_analysis.hpp); false neighbours and the surrogate test are
   // added here as corroboration.
-  if (params.threads == 0) throw InvalidInput(ErrorCode::invalid_parameter, "analyze: threads must be at least 1 (got 0)");
   AutomaticAnalysisOptions options;
   options.threads = params.threads;
   options.delay = params.delay;

@@ -130,6 +130,10 @@ LocalMapsRuns local_maps_with_next_dimension(std::span<const double> x, const Lo
 
 AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double> dt,
                                  const AutomaticAnalysisOptions& options) {
+  // Refused here, where every step gets the count: a step would otherwise refuse it on its own and
+  // the analysis report a stopped step instead of a bad option.
+  if (options.threads == 0)
+    throw InvalidInput(ErrorCode::invalid_parameter, "automatic analysis: threads must be at least 1 (got 0)");
   require_finite(x, "automatic analysis");
   require_not_constant(x, "automatic analysis");
   AutomaticAnalysis a;

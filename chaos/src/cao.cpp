@@ -78,9 +78,9 @@ CaoResult cao(std::span<const double> x, const CaoOptions& options) {
     const DelayEmbedding embedded(y, m, tau, points);
     const DelayEmbedding extended(y, m + 1, tau, points);
     const KdTree tree(embedded, options.norm);
-    const auto progress = [&](double done) {
-      if (options.progress) options.progress((static_cast<double>(k) + done) / static_cast<double>(count + 1));
-    };
+    std::function<void(double)> progress;
+    if (options.progress)
+      progress = [&](double done) { options.progress((static_cast<double>(k) + done) / static_cast<double>(count + 1)); };
     const std::vector<std::optional<Neighbor>> nearest = all_nearest(tree, query, progress, options.threads);
     double sum_a = 0.0, sum_star = 0.0, sum_star_squares = 0.0;
     std::size_t used = 0;

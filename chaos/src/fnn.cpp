@@ -82,11 +82,13 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
     const DelayEmbedding embedded(y, m, tau, points);
     const DelayEmbedding extended(y, m + 1, tau, points);
     const KdTree tree(embedded, options.norm);
-    const std::vector<std::optional<Neighbor>> nearest = all_nearest(tree, query, [&](double done) {
-      if (options.progress)
+    std::function<void(double)> progress;
+    if (options.progress)
+      progress = [&](double done) {
         options.progress((static_cast<double>(m - options.min_dimension) + done) /
                          static_cast<double>(options.max_dimension - options.min_dimension + 1));
-    }, options.threads);
+      };
+    const std::vector<std::optional<Neighbor>> nearest = all_nearest(tree, query, progress, options.threads);
     std::size_t tested = 0, false_count = 0;
     for (std::size_t i = 0; i < points; ++i) {
       const auto& neighbour = nearest[i];

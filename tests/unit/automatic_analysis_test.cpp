@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "chaos/error.hpp"
 #include "chaos/lyapunov_local_maps.hpp"
 #include "chaos/random.hpp"
 #include "chaos/models/systems.hpp"
@@ -144,6 +145,15 @@ TEST(AutomaticAnalysis, AStepThatRefusesTheSeriesKeepsWhatTheOthersFound) {
   EXPECT_NE(a.stopped.find("; largest Lyapunov exponent not estimated: "), std::string::npos) << a.stopped;
   EXPECT_FALSE(a.local_maps);
   EXPECT_FALSE(a.local_maps_refusal.empty());
+}
+
+TEST(AutomaticAnalysis, ZeroThreadsIsRefusedAsAnOptionNotReportedAsAStoppedStep) {
+  // Every step takes options.threads and would refuse 0 on its own (Cao's refusal would end as "no
+  // embedding dimension"); the analysis refuses the option before any step runs.
+  const auto x = chaos::henon(2000).components[0];
+  AutomaticAnalysisOptions o;
+  o.threads = 0;
+  EXPECT_THROW(chaos::analyse_series(x, std::nullopt, o), chaos::InvalidInput);
 }
 
 }  // namespace
