@@ -4,7 +4,8 @@
 //                     nearest admissible neighbour, searching in index order;
 //   AllNearest        the same through chaos::all_nearest, which searches in the tree's leaf order
 //                     (what Cao and FNN do once per m);
-//   Cao               the whole of cao() for m = 1..10 (11 trees, since E1(10) needs E(11)).
+//   Cao               the whole of cao() for m = 1..10 (11 trees, since E1(10) needs E(11));
+//   KdTreeBuild       the tree alone on 1 or 2 threads (the same tree for any number).
 // The series is generated once per N, outside the timed loop.
 #include <benchmark/benchmark.h>
 
@@ -70,8 +71,23 @@ void Cao(benchmark::State& state) {
   }
 }
 
+void KdTreeBuild(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto m = static_cast<std::size_t>(state.range(1));
+  const auto threads = static_cast<std::size_t>(state.range(2));
+  const auto& x = lorenz_x(n);
+  const chaos::DelayEmbedding points(x, m, tau);
+  for (auto _ : state) {
+    const chaos::KdTree tree(points, chaos::Norm::max, 8, threads);
+    benchmark::DoNotOptimize(tree.leaf_order().data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
+}
+
 }  // namespace
 
+BENCHMARK(KdTreeBuild)->ArgNames({"N", "m", "threads"})->Args({100000, 3, 1})->Args({100000, 3, 2})
+    ->Args({1000000, 3, 1})->Args({1000000, 3, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(KdTreeAllNearest)->ArgNames({"N", "m"})->Args({10000, 3})->Args({100000, 3})->Args({10000, 10})
     ->Args({100000, 10})->Unit(benchmark::kMillisecond);
 BENCHMARK(KdTreeAllNearest)->ArgNames({"N", "m"})->Args({1000000, 3})->Args({1000000, 10})

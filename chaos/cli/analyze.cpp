@@ -172,8 +172,9 @@ void run(AnalyzeArgs& args) {
   params.mutual_curve = !args.plot.empty();
   Progress progress(args.quiet);
   progress.hint("analyze", x.size(),
-                "Cao's method, the correlation sums and two divergence curves on all the samples may take long; "
-                "-l 100000 analyses the first 10^5 samples");
+                "the correlation sums, false neighbours and divergence curves on all the samples may take long "
+                "(Cao's method reads the first 10^5); -l 100000 analyses the first 10^5 samples, --threads "
+                "shares the work");
   params.progress = progress.steps();
   AnalyzeRun run = run_analyze({x, builtin ? std::string(builtin_series_name) : args.input.file, series.column, series.dt},
                                params, mode_of(args.output));
@@ -199,7 +200,9 @@ void run(AnalyzeArgs& args) {
       << (a.delay ? a.delay_source : not_run) << "]\n";
   out << "theiler_window\t" << a.theiler << " samples" << in_time(a.theiler) << "\t[" << theiler_source << "]\n";
   if (a.cao)
-    out << "embedding_dimension\t" << describe_dimension(*a.cao) << "\t[Cao: E1 >= 0.8 and steps <= 0.1 from there on]\n";
+    out << "embedding_dimension\t" << describe_dimension(*a.cao) << "\t[Cao: E1 >= 0.8 and steps <= 0.1 from there on"
+        << (a.cao_samples < series.values.size() ? ", over the first " + std::to_string(a.cao_samples) + " samples" : "")
+        << "]\n";
   if (fnn)
     out << "fnn_embedding_dimension\t" << (fnn->embedding_dimension ? std::to_string(*fnn->embedding_dimension) : "none")
         << "\t[false fraction <= " << number(fnn_options.threshold) << "]\n";

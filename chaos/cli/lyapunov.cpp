@@ -88,11 +88,10 @@ void run(LyapunovArgs& args) {
                   "most 10 maps per point) in a fraction of the time");
   else
     progress.hint("lyapunov", series.values.size(),
-                  "the automatic choices (Cao's method) and the neighbour searches run on all the samples and may "
-                  "take long; -m, -d and -t skip the choices, --threads shares the searches, -l 100000 uses the "
-                  "first 10^5 samples (every other "
-                  "part is bounded by --reference-points, at most 10^4 by default: the curves, their halves and "
-                  "cross-checks average over that many points, the local maps follow at most 10 maps per point)");
+                  "the neighbour searches run over all the samples and may take long; the rest is bounded by "
+                  "--reference-points (at most 10^4 by default: the curves, their halves and cross-checks average "
+                  "over that many evenly spaced points, the local maps follow at most 10 maps per point), the "
+                  "automatic dimension reads the first 10^5 samples, and --threads shares the searches");
   args.params.choice_progress = progress.callback("Cao's method (the automatic dimension)");
   args.params.options.progress = progress.callback("divergence curve (" + args.params.method + ")");
   args.params.check_progress =

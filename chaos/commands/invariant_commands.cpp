@@ -640,7 +640,8 @@ AnalyzeRun run_analyze(const SeriesInput& in, const AnalyzeParams& params, const
   j["autocorrelation"] = {{"first_zero_crossing", optional_json(scales.first_zero_crossing)},
                           {"decorrelation_time", optional_json(scales.decorrelation_time)},
                           {"half_period", optional_json(scales.half_period)}};
-  if (a.cao) j["cao"] = {{"dimension", a.cao->dimension}, {"E1", a.cao->E1}, {"E2", a.cao->E2}};
+  if (a.cao)
+    j["cao"] = {{"dimension", a.cao->dimension}, {"E1", a.cao->E1}, {"E2", a.cao->E2}, {"samples", a.cao_samples}};
   if (fnn) j["fnn"] = {{"dimension", fnn->dimension}, {"false_fraction", fnn->false_fraction}};
   return run;
 }

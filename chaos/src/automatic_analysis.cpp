@@ -179,6 +179,7 @@ AutomaticAnalysis analyse_series(std::span<const double> x, std::optional<double
       DimensionChoice m = choose_embedding_dimension(x, *a.delay, a.theiler, options.max_dimension, std::move(progress),
                                                      options.threads);
       a.cao = std::move(m.cao);
+      a.cao_samples = m.samples;
       a.dimension = m.dimension;
       if (!a.dimension) a.stopped = std::move(m.stopped);
     } catch (const InvalidInput& e) {  // too short for Cao's method: the delay and window stand

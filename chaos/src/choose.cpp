@@ -67,12 +67,21 @@ DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_
   c.theiler = theiler;
   c.max_dimension = max_dimension;
   c.progress = std::move(progress);
-  DimensionChoice out{std::nullopt, cao(x, c), {}};
+  const std::span<const double> read = x.first(std::min(x.size(), dimension_samples));
+  DimensionChoice out{std::nullopt, cao(read, c), read.size(), {}};
   out.dimension = out.cao.embedding_dimension;
   if (!out.dimension)
     out.stopped = "Cao's E1 does not saturate up to m = " + std::to_string(max_dimension) +
-                  (out.cao.stochastic ? " and E2 stays at 1 (stochastic)" : "") + ": no embedding dimension";
+                  (out.cao.stochastic ? " and E2 stays at 1 (stochastic)" : "") +
+                  (read.size() < x.size() ? " over the first " + std::to_string(read.size()) + " samples" : "") +
+                  ": no embedding dimension";
   return out;
+}
+
+std::string dimension_rule(std::size_t samples, std::size_t n) {
+  std::string rule = "Cao's E1 saturation";
+  if (samples < n) rule += " over the first " + std::to_string(samples) + " of " + std::to_string(n) + " samples";
+  return rule;
 }
 
 RadiusRange choose_radius_range(std::span<const double> x) {
@@ -181,7 +190,7 @@ EmbeddingChoice choose_embedding(std::span<const double> x, std::optional<std::s
     const DimensionChoice m = choose_embedding_dimension(x, out.delay, out.theiler, max_dimension, std::move(progress), threads);
     if (m.dimension) {
       out.dimension = m.dimension;
-      out.dimension_source = "Cao's E1 saturation";
+      out.dimension_source = dimension_rule(m.samples, x.size());
       return out;
     }
     stopped = m.stopped + " at delay " + std::to_string(out.delay);

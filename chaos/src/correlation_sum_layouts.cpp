@@ -62,7 +62,7 @@ Grid build_grid(const Problem& pb) {
 KdLayout build_kd(const Problem& pb) {
   const std::size_t n = pb.points, c = std::max<std::size_t>(2, pb.min_m);
   KdLayout t;
-  t.tree = spatial::KdTree(n, c, KdLayout::leaf_points, [&pb](std::size_t i, std::size_t k) { return pb.at(i, k); });
+  t.tree = spatial::KdTree(n, c, KdLayout::leaf_points, [&pb](std::size_t i, std::size_t k) { return pb.at(i, k); }, pb.threads);
   t.size = n;
   t.index = t.tree.index();
   t.coords.resize(n * pb.max_m);

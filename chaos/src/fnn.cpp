@@ -81,7 +81,7 @@ FnnResult false_nearest_neighbors(std::span<const double> x, const FnnOptions& o
     const std::size_t points = n - m * tau;  // every i with x[i + m tau] inside the series
     const DelayEmbedding embedded(y, m, tau, points);
     const DelayEmbedding extended(y, m + 1, tau, points);
-    const KdTree tree(embedded, options.norm);
+    const KdTree tree(embedded, options.norm, 8, options.threads);
     std::function<void(double)> progress;
     if (options.progress)
       progress = [&](double done) {

@@ -265,7 +265,7 @@ struct Embedded {
         log_scale(exponent * std::log(2.0)),
         points(x.size() - detail::mul_sat(options.dimension - 1, options.delay) - options.steps),
         candidates(y, options.dimension, options.delay, points),
-        tree(candidates, options.norm),
+        tree(candidates, options.norm, 8, options.threads),
         vectors{y, options.dimension, options.delay, options.norm} {
     // Reference points are visited in the tree's leaf order, so consecutive queries touch the same
     // nodes (in index order a chaotic series jumps across the whole tree at every query, and the

@@ -231,7 +231,7 @@ struct Chain {
         points(x.size() - detail::mul_sat(m - 1, options.delay) - s),  // points whose image X_{j+s} exists
         candidates(y, m, options.delay, points),
         images(y, m, options.delay),  // the same coordinates, with the s further points
-        tree(candidates, options.norm),
+        tree(candidates, options.norm, 8, options.threads),
         length(options.max_maps != 0 ? std::min((points + s - 1) / s, options.max_maps) : (points + s - 1) / s) {}
   Chain(const Chain&) = delete;  // the embeddings view y
   Chain& operator=(const Chain&) = delete;

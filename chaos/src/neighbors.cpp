@@ -74,7 +74,7 @@ struct KdTree::Impl {
   spatial::KdTree tree;
   std::vector<double> coords_;  // coordinate k of the point at position p: coords_[p * dim + k]
 
-  Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size);
+  Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size, std::size_t threads);
 
   // A query: its point, coordinates, options and the best candidate so far.
   struct Search {
@@ -360,11 +360,11 @@ struct KdTree::Impl {
   }
 };
 
-KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size)
+KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size, std::size_t threads)
     : points(p), norm(n), dim(p.dimension()),
       // Split coordinates are read from the view: the series (N doubles) is more cache-friendly
       // than any N x m copy. The boxes are fitted from the copy in leaf order.
-      tree(p.size(), dim, leaf_size, [&p](std::size_t i, std::size_t k) { return p(i, k); }) {
+      tree(p.size(), dim, leaf_size, [&p](std::size_t i, std::size_t k) { return p(i, k); }, threads) {
   const std::size_t count = points.size();
   coords_.resize(count * dim);
   for (std::size_t pos = 0; pos < count; ++pos)
@@ -372,8 +372,8 @@ KdTree::Impl::Impl(const DelayEmbedding& p, Norm n, std::size_t leaf_size)
   tree.fit_boxes([this](std::size_t pos, std::size_t k) { return coords_[pos * dim + k]; });
 }
 
-KdTree::KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size)
-    : impl_(std::make_unique<Impl>(points, norm, leaf_size)) {}
+KdTree::KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size, std::size_t threads)
+    : impl_(std::make_unique<Impl>(points, norm, leaf_size, threads)) {}
 KdTree::~KdTree() = default;
 KdTree::KdTree(KdTree&&) noexcept = default;
 KdTree& KdTree::operator=(KdTree&&) noexcept = default;

@@ -626,9 +626,10 @@ if command -v script >/dev/null; then
 fi
 # The other long commands (lyapunov, cao, fnn, surrogates, nonlinearity,
 # analyze) share d2's progress line and hint (common.hpp: Progress); -q silences both. Each run is
-# cut after 1 s (the hint comes before the work), two draw on a terminal for 3.5 s. There -M 16:
-# Cao's method over the default m = 1..10 takes under 2 s at this N (its searches run in the tree's
-# leaf order), too short for a progress line; over m = 1..16 it takes longer than the run.
+# cut after 1 s (the hint comes before the work), two draw on a terminal for 3.5 s. There a larger
+# -M: Cao's method over the default m = 1..10 takes under 2 s at this N (its searches run in the tree's
+# leaf order), too short for a progress line; over m = 1..16 it takes longer than the run. analyze's
+# Cao's method reads the first 10^5 samples (choose.hpp): over m = 1..16 1.8 s there, over m = 1..24 3.9 s.
 for cmd in lyapunov cao fnn surrogates nonlinearity analyze; do
   err=$(timeout 1 "$CHAOS" "$cmd" "$work/long.dat" -o /dev/null 2>&1 >/dev/null)
   [[ $err == "chaos $cmd: N = 250000 samples: "*"(-q silences this)"* ]] && pass || fail "$cmd on 250000 points gave no hint: ${err:0:300}"
@@ -637,11 +638,12 @@ for cmd in lyapunov cao fnn surrogates nonlinearity analyze; do
   [[ -z $err ]] && pass || fail "$cmd -q still writes to stderr: ${err:0:300}"
 done
 if command -v script >/dev/null; then
-  for run in "cao:Cao's method" "analyze:Cao's method"; do
-    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' ${run%%:*} '$work/long.dat' -M 16 -o /dev/null" /dev/null | tr '\r' '\n')
-    grep -q "^\[#* *\] ${run#*:} .* s left" <<<"$tty_err" && pass || fail "${run%%:*} drew no progress line on a terminal: ${tty_err:0:300}"
-    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' ${run%%:*} '$work/long.dat' -M 16 -q -o /dev/null" /dev/null | tr '\r' '\n')
-    [[ -z ${tty_err//$'\n'/} ]] && pass || fail "${run%%:*} -q drew on a terminal: ${tty_err:0:300}"
+  for run in "cao:16:Cao's method" "analyze:24:Cao's method"; do
+    cmd=${run%%:*} rest=${run#*:}
+    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' $cmd '$work/long.dat' -M ${rest%%:*} -o /dev/null" /dev/null | tr '\r' '\n')
+    grep -q "^\[#* *\] ${rest#*:} .* s left" <<<"$tty_err" && pass || fail "$cmd drew no progress line on a terminal: ${tty_err:0:300}"
+    tty_err=$(timeout 10 script -qec "timeout 3.5 '$CHAOS' $cmd '$work/long.dat' -M ${rest%%:*} -q -o /dev/null" /dev/null | tr '\r' '\n')
+    [[ -z ${tty_err//$'\n'/} ]] && pass || fail "$cmd -q drew on a terminal: ${tty_err:0:300}"
   done
 fi
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "chaos/automatic_analysis.hpp"
+#include "chaos/cao.hpp"
 #include "chaos/mutual_information.hpp"
 #include "chaos/models/systems.hpp"
 #include "chaos/time_scales.hpp"
@@ -145,6 +146,37 @@ TEST(ChooseEmbedding, GivenValuesAreKeptAndTheOthersChosenByTheRules) {
   EXPECT_EQ(chaos::choose_delay_and_window(x, 500, {}).theiler, 500u);
   // Without the dimension, Cao's method is not run.
   EXPECT_FALSE(chaos::choose_delay_and_window(x, {}, {}).dimension);
+}
+
+TEST(ChooseEmbedding, TheDimensionReadsOnlyTheFirstSamples) {
+  // The rule (choose.hpp): Cao's method over at most the first dimension_samples samples. Hénon x
+  // (delay 1, m = 2: docs/reference/cao.md) followed by 20000 samples of uniform noise, where Cao's
+  // method over the whole record would see the noise: the choice must be Cao's on the prefix, to the
+  // last bit, and the source must say how much it read. At or below the cap nothing changes.
+  std::vector<double> x = chaos::henon(chaos::dimension_samples).components[0];
+  std::uint64_t state = 7;
+  for (std::size_t i = 0; i < 20000; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    x.push_back(static_cast<double>(state >> 11) * 0x1.0p-53 * 2.0 - 1.0);
+  }
+  const std::span<const double> prefix = std::span<const double>(x).first(chaos::dimension_samples);
+  chaos::CaoOptions c;
+  c.max_dimension = 5;
+  const chaos::CaoResult on_prefix = chaos::cao(prefix, c);
+  const chaos::DimensionChoice m = chaos::choose_embedding_dimension(x, 1, 0, 5);
+  EXPECT_EQ(m.samples, chaos::dimension_samples);
+  EXPECT_EQ(m.cao.E1, on_prefix.E1);
+  EXPECT_EQ(m.cao.E2, on_prefix.E2);
+  ASSERT_TRUE(m.dimension) << m.stopped;
+  EXPECT_EQ(*m.dimension, 2u);
+  const chaos::EmbeddingChoice chosen = chaos::choose_embedding(x, 1, 0, {}, {}, 5);
+  EXPECT_EQ(chosen.dimension, m.dimension);
+  EXPECT_EQ(chosen.dimension_source, "Cao's E1 saturation over the first 100000 of 120000 samples");
+
+  const chaos::DimensionChoice whole = chaos::choose_embedding_dimension(prefix, 1, 0, 5);
+  EXPECT_EQ(whole.samples, prefix.size());
+  EXPECT_EQ(whole.cao.E1, on_prefix.E1);
+  EXPECT_EQ(chaos::choose_embedding(prefix, 1, 0, {}, {}, 5).dimension_source, "Cao's E1 saturation");
 }
 
 TEST(ChooseEmbedding, WhereNoRuleAnswersTheFallbackStandsInAndSaysWhy) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "chaos/error.hpp"
+#include "spatial/kd_tree.hpp"
 
 namespace {
 
@@ -74,6 +75,61 @@ TEST(KdTree, AllNearestIsEveryPointsNearest) {
           EXPECT_EQ(all[i]->distance, brute->distance) << "point " << i;
         }
       }
+}
+
+TEST(KdTree, AnyNumberOfThreadsBuildsTheSameTree) {
+  // With threads, the subtrees below the top levels are built in parallel and numbered afterwards as
+  // one thread numbers them (neighbors.hpp: the tree is the same for any number). Above the size at
+  // which the build goes parallel (2^15 points), on smooth random data and on data quantised to 3
+  // levels (ties at the median, uniform leaves): the leaf order must be the same permutation, every
+  // point's nearest neighbour the same, and, for a sample of points, the one brute force finds.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> smooth(50000), quantised(50000);
+  for (std::size_t i = 0; i < smooth.size(); ++i) {
+    smooth[i] = u(rng);
+    quantised[i] = std::floor(3.0 * u(rng));
+  }
+  for (const auto* x : {&smooth, &quantised}) {
+    const DelayEmbedding e(*x, 3, 2);
+    const NeighborQuery q{5, true};
+    const KdTree one(e, Norm::max, 8, 1);
+    const auto expected = chaos::all_nearest(one, q);
+    for (std::size_t i = 0; i < e.size(); i += 997) {
+      const auto brute = chaos::nearest_brute_force(e, i, Norm::max, q);
+      ASSERT_EQ(expected[i].has_value(), brute.has_value()) << "point " << i;
+      if (brute) EXPECT_EQ(expected[i]->index, brute->index) << "point " << i;
+    }
+    // The internal tree, node for node (chaos/src/spatial/kd_tree.hpp).
+    const auto at = [&e](std::size_t i, std::size_t k) { return e(i, k); };
+    const chaos::spatial::KdTree serial(e.size(), 3, 8, at, 1);
+    for (const std::size_t threads : {2u, 3u, 8u}) {
+      const chaos::spatial::KdTree parallel(e.size(), 3, 8, at, threads);
+      ASSERT_EQ(parallel.nodes().size(), serial.nodes().size()) << threads << " threads";
+      for (std::size_t n = 0; n < serial.nodes().size(); ++n) {
+        const auto& a = parallel.nodes()[n];
+        const auto& b = serial.nodes()[n];
+        ASSERT_TRUE(a.begin == b.begin && a.end == b.end && a.left == b.left && a.parent == b.parent &&
+                    a.split_dim == b.split_dim && a.split_value == b.split_value && a.uniform == b.uniform)
+            << "node " << n << ", " << threads << " threads";
+      }
+      EXPECT_EQ(parallel.index(), serial.index()) << threads << " threads";
+      EXPECT_EQ(parallel.leaf_of(), serial.leaf_of()) << threads << " threads";
+
+      const KdTree many(e, Norm::max, 8, threads);
+      EXPECT_TRUE(std::ranges::equal(many.leaf_order(), one.leaf_order())) << threads << " threads";
+      const auto got = chaos::all_nearest(many, q, nullptr, threads);
+      ASSERT_EQ(got.size(), expected.size());
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i].has_value(), expected[i].has_value()) << "point " << i;
+        if (got[i]) {
+          ASSERT_EQ(got[i]->index, expected[i]->index) << "point " << i;
+          ASSERT_EQ(got[i]->distance, expected[i]->distance) << "point " << i;
+        }
+      }
+      EXPECT_EQ(many.count_within(123, 0.05, q), one.count_within(123, 0.05, q));
+    }
+  }
 }
 
 TEST(KdTree, TieGoesToTheSmallerIndex) {

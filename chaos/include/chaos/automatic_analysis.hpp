@@ -77,6 +77,7 @@ struct AutomaticAnalysis {
   std::string theiler_source;
   std::optional<std::size_t> dimension;  // Cao's, or the given one
   std::optional<CaoResult> cao;
+  std::size_t cao_samples = 0;  // the samples Cao's method read (choose_embedding_dimension)
   std::optional<CorrelationDimensionResult> d2;
   // D2 as one answer with an interval and a status (d2_answer.hpp); empty where D2 did not run.
   std::optional<Estimate> d2_estimate;

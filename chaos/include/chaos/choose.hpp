@@ -18,7 +18,9 @@
 //             samples closer in time than the delay are still dependent, and as neighbours they
 //             would pose as recurrences of the attractor.
 //   dimension the least m at which Cao's E1 saturates (Cao 1997, Physica D 110:43), at the chosen
-//             delay and window; none for a stochastic series or one that does not saturate.
+//             delay and window, over at most the first 10^5 samples (E1 and E2 are means over the
+//             points, settled long before 10^5; over 10^6 they cost 9 s for the same m:
+//             docs/reference/cao.md); none for a stochastic series or one that does not saturate.
 //   radii     40 radii log-spaced from range/1000 to range/4 (TISEAN's d2 defaults for the lower
 //             end; above a quarter of the range C(eps) is near 1 and carries no scaling).
 //   Lyapunov  the divergence curve followed for 20 of the longer of the correlation time and the
@@ -76,8 +78,12 @@ TheilerChoice choose_theiler_window(const TimeScales& scales, std::size_t delay)
 struct DimensionChoice {
   std::optional<std::size_t> dimension;  // none: `stopped` says why
   CaoResult cao;
+  std::size_t samples = 0;  // the samples Cao's method read: the first min(N, dimension_samples)
   std::string stopped;
 };
+inline constexpr std::size_t dimension_samples = 100000;
+// "Cao's E1 saturation", with the samples it read where they are fewer than the record's n.
+std::string dimension_rule(std::size_t samples, std::size_t n);
 // `threads` share Cao's neighbour searches (the result is the same for any number).
 DimensionChoice choose_embedding_dimension(std::span<const double> x, std::size_t delay, std::size_t theiler,
                                            std::size_t max_dimension = 10,

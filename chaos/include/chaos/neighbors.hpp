@@ -34,7 +34,8 @@ struct NeighborQuery {
 
 class KdTree {
  public:
-  KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size = 8);
+  // `threads` share the build; the tree, and every answer, is the same for any number.
+  KdTree(const DelayEmbedding& points, Norm norm, std::size_t leaf_size = 8, std::size_t threads = 1);
   ~KdTree();
   KdTree(KdTree&&) noexcept;
   KdTree& operator=(KdTree&&) noexcept;
