@@ -4,14 +4,19 @@
 
 Usage: siconos_compare.py MECHANISM_BINARY OUT_DIR [--duration 0.2] [--siconos-step 1e-5] [--cases a,b]
        siconos_compare.py MECHANISM_BINARY OUT_DIR --driven [--revolutions 120] [--cases a,b]
-Writes OUT_DIR/summary.tsv (driven: driven_summary.tsv) and OUT_DIR/siconos_*.png; prints the
+Writes OUT_DIR/summary.tsv (driven: driven_summary.tsv, driven_phases.tsv, driven_strobe.tsv) and
+OUT_DIR/siconos_*.png; prints the
 summary. Run by scripts/validation/siconos.sh, which installs Siconos first.
 
 --driven: the driven scene (crank at a constant 150 rad/s; in Siconos a crank of inertia 1e3 kg m^2
 stands in for the driver), 20 revolutions of transient, then stroboscopic samples of the slider's
 height at 16 phases of the revolution (both series interpolated linearly at t = (k + phase) T between
 their 1e-5 s samples): their means and spreads per phase (driven_phases.tsv), the largest difference
-of the means, and the fraction of time in contact.
+of the means, and the fraction of time in contact. Where the motion is not periodic (e_N = 0.9), the
+stroboscopic distributions are compared by their KS distance per phase, beside each engine's own
+run-to-run spread: the KS distance between the first and the second half of its revolutions; and
+the contact onsets per revolution and the fraction of time in contact, each also per half
+(driven_strobe.tsv, and siconos_driven_CASE.png with the distributions at four phases).
 """
 import argparse
 import os
@@ -26,7 +31,9 @@ CASES = [  # name, e_N, mu
     ("e0.4", 0.4, 0.0),
     ("e0.4_mu0.01", 0.4, 0.01),
     ("e0.1", 0.1, 0.0),
+    ("e0.9", 0.9, 0.0),  # driven, a regime without a periodic orbit (--driven --cases e0.9)
 ]
+DEFAULT_CASES = "e0.4,e0.4_mu0.01,e0.1"
 CLEARANCE = 0.001
 
 
@@ -66,6 +73,57 @@ def ks_distance(a, b):
 DRIVEN_SCENE = os.path.join(HERE, "..", "..", "mechanism", "scenes", "flores_leine_glocker_driven.toml")
 OMEGA = 150.0
 
+STROBE_HEADER = ["case", "revolutions", "ks_engines_median", "ks_engines_max", "ks_halves_ours_median",
+                 "ks_halves_ours_max", "ks_halves_siconos_median", "ks_halves_siconos_max", "ks_critical_engines",
+                 "ks_critical_halves", "onsets_per_rev_ours", "halves", "onsets_per_rev_siconos", "halves",
+                 "contact_fraction_ours_halves", "contact_fraction_siconos_halves"]
+
+
+def strobe_statistics(name, o, d, T, transient, revolutions, phases, out):
+    """The stroboscopic distributions of the slider's height compared between the engines and within
+    each (first half of the revolutions against the second), per phase; onsets and contact per half."""
+    half = revolutions // 2
+    ks_e, ks_o, ks_s, samples = [], [], [], {}
+    for ph in phases:
+        times = T * (np.arange(transient, transient + revolutions) + ph)
+        yo = np.interp(times, o[:, 0], o[:, 1]) * 1e3
+        ys = np.interp(times, d[:, 0], d[:, 7]) * 1e3
+        samples[ph] = (yo, ys)
+        ks_e.append(ks_distance(yo, ys))
+        ks_o.append(ks_distance(yo[:half], yo[half:]))
+        ks_s.append(ks_distance(ys[:half], ys[half:]))
+
+    def per_half(t, contact):
+        """Contact onsets per revolution and the fraction of time in contact, in each half."""
+        result = []
+        for k in range(2):
+            w = (t > (transient + k * half) * T) & (t <= (transient + (k + 1) * half) * T)
+            c = contact[w]
+            result.append((np.count_nonzero(c[1:] & ~c[:-1]) / half, c.mean()))
+        return result
+
+    ho, hs = per_half(o[:, 0], o[:, 3] > 0), per_half(d[:, 0], d[:, 9] > 0)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 4, figsize=(16, 3.4))
+    for ax, ph in zip(axes, phases[::4]):
+        for y, label, style in ((samples[ph][0], "ours", "-"), (samples[ph][1], "Siconos", "--")):
+            ax.step(np.sort(y), np.arange(1, len(y) + 1) / len(y), style, where="post", label=label)
+        ax.set_title(f"{name}, phase {ph:.2f}: KS {ks_distance(*samples[ph]):.3f}")
+        ax.set_xlabel("slider centre height (mm)")
+    axes[0].set_ylabel("fraction of revolutions")
+    axes[0].legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, f"siconos_driven_{name}.png"), dpi=80)
+    plt.close(fig)
+    crit = lambda n1, n2: 1.36 * np.sqrt((n1 + n2) / (n1 * n2))
+    return [name, str(revolutions), f"{np.median(ks_e):.3f}", f"{max(ks_e):.3f}", f"{np.median(ks_o):.3f}",
+            f"{max(ks_o):.3f}", f"{np.median(ks_s):.3f}", f"{max(ks_s):.3f}", f"{crit(revolutions, revolutions):.3f}",
+            f"{crit(half, revolutions - half):.3f}", f"{(ho[0][0] + ho[1][0]) / 2:.2f}", f"{ho[0][0]:.2f} {ho[1][0]:.2f}",
+            f"{(hs[0][0] + hs[1][0]) / 2:.2f}", f"{hs[0][0]:.2f} {hs[1][0]:.2f}", f"{ho[0][1]:.3f} {ho[1][1]:.3f}",
+            f"{hs[0][1]:.3f} {hs[1][1]:.3f}"]
+
 
 def driven(args, cases):
     T = 2 * np.pi / OMEGA
@@ -74,7 +132,7 @@ def driven(args, cases):
     phases = np.arange(16) / 16.0
     header = ["case", "revolutions", "largest_orbit_difference_mm", "at_phase", "largest_sd_ours_mm", "largest_sd_siconos_mm",
               "contact_fraction_ours", "contact_fraction_siconos"]
-    rows, lines = [], []
+    rows, lines, strobe = [], [], []
     for name, e, mu in cases:
         friction = ['--set', 'joint.slider.friction.law="coulomb"', '--set', f'joint.slider.friction.kinetic_coefficient={mu}'] \
             if mu > 0 else ['--set', 'joint.slider.friction.law="none"']
@@ -99,12 +157,20 @@ def driven(args, cases):
         after_o, after_s = o[:, 0] > transient * T, d[:, 0] > transient * T
         rows.append([name, str(args.revolutions), f"{worst:.4f}", f"{worst_phase:.4f}", f"{sd_o:.4f}", f"{sd_s:.4f}",
                      f"{(o[after_o, 3] > 0).mean():.3f}", f"{(d[after_s, 9] > 0).mean():.3f}"])
+        strobe.append(strobe_statistics(name, o, d, T, transient, args.revolutions, phases, args.out))
     with open(os.path.join(args.out, "driven_summary.tsv"), "w") as f:
         f.write("\t".join(header) + "\n")
         for r in rows:
             f.write("\t".join(r) + "\n")
     with open(os.path.join(args.out, "driven_phases.tsv"), "w") as f:
         f.write("case\tphase\tslider_y_ours_mm\tsd\tslider_y_siconos_mm\tsd\n" + "\n".join(lines) + "\n")
+    with open(os.path.join(args.out, "driven_strobe.tsv"), "w") as f:
+        f.write("\t".join(STROBE_HEADER) + "\n")
+        for r in strobe:
+            f.write("\t".join(r) + "\n")
+    for r in strobe:
+        print("\n".join(f"{h}: {v}" for h, v in zip(STROBE_HEADER, r)))
+        print()
     for r in rows:
         print("\n".join(f"{h}: {v}" for h, v in zip(header, r)))
         print()
@@ -116,7 +182,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--siconos-step", type=float, default=1e-5, help="Moreau-Jean's step (the examples' 1e-5)")
-    ap.add_argument("--cases", default=",".join(c[0] for c in CASES), help="comma-separated case names")
+    ap.add_argument("--cases", default=DEFAULT_CASES, help="comma-separated case names: " + ", ".join(c[0] for c in CASES))
     ap.add_argument("--driven", action="store_true", help="the driven scene's long-run statistics")
     ap.add_argument("--revolutions", type=int, default=120, help="--driven: revolutions sampled after 20")
     args = ap.parse_args()
