@@ -4,6 +4,7 @@
 
 Usage: siconos_compare.py MECHANISM_BINARY OUT_DIR [--duration 0.2] [--siconos-step 1e-5] [--cases a,b]
        siconos_compare.py MECHANISM_BINARY OUT_DIR --driven [--revolutions 120] [--cases a,b]
+       siconos_compare.py MECHANISM_BINARY OUT_DIR --contact-scan --duration 1
 Writes OUT_DIR/summary.tsv (driven: driven_summary.tsv, driven_phases.tsv, driven_strobe.tsv) and
 OUT_DIR/siconos_*.png; prints the
 summary. Run by scripts/validation/siconos.sh, which installs Siconos first.
@@ -37,11 +38,11 @@ DEFAULT_CASES = "e0.4,e0.4_mu0.01,e0.1"
 CLEARANCE = 0.001
 
 
-def run_ours(binary, e, mu, duration, path):
+def run_ours(binary, e, mu, duration, path, extra=()):
     friction = ['--set', 'joint.slider.friction.law="coulomb"', '--set', f'joint.slider.friction.kinetic_coefficient={mu}'] \
         if mu > 0 else ['--set', 'joint.slider.friction.law="none"']
     subprocess.run([binary, "simulate", "-q", SCENE, "--set", f"joint.slider.contact.restitution={e}",
-                    "--set", f"run.duration={duration}", *friction,
+                    "--set", f"run.duration={duration}", *friction, *extra,
                     "--signals", "t,crank_angle,conrod_angle,slider_angle,slider_y,energy,slider_penetration",
                     "-o", path], check=True)
     d = np.loadtxt(path, comments="#")
@@ -68,6 +69,31 @@ def ks_distance(a, b):
     fa = np.searchsorted(a, grid, side="right") / len(a)
     fb = np.searchsorted(b, grid, side="right") / len(b)
     return float(np.max(np.abs(fa - fb)))
+
+
+def contact_scan(args):
+    """The free run's fraction of time in contact (after 0.02 s) against the friction coefficient, in
+    both engines, with each engine's own variations beside it: Siconos at half its step, ours at other
+    integration tolerances and a 100 times stiffer contact (contact_scan.tsv)."""
+    rows = []
+    for mu in (0.0, 1e-4, 1e-3, 1e-2):
+        runs = [("siconos", f"h {args.siconos_step:g}", lambda p: run_siconos(0.4, mu, args.duration, p, args.siconos_step)),
+                ("ours", "rtol 1e-8", lambda p: run_ours(args.mechanism, 0.4, mu, args.duration, p))]
+        if mu in (0.0, 1e-2):
+            runs += [("siconos", f"h {args.siconos_step / 2:g}",
+                      lambda p: run_siconos(0.4, mu, args.duration, p, args.siconos_step / 2)),
+                     ("ours", "rtol 1e-10", lambda p: run_ours(args.mechanism, 0.4, mu, args.duration, p,
+                                                              ("--set", "integrator.relative_tolerance=1e-10"))),
+                     ("ours", "stiffness 1e10", lambda p: run_ours(args.mechanism, 0.4, mu, args.duration, p,
+                                                                  ("--set", "joint.slider.stiffness=1e10")))]
+        for engine, variant, run in runs:
+            r = run(os.path.join(args.out, f"scan_{engine}_{mu:g}_{variant.replace(' ', '')}.tsv"))
+            w = r["t"] > 0.02
+            c = r["contact"][w]
+            rows.append([engine, variant, f"{mu:g}", f"{c.mean():.3f}", str(np.count_nonzero(c[1:] & ~c[:-1]))])
+            print("\t".join(rows[-1]), flush=True)
+    with open(os.path.join(args.out, "contact_scan.tsv"), "w") as f:
+        f.write("engine\tvariant\tmu\tcontact_fraction\tonsets\n" + "\n".join("\t".join(r) for r in rows) + "\n")
 
 
 DRIVEN_SCENE = os.path.join(HERE, "..", "..", "mechanism", "scenes", "flores_leine_glocker_driven.toml")
@@ -185,11 +211,16 @@ def main():
     ap.add_argument("--cases", default=DEFAULT_CASES, help="comma-separated case names: " + ", ".join(c[0] for c in CASES))
     ap.add_argument("--driven", action="store_true", help="the driven scene's long-run statistics")
     ap.add_argument("--revolutions", type=int, default=120, help="--driven: revolutions sampled after 20")
+    ap.add_argument("--contact-scan", action="store_true",
+                    help="the free run's time in contact against mu in both engines (e_N 0.4; use --duration 1)")
     args = ap.parse_args()
     cases = [c for c in CASES if c[0] in args.cases.split(",")]
     os.makedirs(args.out, exist_ok=True)
     if args.driven:
         driven(args, cases)
+        return
+    if args.contact_scan:
+        contact_scan(args)
         return
     os.makedirs(args.out, exist_ok=True)
     import matplotlib
