@@ -289,17 +289,27 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
     }
     steps_per_interval = std::max(steps_per_interval, probe.last_steps());
   }
-  Eigen::VectorXd scale(d);
+  Eigen::VectorXd scale(d), mean = Eigen::VectorXd::Zero(d), spread = Eigen::VectorXd::Zero(d);
+  for (const auto& p : samples) mean += p;
+  mean /= static_cast<double>(samples.size());
+  for (const auto& p : samples) spread += (p - mean).cwiseAbs2();
+  spread = (spread / static_cast<double>(samples.size())).cwiseSqrt();
+  // A mechanical coordinate whose spread and mean are rounding next to the largest of its kind
+  // (positions, rates) did not move: a level slider's angle is 1e-18 rad where the conrod's swings
+  // by 0.3. Scaled by that rounding, a perturbation of 1e-8 would be 1e-26 rad, lost at once.
   std::string still;  // mechanical coordinates that did not move over the sampled period
   const int n = reference.system().coordinate_count();
+  const auto rounding = [&](Eigen::Index begin, Eigen::Index count) {
+    return perturbation_digits * std::numeric_limits<double>::epsilon() *
+           std::max(spread.segment(begin, count).maxCoeff(), mean.segment(begin, count).cwiseAbs().maxCoeff());
+  };
+  const double rounding_of[2] = {n > 0 ? rounding(0, n) : 0.0, n > 0 ? rounding(n, n) : 0.0};
   for (Eigen::Index i = 0; i < d; ++i) {
-    double mean = 0.0, ss = 0.0;
-    for (const auto& p : samples) mean += p[i];
-    mean /= static_cast<double>(samples.size());
-    for (const auto& p : samples) ss += (p[i] - mean) * (p[i] - mean);
-    const double spread = std::sqrt(ss / static_cast<double>(samples.size()));
-    scale[i] = spread > 0.0 ? spread : (mean != 0.0 ? std::abs(mean) : 1.0);
-    if (!(spread > 0.0) && i < 2 * n) still += (still.empty() ? "" : ", ") + out.coordinates[static_cast<std::size_t>(i)];
+    const bool mechanical = i < 2 * n;
+    const double floor = mechanical ? rounding_of[i / n] : 0.0;
+    const bool moved = spread[i] > floor;
+    scale[i] = moved ? spread[i] : (std::abs(mean[i]) > floor ? std::abs(mean[i]) : 1.0);
+    if (!moved && mechanical) still += (still.empty() ? "" : ", ") + out.coordinates[static_cast<std::size_t>(i)];
   }
   out.scale.assign(scale.data(), scale.data() + d);
 

@@ -9,7 +9,8 @@
 //  - Restitution 0.5: the contacts dissipate, the sum is negative.
 //  - The estimate does not depend on the perturbation inside its linear range.
 //  - A level slider without friction stays level: the method says the orbit is in an invariant
-//    subspace instead of reporting its transverse growth as the attractor's exponents.
+//    subspace instead of reporting its transverse growth as the attractor's exponents, also where
+//    the level angle is rounding rather than exactly 0.
 //  - A perturbation below what the state resolves is refused with the floor named, and a run whose
 //    exponents are not all finite is never `completed`.
 #include <gtest/gtest.h>
@@ -85,6 +86,20 @@ TEST(SceneLyapunov, ALevelFrictionlessSliderIsReportedAsAnInvariantSubspace) {
   const SceneLyapunov r = run({"joint.slider.model=line", "joint.slider.friction.law=none"});
   EXPECT_EQ(r.status, "invariant_subspace");
   EXPECT_NE(r.message.find("slider_angle"), std::string::npos) << r.message;
+}
+
+TEST(SceneLyapunov, ATiltOfRoundingSizeIsStillAnInvariantSubspace) {
+  // The corners model without friction: a level slider stays level, but its four corner forces
+  // leave an angle of 1e-18 rad of rounding (measured: 1.9e-18 rad, 1.7e-15 rad/s), where the
+  // line model leaves exactly 0. Taken as the angle's scale, a perturbation of 1e-9 was 1e-27 rad,
+  // lost in rounding at once: every exponent came out -inf (not_finite). The angle did not move,
+  // so the run is the invariant subspace's, with the angle scaled by 1 rad.
+  const SceneLyapunov r = run({"joint.slider.model=corners", "joint.slider.friction.law=none"}, 1e-9);
+  EXPECT_EQ(r.status, "invariant_subspace") << r.message;
+  EXPECT_NE(r.message.find("slider_angle"), std::string::npos) << r.message;
+  for (std::size_t i = 0; i < r.coordinates.size(); ++i)
+    if (r.coordinates[i].rfind("slider_angle", 0) == 0) EXPECT_EQ(r.scale[i], 1.0) << r.coordinates[i];
+  for (const double v : r.exponents) EXPECT_TRUE(std::isfinite(v));
 }
 
 TEST(SceneLyapunov, RefusesARigidMechanismAndImpossibleOptions) {
