@@ -3,6 +3,7 @@
 impacts at the slider's corners), written for this project's comparison with `mechanism simulate`.
 
 Usage: flg_siconos.py OUT.tsv [--restitution 0.4] [--friction 0.0] [--step 1e-5] [--duration 0.2] [--driven]
+       [--crank-speed 150]
 
 The model (our own derivation; the parameters are those of Flores, Leine & Glocker, Multibody Syst.
 Dyn. 23, 165 (2010), as mechanism/scenes/flores_leine_glocker_free.toml carries them):
@@ -21,7 +22,9 @@ top, y + (b + c) below. With friction the relation has a second row, the corner'
 
 --driven stands in for a constant-speed driver with a crank inertia of 1e3 kg m^2 (1.3e7 times J1):
 the mechanism's reaction torques then move the crank's 150 rad/s by less than 1e-3 rad/s over 80
-revolutions (measured). The energy column then holds that crank's kinetic energy too.
+revolutions (measured). The energy column then holds that crank's kinetic energy too. --crank-speed
+sets the crank's initial speed (rad/s; the coupler's is minus half of it, as at crank angle 0 with
+l2 = 2 l1).
 
 The plugins are C, generated here with the parameters and compiled with the system's cc (Siconos
 calls them at every Newton iteration; Python callbacks would be slow).
@@ -119,6 +122,7 @@ def main():
     ap.add_argument("--duration", type=float, default=0.2)
     ap.add_argument("--theta", type=float, default=0.5, help="Moreau-Jean's theta")
     ap.add_argument("--driven", action="store_true", help="a crank of inertia 1e3 kg m^2 in place of a driver")
+    ap.add_argument("--crank-speed", type=float, default=150.0, help="the crank's initial speed, rad/s")
     args = ap.parse_args()
     friction = args.friction > 0.0
     j1 = 1e3 if args.driven else J1
@@ -131,7 +135,7 @@ def main():
     subprocess.run(["cc", "-O2", "-shared", "-fPIC", "-o", lib, src, "-lm"], check=True)
 
     q0 = np.array([0.0, 0.0, 0.0])
-    v0 = np.array([150.0, -75.0, 0.0])
+    v0 = np.array([args.crank_speed, -0.5 * args.crank_speed, 0.0])
     ds = sk.LagrangianDS(q0, v0)
     ds.setComputeMassFunction(lib, "mass")
     ds.setComputeFGyrFunction(lib, "fgyr")

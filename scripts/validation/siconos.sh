@@ -2,7 +2,7 @@
 # Our free Flores-Leine-Glocker scene beside the same mechanism in Siconos (validation tier: it
 # installs Siconos's Python package, which nothing else in the project uses or links).
 # Usage: scripts/validation/siconos.sh [build-dir] [out-dir] [--duration S] [--siconos-step H] [--cases a,b]
-#        scripts/validation/siconos.sh [build-dir] [out-dir] --driven [--revolutions N] [--cases e0.9]
+#        scripts/validation/siconos.sh [build-dir] [out-dir] --driven [--revolutions N] [--cases e0.9] [--crank-speed W] [--stiffness K]
 #        scripts/validation/siconos.sh [build-dir] [out-dir] --contact-scan --duration 1
 # Writes out-dir/summary.tsv and out-dir/siconos_comparison.png, or with --driven
 # out-dir/driven_summary.tsv and driven_phases.tsv (docs/validation/mechanism/siconos.md).

@@ -3,7 +3,8 @@
 (flg_siconos.py): trajectories, impact times, energy, and statistics over the run.
 
 Usage: siconos_compare.py MECHANISM_BINARY OUT_DIR [--duration 0.2] [--siconos-step 1e-5] [--cases a,b]
-       siconos_compare.py MECHANISM_BINARY OUT_DIR --driven [--revolutions 120] [--cases a,b]
+       siconos_compare.py MECHANISM_BINARY OUT_DIR --driven [--revolutions 120] [--cases a,b] [--crank-speed 150]
+                                                    [--stiffness 1e8]
        siconos_compare.py MECHANISM_BINARY OUT_DIR --contact-scan --duration 1
 Writes OUT_DIR/summary.tsv (driven: driven_summary.tsv, driven_phases.tsv, driven_strobe.tsv) and
 OUT_DIR/siconos_*.png; prints the
@@ -97,7 +98,6 @@ def contact_scan(args):
 
 
 DRIVEN_SCENE = os.path.join(HERE, "..", "..", "mechanism", "scenes", "flores_leine_glocker_driven.toml")
-OMEGA = 150.0
 
 STROBE_HEADER = ["case", "revolutions", "ks_engines_median", "ks_engines_max", "ks_halves_ours_median",
                  "ks_halves_ours_max", "ks_halves_siconos_median", "ks_halves_siconos_max", "ks_critical_engines",
@@ -152,7 +152,7 @@ def strobe_statistics(name, o, d, T, transient, revolutions, phases, out):
 
 
 def driven(args, cases):
-    T = 2 * np.pi / OMEGA
+    T = 2 * np.pi / args.crank_speed
     transient = 20
     duration = (transient + args.revolutions) * T + 1e-9
     phases = np.arange(16) / 16.0
@@ -164,12 +164,15 @@ def driven(args, cases):
             if mu > 0 else ['--set', 'joint.slider.friction.law="none"']
         path = os.path.join(args.out, f"driven_ours_{name}.tsv")
         subprocess.run([args.mechanism, "simulate", "-q", DRIVEN_SCENE, "--set", f"joint.slider.contact.restitution={e}",
+                        "--set", f"driver.speed_rpm={args.crank_speed * 60 / (2 * np.pi)!r}",
+                        *(("--set", f"joint.slider.stiffness={args.stiffness!r}") if args.stiffness else ()),
                         "--set", f"run.duration={duration}", *friction, "--signals",
                         "t,slider_y,slider_vy,slider_penetration", "-o", path], check=True)
         o = np.loadtxt(path, comments="#")
         spath = os.path.join(args.out, f"driven_siconos_{name}.tsv")
         subprocess.run([sys.executable, os.path.join(HERE, "flg_siconos.py"), spath, "--restitution", str(e),
-                        "--friction", str(mu), "--duration", str(duration), "--driven"], check=True)
+                        "--friction", str(mu), "--duration", str(duration), "--driven", "--crank-speed",
+                        str(args.crank_speed)], check=True)
         d = np.loadtxt(spath, comments="#")
         worst, worst_phase, sd_o, sd_s = 0.0, 0.0, 0.0, 0.0
         for ph in phases:
@@ -211,6 +214,8 @@ def main():
     ap.add_argument("--cases", default=DEFAULT_CASES, help="comma-separated case names: " + ", ".join(c[0] for c in CASES))
     ap.add_argument("--driven", action="store_true", help="the driven scene's long-run statistics")
     ap.add_argument("--revolutions", type=int, default=120, help="--driven: revolutions sampled after 20")
+    ap.add_argument("--crank-speed", type=float, default=150.0, help="--driven: the crank's speed, rad/s")
+    ap.add_argument("--stiffness", type=float, default=None, help="--driven: our contact's stiffness, N/m (the scene's 1e8)")
     ap.add_argument("--contact-scan", action="store_true",
                     help="the free run's time in contact against mu in both engines (e_N 0.4; use --duration 1)")
     args = ap.parse_args()
