@@ -161,22 +161,23 @@ TEST(ChooseEmbedding, TheDimensionReadsOnlyTheFirstSamples) {
   }
   const std::span<const double> prefix = std::span<const double>(x).first(chaos::dimension_samples);
   chaos::CaoOptions c;
-  c.max_dimension = 5;
+  c.max_dimension = 3;  // E1(2) and the step after it: enough for m = 2
   const chaos::CaoResult on_prefix = chaos::cao(prefix, c);
-  const chaos::DimensionChoice m = chaos::choose_embedding_dimension(x, 1, 0, 5);
+  const chaos::DimensionChoice m = chaos::choose_embedding_dimension(x, 1, 0, 3);
   EXPECT_EQ(m.samples, chaos::dimension_samples);
   EXPECT_EQ(m.cao.E1, on_prefix.E1);
   EXPECT_EQ(m.cao.E2, on_prefix.E2);
   ASSERT_TRUE(m.dimension) << m.stopped;
   EXPECT_EQ(*m.dimension, 2u);
-  const chaos::EmbeddingChoice chosen = chaos::choose_embedding(x, 1, 0, {}, {}, 5);
+  const chaos::EmbeddingChoice chosen = chaos::choose_embedding(x, 1, 0, {}, {}, 3);
   EXPECT_EQ(chosen.dimension, m.dimension);
   EXPECT_EQ(chosen.dimension_source, "Cao's E1 saturation over the first 100000 of 120000 samples");
 
-  const chaos::DimensionChoice whole = chaos::choose_embedding_dimension(prefix, 1, 0, 5);
-  EXPECT_EQ(whole.samples, prefix.size());
-  EXPECT_EQ(whole.cao.E1, on_prefix.E1);
-  EXPECT_EQ(chaos::choose_embedding(prefix, 1, 0, {}, {}, 5).dimension_source, "Cao's E1 saturation");
+  const std::span<const double> short_record = prefix.first(5000);
+  const chaos::DimensionChoice whole = chaos::choose_embedding_dimension(short_record, 1, 0, 3);
+  EXPECT_EQ(whole.samples, short_record.size());
+  EXPECT_EQ(whole.cao.E1, chaos::cao(short_record, c).E1);
+  EXPECT_EQ(chaos::choose_embedding(short_record, 1, 0, {}, {}, 3).dimension_source, "Cao's E1 saturation");
 }
 
 TEST(ChooseEmbedding, WhereNoRuleAnswersTheFallbackStandsInAndSaysWhy) {

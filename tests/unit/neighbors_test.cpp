@@ -98,7 +98,9 @@ TEST(KdTree, AnyNumberOfThreadsBuildsTheSameTree) {
     for (std::size_t i = 0; i < e.size(); i += 997) {
       const auto brute = chaos::nearest_brute_force(e, i, Norm::max, q);
       ASSERT_EQ(expected[i].has_value(), brute.has_value()) << "point " << i;
-      if (brute) EXPECT_EQ(expected[i]->index, brute->index) << "point " << i;
+      if (brute) {
+        EXPECT_EQ(expected[i]->index, brute->index) << "point " << i;
+      }
     }
     // The internal tree, node for node (chaos/src/spatial/kd_tree.hpp).
     const auto at = [&e](std::size_t i, std::size_t k) { return e(i, k); };

@@ -97,8 +97,11 @@ TEST(SceneLyapunov, ATiltOfRoundingSizeIsStillAnInvariantSubspace) {
   const SceneLyapunov r = run({"joint.slider.model=corners", "joint.slider.friction.law=none"}, 1e-9);
   EXPECT_EQ(r.status, "invariant_subspace") << r.message;
   EXPECT_NE(r.message.find("slider_angle"), std::string::npos) << r.message;
-  for (std::size_t i = 0; i < r.coordinates.size(); ++i)
-    if (r.coordinates[i].rfind("slider_angle", 0) == 0) EXPECT_EQ(r.scale[i], 1.0) << r.coordinates[i];
+  for (std::size_t i = 0; i < r.coordinates.size(); ++i) {
+    if (r.coordinates[i].rfind("slider_angle", 0) == 0) {
+      EXPECT_EQ(r.scale[i], 1.0) << r.coordinates[i];
+    }
+  }
   for (const double v : r.exponents) EXPECT_TRUE(std::isfinite(v));
 }
 
