@@ -294,7 +294,7 @@ SceneLyapunov scene_lyapunov(const Scene& scene, const SceneLyapunovOptions& opt
   mean /= static_cast<double>(samples.size());
   for (const auto& p : samples) spread += (p - mean).cwiseAbs2();
   spread = (spread / static_cast<double>(samples.size())).cwiseSqrt();
-  // A mechanical coordinate whose spread and mean are rounding next to the largest of its kind
+  // A mechanical coordinate whose spread is rounding next to the largest spread or mean of its kind
   // (positions, rates) did not move: a level slider's angle is 1e-18 rad where the conrod's swings
   // by 0.3. Scaled by that rounding, a perturbation of 1e-8 would be 1e-26 rad, lost at once.
   std::string still;  // mechanical coordinates that did not move over the sampled period

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "chaos/error.hpp"
@@ -37,6 +38,19 @@ void expect_nearest(const DelayEmbedding& e, Norm norm, std::size_t i, const Nei
   EXPECT_EQ(brute->distance, distance);
 }
 
+// n uniform values in [0, 1) and n others quantised to 0, 1, 2, drawn alternately from one seeded
+// generator: smooth data, and data where most pairs tie.
+std::pair<std::vector<double>, std::vector<double>> smooth_and_quantised(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> smooth(n), quantised(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    smooth[i] = u(rng);
+    quantised[i] = std::floor(3.0 * u(rng));
+  }
+  return {std::move(smooth), std::move(quantised)};
+}
+
 TEST(KdTree, OneDimensionalHandCases) {
   // x = 0 1 3 7 8 in m = 1: gaps 1, 2, 4, 1.
   const std::vector<double> x{0, 1, 3, 7, 8};
@@ -53,13 +67,7 @@ TEST(KdTree, AllNearestIsEveryPointsNearest) {
   // order it searches in: on random data, and on data quantised to 3 levels, where ties at distance 0
   // and at equal distances decide; with and without the window and the zero-distance rule, and with
   // a point that has no admissible neighbour (the window covers everything: nullopt).
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<double> smooth(600), quantised(600);
-  for (std::size_t i = 0; i < smooth.size(); ++i) {
-    smooth[i] = u(rng);
-    quantised[i] = std::floor(3.0 * u(rng));
-  }
+  const auto [smooth, quantised] = smooth_and_quantised(600, 7);
   for (const auto* x : {&smooth, &quantised})
     for (const Norm norm : {Norm::max, Norm::euclidean})
       for (const NeighborQuery q : {NeighborQuery{0, false}, NeighborQuery{5, true}, NeighborQuery{700, false}}) {
@@ -83,13 +91,7 @@ TEST(KdTree, AnyNumberOfThreadsBuildsTheSameTree) {
   // which the build goes parallel (2^15 points), on smooth random data and on data quantised to 3
   // levels (ties at the median, uniform leaves): the leaf order must be the same permutation, every
   // point's nearest neighbour the same, and, for a sample of points, the one brute force finds.
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<double> smooth(50000), quantised(50000);
-  for (std::size_t i = 0; i < smooth.size(); ++i) {
-    smooth[i] = u(rng);
-    quantised[i] = std::floor(3.0 * u(rng));
-  }
+  const auto [smooth, quantised] = smooth_and_quantised(50000, 11);
   for (const auto* x : {&smooth, &quantised}) {
     const DelayEmbedding e(*x, 3, 2);
     const NeighborQuery q{5, true};

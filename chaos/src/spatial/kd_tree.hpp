@@ -189,8 +189,7 @@ KdTree::KdTree(std::size_t count, std::size_t dims, std::size_t leaf_size, const
     grow(nodes_, leaf_size, at, keyed, count / (2 * threads), &deferred);
     std::vector<std::vector<Node>> subtrees(deferred.size());
     detail::parallel_tasks(threads, deferred.size(), [&](std::size_t t, std::size_t) {
-      subtrees[t].push_back(nodes_[deferred[t]]);
-      subtrees[t].front().left = no_child;
+      subtrees[t].push_back(nodes_[deferred[t]]);  // unsplit: the top's grow left it a leaf
       grow(subtrees[t], leaf_size, at, keyed);
     });
     constexpr std::size_t top = std::numeric_limits<std::size_t>::max();
