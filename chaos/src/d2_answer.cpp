@@ -40,7 +40,7 @@ Estimate from_plateau(const D2Plateau& p) {
 
 }  // namespace
 
-Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
+Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
   Estimate e;
   switch (d2.status) {
     case D2Status::saturated: {
@@ -143,6 +143,16 @@ Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimens
   }
   e = Estimate{};
   e.reason = std::string(to_string(d2.status)) + ": no plateau of the local slopes to read a value from";
+  return e;
+}
+
+Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
+  Estimate e = d2_reading(d2, options);
+  if (e.value) {
+    const double floor = e.status == EstimateStatus::confident ? d2_confident_floor : d2_rough_floor;
+    e.include(*e.value - floor);
+    e.include(*e.value + floor);
+  }
   return e;
 }
 

@@ -26,12 +26,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 def references():
     """System -> lambda_1 from the equations, read from docs/validation/zoo.md's table."""
-    out = {}
+    out, column = {}, None
     for line in open(os.path.join(ROOT, "docs/validation/zoo.md")):
         cells = [c.strip() for c in line.split("|")]
-        if len(cells) > 12 and re.fullmatch(r"[0-9]+", cells[2] or "") and cells[1] not in out:
+        if "lambda_1 eq." in cells:  # the chaotic systems' table header: find the column by name
+            column = cells.index("lambda_1 eq.")
+        elif column and len(cells) > column and re.fullmatch(r"[0-9]+", cells[2] or "") and cells[1] not in out:
             try:
-                out[cells[1]] = float(cells[11])
+                out[cells[1]] = float(cells[column])
             except ValueError:
                 pass
     return out

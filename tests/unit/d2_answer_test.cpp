@@ -1,9 +1,9 @@
 // The answers of D2 (d2_answer.hpp) and the zoo's finite-record reference (zoo_state_d2.hpp).
 // Expected values come from:
 //   - the rules as stated in d2_answer.hpp, on correlation-dimension results built by hand (which
-//     value, which interval, which status for each detailed status);
+//     value, which interval, which status for each detailed status, the floors of the interval);
 //   - brute force: the state's correlation sums equal a direct count over every pair;
-//   - cited values: Lorenz D2 = 2.05 +- 0.01 and Henon D2 = 1.21 +- 0.01 (Grassberger & Procaccia,
+//   - a cited value: Henon D2 = 1.21 +- 0.01 (Grassberger & Procaccia,
 //     Physica D 9, 189 (1983); references/references.tsv), with a band of 0.1 for a finite record;
 //   - a property: white noise has no D2, so no confident one.
 #include "chaos/d2_answer.hpp"
@@ -44,7 +44,7 @@ CorrelationDimensionResult saturated(double d2, Interval interval) {
 
 bool holds(const Estimate& e, double v) { return e.interval && e.interval->low <= v && v <= e.interval->high; }
 
-TEST(D2Answer, ANarrowReproducedPlateauIsConfidentAndItsIntervalSpansTheHalves) {
+TEST(D2Answer, ANarrowReproducedPlateauIsConfidentAndItsIntervalSpansTheHalvesAndTheFloor) {
   CorrelationDimensionResult r = saturated(2.0, Interval{1.95, 2.06});
   r.first_half_status = D2Status::saturated;
   r.second_half_status = D2Status::saturated;
@@ -53,8 +53,21 @@ TEST(D2Answer, ANarrowReproducedPlateauIsConfidentAndItsIntervalSpansTheHalves) 
   const Estimate e = chaos::d2_answer(r);
   EXPECT_EQ(e.status, EstimateStatus::confident) << e.reason;
   EXPECT_DOUBLE_EQ(*e.value, 2.0);
-  EXPECT_DOUBLE_EQ(e.interval->low, 1.93);
-  EXPECT_DOUBLE_EQ(e.interval->high, 2.08);
+  // The halves span [1.93, 2.08]: the confident floor, 0.1 either side, is wider.
+  EXPECT_DOUBLE_EQ(e.interval->low, 2.0 - chaos::d2_confident_floor);
+  EXPECT_DOUBLE_EQ(e.interval->high, 2.0 + chaos::d2_confident_floor);
+  // Before the floor (the zoo's state reference), the interval is what the plateau and halves read.
+  const Estimate reading = chaos::d2_reading(r);
+  EXPECT_EQ(reading.status, EstimateStatus::confident);
+  EXPECT_DOUBLE_EQ(reading.interval->low, 1.93);
+  EXPECT_DOUBLE_EQ(reading.interval->high, 2.08);
+  // A second half further out than the floor widens the interval to it (half-width 0.095: confident).
+  r.first_half_d2 = 1.95;
+  r.second_half_d2 = 2.14;
+  const Estimate wider = chaos::d2_answer(r);
+  EXPECT_EQ(wider.status, EstimateStatus::confident) << wider.reason;
+  EXPECT_DOUBLE_EQ(wider.interval->low, 1.9);
+  EXPECT_DOUBLE_EQ(wider.interval->high, 2.14);
 }
 
 TEST(D2Answer, AWideIntervalAnotherPlateauOrTheEckmannRuelleLimitMakeItRough) {
@@ -93,8 +106,10 @@ TEST(D2Answer, AWithdrawnPlateauStillGivesARoughValueWithTheDisagreementInItsInt
   const Estimate e = chaos::d2_answer(r);
   EXPECT_EQ(e.status, EstimateStatus::rough);
   EXPECT_DOUBLE_EQ(*e.value, 1.254);
-  EXPECT_DOUBLE_EQ(e.interval->low, 1.22);
-  EXPECT_DOUBLE_EQ(e.interval->high, 1.363);
+  EXPECT_TRUE(holds(e, 1.22) && holds(e, 1.363));  // the plateau's slopes and both halves
+  // Rough: at least the rough floor, 0.4, either side.
+  EXPECT_DOUBLE_EQ(e.interval->low, 1.254 - chaos::d2_rough_floor);
+  EXPECT_DOUBLE_EQ(e.interval->high, 1.254 + chaos::d2_rough_floor);
 
   CorrelationDimensionResult scales;
   scales.status = D2Status::scale_dependent;
@@ -103,8 +118,8 @@ TEST(D2Answer, AWithdrawnPlateauStillGivesARoughValueWithTheDisagreementInItsInt
   const Estimate s = chaos::d2_answer(scales);
   EXPECT_EQ(s.status, EstimateStatus::rough);
   EXPECT_DOUBLE_EQ(*s.value, 3.05) << "D2 is the small-scale limit";
-  EXPECT_DOUBLE_EQ(s.interval->low, 2.3);
-  EXPECT_DOUBLE_EQ(s.interval->high, 3.1);
+  EXPECT_DOUBLE_EQ(s.interval->low, 2.3);  // the other plateau, beyond the rough floor
+  EXPECT_DOUBLE_EQ(s.interval->high, 3.05 + chaos::d2_rough_floor);
 
   CorrelationDimensionResult noisy;
   noisy.status = D2Status::noise_limited;
@@ -142,14 +157,6 @@ TEST(D2Answer, WithoutAPlateauItIsNoneUnlessTheHighestDimensionsAgree) {
   CorrelationDimensionResult nothing;
   nothing.status = D2Status::no_scaling_region;
   EXPECT_EQ(chaos::d2_answer(nothing).status, EstimateStatus::none);
-}
-
-TEST(D2Answer, LorenzWithTheDefaultsIsConfidentWithinTheCitedBand) {
-  const auto x = chaos::lorenz(20000).components[0];
-  const chaos::AutomaticAnalysis a = chaos::analyse_series(x, 0.01);
-  ASSERT_TRUE(a.d2_estimate);
-  EXPECT_EQ(a.d2_estimate->status, EstimateStatus::confident) << a.d2_estimate->reason;
-  EXPECT_NEAR(*a.d2_estimate->value, 2.05, 0.1);
 }
 
 TEST(D2Answer, WhiteNoiseIsNeverConfident) {

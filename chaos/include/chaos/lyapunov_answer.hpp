@@ -5,7 +5,9 @@
 //     and the local maps (cross_check, require_reproduced_by_halves): where both give a value,
 //     lambda_1 is their mean, or the median of the three where the local maps are consistent; the
 //     interval spans their intervals. Confident when at least one of the two is confident and that
-//     span is at most 10% of the value either side.
+//     span is at most 10% of the value either side. Otherwise, where the local maps are consistent
+//     and the three values lie within 7% of the centre of their span, that centre, confident: three
+//     estimators with different systematic errors agree.
 //   - Where only one gives a value, that value, rough (the other estimator does not confirm it).
 //   - Where neither does, the local maps' value (or their base estimate where their variants
 //     disagree), rough: a divergence curve with no exponential stretch is evidence against a sharp

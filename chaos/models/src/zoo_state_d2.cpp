@@ -199,7 +199,7 @@ std::vector<CorrelationSumResult> state_correlation_sums(const std::vector<std::
 Estimate state_d2_reference(const CorrelationSumResult& sums) {
   CorrelationDimensionOptions options;
   options.saturation_dimensions = 1;
-  return d2_answer(correlation_dimension(sums, options), options);
+  return d2_reading(correlation_dimension(sums, options), options);
 }
 
 }  // namespace chaos

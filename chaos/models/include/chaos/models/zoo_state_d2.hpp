@@ -78,7 +78,8 @@ std::vector<StateCoding> state_codings(const std::vector<std::vector<double>>& c
 std::vector<double> state_radii(const std::vector<std::vector<double>>& components, std::size_t count = 40);
 
 // The reference D2 from a state's correlation sums: the plateau of its local slopes, read as
-// correlation_dimension reads one dimension, as an answer (value, interval, status) (d2_answer.hpp).
+// correlation_dimension reads one dimension, as an answer before the floors (d2_reading,
+// d2_answer.hpp): its interval is what the plateau itself reads, to which the zoo's band adds 0.1.
 Estimate state_d2_reference(const CorrelationSumResult& sums);
 
 }  // namespace chaos
