@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "chaos/error.hpp"
 
@@ -220,8 +221,9 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
 
 Estimate subsets_answer(const AdaptiveD2Result& fast, const CorrelationDimensionResult& d2,
                         const CorrelationDimensionOptions& dimension) {
-  Estimate e = d2_answer(d2, dimension);
-  if (fast.exact || fast.rounds.empty()) return e;
+  // The floor goes last: an unsettled answer turns rough below, and takes the rough floor.
+  Estimate e = d2_reading(d2, dimension);
+  if (fast.exact || fast.rounds.empty()) return with_d2_floor(std::move(e));
   const AdaptiveD2Round& last = fast.rounds.back();
   for (const auto& v : {last.d2_a, last.d2_b})
     if (v && e.value) e.include(*v);
@@ -241,7 +243,7 @@ Estimate subsets_answer(const AdaptiveD2Result& fast, const CorrelationDimension
     e.downgrade("from " + std::to_string(fast.reference_points) +
                 " reference points whose subsets did not settle (exact counts: without --fast)");
   }
-  return e;
+  return with_d2_floor(std::move(e));
 }
 
 }  // namespace chaos

@@ -146,14 +146,17 @@ Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimen
   return e;
 }
 
-Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
-  Estimate e = d2_reading(d2, options);
+Estimate with_d2_floor(Estimate e) {
   if (e.value) {
     const double floor = e.status == EstimateStatus::confident ? d2_confident_floor : d2_rough_floor;
     e.include(*e.value - floor);
     e.include(*e.value + floor);
   }
   return e;
+}
+
+Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options) {
+  return with_d2_floor(d2_reading(d2, options));
 }
 
 }  // namespace chaos

@@ -59,6 +59,8 @@ void expect_promise_kept(const std::vector<double>& x, chaos::CorrelationSumOpti
       const chaos::Estimate e = chaos::subsets_answer(r, r.d2);
       EXPECT_EQ(e.status, chaos::EstimateStatus::rough) << tag;
       ASSERT_TRUE(e.interval.has_value()) << tag << ": " << e.reason;
+      EXPECT_LE(e.interval->low, *e.value - chaos::d2_rough_floor) << tag;  // the rough floor (d2_answer.hpp)
+      EXPECT_GE(e.interval->high, *e.value + chaos::d2_rough_floor) << tag;
       EXPECT_LE(e.interval->low, *exact.d2) << tag << ": " << e.reason;
       EXPECT_GE(e.interval->high, *exact.d2) << tag << ": " << e.reason;
       continue;
@@ -114,6 +116,41 @@ TEST(AdaptiveD2, ShortSeriesGoStraightToTheExactCounts) {
   EXPECT_TRUE(r.exact);
   EXPECT_TRUE(r.rounds.empty());
   EXPECT_NE(r.explanation.find("exact counts"), std::string::npos) << r.explanation;
+}
+
+// A plateau that alone would be confident (half-width 0.05) read from rounds that never settled:
+// the answer turns rough, so its interval takes the rough floor, not the confident one it read
+// as (the floor follows the final status, d2_answer.hpp).
+TEST(AdaptiveD2, AnUnsettledAnswerTakesTheRoughFloor) {
+  chaos::CorrelationDimensionResult d2;
+  d2.status = chaos::D2Status::saturated;
+  d2.d2 = 2.0;
+  d2.d2_interval = chaos::Interval{1.95, 2.05};
+  d2.scaling_region = chaos::Interval{0.1, 1.0};
+  d2.saturation_dimensions_used = {4, 5, 6};
+  d2.plateaus = {chaos::D2Plateau{chaos::Interval{0.1, 1.0}, 2.0, chaos::Interval{1.95, 2.05}}};
+  d2.eckmann_ruelle_limit = 10.0;
+  ASSERT_EQ(chaos::d2_answer(d2).status, chaos::EstimateStatus::confident);
+  chaos::AdaptiveD2Result fast;
+  fast.reference_points = 8000;
+  chaos::AdaptiveD2Round last;
+  last.reference_points = 4000;
+  last.d2_a = 1.98;
+  last.d2_b = 2.03;
+  last.standard_error = 0.01;
+  fast.rounds = {last};
+  fast.settled = true;
+  const chaos::Estimate settled = chaos::subsets_answer(fast, d2);
+  EXPECT_EQ(settled.status, chaos::EstimateStatus::confident);
+  ASSERT_TRUE(settled.interval.has_value());
+  EXPECT_DOUBLE_EQ(settled.interval->low, 2.0 - chaos::d2_confident_floor);
+  EXPECT_DOUBLE_EQ(settled.interval->high, 2.0 + chaos::d2_confident_floor);
+  fast.settled = false;
+  const chaos::Estimate unsettled = chaos::subsets_answer(fast, d2);
+  EXPECT_EQ(unsettled.status, chaos::EstimateStatus::rough);
+  ASSERT_TRUE(unsettled.interval.has_value());
+  EXPECT_DOUBLE_EQ(unsettled.interval->low, 2.0 - chaos::d2_rough_floor);
+  EXPECT_DOUBLE_EQ(unsettled.interval->high, 2.0 + chaos::d2_rough_floor);
 }
 
 TEST(AdaptiveD2, RefusesAFixedBudgetAndImpossibleTargets) {

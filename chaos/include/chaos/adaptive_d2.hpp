@@ -91,6 +91,8 @@ struct AdaptiveD2Result {
 // D2 of a fast run as one answer (d2_answer.hpp) from `d2` (its result, after any halves check):
 // the interval also spans the last round's two subsets; where no round was accepted the answer is
 // rough, its interval widened by two standard errors of the merged counts, and the reason says so.
+// The floor of the final status (d2_answer.hpp) comes last, so an unsettled answer reaches at least
+// d2_rough_floor either side.
 Estimate subsets_answer(const AdaptiveD2Result& fast, const CorrelationDimensionResult& d2,
                         const CorrelationDimensionOptions& dimension = {});
 

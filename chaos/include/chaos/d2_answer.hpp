@@ -41,6 +41,9 @@ inline constexpr double d2_confident_floor = d2_confident_half_width;
 inline constexpr double d2_rough_floor = 0.4;
 
 Estimate d2_answer(const CorrelationDimensionResult& d2, const CorrelationDimensionOptions& options = {});
+// The interval widened to the floor of the answer's status as it stands (d2_answer's last step). A
+// caller that changes the status after reading (the fast D2's unsettled rounds) applies it last.
+Estimate with_d2_floor(Estimate e);
 // The same answer before the floors: the interval spans only what the estimator's own choices and
 // checks read. The zoo holds an answer to the state's reading with this interval (its band was
 // fixed on it before the floors).
