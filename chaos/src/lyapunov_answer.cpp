@@ -73,10 +73,12 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
     const bool one_confident = r->status == EstimateStatus::confident || k->status == EstimateStatus::confident;
     const double spread = e.relative_half_width();
     const std::string span = "their spread is " + format_number(spread * 100, Precision::title) + "% either side";
+    const auto statuses = [&](const char* between) {
+      return "Rosenstein (" + std::string(to_string(r->status)) + ")" + between + "Kantz (" + to_string(k->status) + ")";
+    };
     if (one_confident && spread <= confident_floor) {
       e.status = EstimateStatus::confident;
-      e.reason = "Rosenstein (" + std::string(to_string(r->status)) + ") and Kantz (" + to_string(k->status) +
-                 ") agree; " + span;
+      e.reason = statuses(" and ") + " agree; " + span;
       widen(e, confident_floor);
       return answer;
     }
@@ -86,16 +88,14 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
       const double centre = 0.5 * (values.front() + values.back());
       const double half = 0.5 * (values.back() - values.front());
       if (centre > 0.0 && half <= three_way_agreement * centre) {
-        Estimate agreed;
-        agreed.value = centre;
-        agreed.include(values.front());
-        agreed.include(values.back());
-        agreed.status = EstimateStatus::confident;
-        agreed.reason = "Rosenstein (" + std::string(to_string(r->status)) + "), Kantz (" + to_string(k->status) +
-                        ") and the local maps (consistent) lie within " +
-                        format_number(100 * half / centre, Precision::title) + "% of the centre of their span";
-        widen(agreed, confident_floor);
-        e = agreed;
+        e = Estimate{};
+        e.value = centre;
+        e.include(values.front());
+        e.include(values.back());
+        e.status = EstimateStatus::confident;
+        e.reason = statuses(", ") + " and the local maps (consistent) lie within " +
+                   format_number(100 * half / centre, Precision::title) + "% of the centre of their span";
+        widen(e, confident_floor);
         return answer;
       }
     }
