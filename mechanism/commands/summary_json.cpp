@@ -15,6 +15,8 @@ nlohmann::ordered_json simulation_summary_json(const SimulationSummary& s, const
   j["max_penetration"] = s.max_penetration;
   j["contact_events"] = s.contact_events;
   j["located_switches"] = s.located_switches;
+  j["located_reversals"] = s.located_reversals;
+  j["unlocated_reversals"] = s.unlocated_reversals;
   j["energy_balance_error"] = s.energy_balance_error;
   j["energy_balance_relative"] = s.energy_balance_relative;
   j["energy_jump_relative"] = s.energy_jump_relative;

@@ -11,8 +11,6 @@ namespace mechanism {
 
 namespace {
 
-bool has_coulomb(const FrictionLawParameters& f) { return f.law == FrictionLaw::coulomb; }
-
 // The cubic Hermite interpolant of a step (as Rk4::interpolate) at s = (t - t0) / h.
 template <class A, class B, class C, class D>
 auto hermite(double s, double h, const A& x0, const B& x1, const C& f0, const D& f1) {
@@ -28,20 +26,15 @@ std::string saltation_unsupported(const Scene& scene) {
   if (scene.integrator.method != IntegratorMethod::rk4)
     return "the saltation method follows RK4's fixed steps (integrator.method = \"rk4\"): an adaptive stepper's step "
            "sequence depends on the state";
-  bool lugre = false, coulomb = false;
+  bool lugre = false;
   auto look = [&](JointKind kind, const FrictionLawParameters& f) {
     if (kind != JointKind::clearance) return;
-    coulomb = coulomb || has_coulomb(f);
     lugre = lugre || f.law == FrictionLaw::lugre_absolute || f.law == FrictionLaw::lugre_normalised;
   };
   look(scene.slider_guide.kind, scene.slider_guide.friction);
   look(scene.crank_ground.kind, scene.crank_ground.friction);
   look(scene.crank_conrod.kind, scene.crank_conrod.friction);
   look(scene.conrod_slider.kind, scene.conrod_slider.friction);
-  if (coulomb)
-    return "Coulomb's law jumps at zero sliding speed, a stick-slip switch that fixed steps do not locate, so the "
-           "simulated map is not differentiable there (use friction law \"ambrosio\" or a LuGre law, or --method "
-           "benettin)";
   if (lugre && scene.integrator.bristles == BristleUpdate::exponential)
     return "the exponential bristle update rewrites the deflections at every step's end, a map the saltation method "
            "does not differentiate (integrator.bristles = \"integrated\", or --method benettin)";
@@ -201,6 +194,50 @@ void SaltationTangents::commit(const StepRecord& step, const Eigen::MatrixXd& y0
     y.row(n_state_ + static_cast<Eigen::Index>(i)).setZero();
     if (const int b = probe_.bristle_index(i); b >= 0) y.row(b).setZero();
   }
+  if (step.reversal >= 0) reverse(step, y);
+}
+
+void SaltationTangents::reverse(const StepRecord& step, Eigen::MatrixXd& y) {
+  // The step ended where site i's sliding velocity v crosses zero, and the force it holds flips
+  // from f- to f+ there. A neighbour reaches v = 0 later by dt = -grad(v) dx / v', with v' the rate
+  // along f-; it spends dt under f- while the reference is under f+, so dx+ = dx + (f+ - f-)
+  // grad(v) dx / v' (Müller 1995 with h = v and no reset).
+  const auto i = static_cast<std::size_t>(step.reversal);
+  const State& x1 = *step.x1;
+  const double t1 = step.t1;
+  std::vector<ContactMemory> memory = *step.memory;
+  probe_.set_memory(memory);
+  State f_minus, f_plus;
+  probe_.rhs(t1, x1, f_minus);
+  const double tau = 1e-3 * probe_.scene().integrator.step;
+  probe_.evaluate(t1 + tau, x1 + tau * f_minus, ev_);
+  const double v_plus = ev_.sites[i].sliding_velocity;
+  probe_.evaluate(t1 - tau, x1 - tau * f_minus, ev_);
+  const double rate = (v_plus - ev_.sites[i].sliding_velocity) / (2.0 * tau);
+  memory[i].sliding_direction = -memory[i].sliding_direction;
+  probe_.set_memory(memory);
+  probe_.rhs(t1, x1, f_plus);
+  probe_.set_memory(*step.memory);
+  if (!(std::abs(rate) > 0.0)) return;  // a tangential graze: no transversal crossing to correct
+  const Eigen::VectorXd jump = (f_plus - f_minus) / rate;
+  for (Eigen::Index j = 0; j < y.cols(); ++j) {
+    const double dv = sliding_derivative(t1, x1, i, y.col(j).head(n_state_));
+    y.col(j).head(n_state_) += dv * jump;
+  }
+}
+
+double SaltationTangents::sliding_derivative(double t, const State& x, std::size_t site,
+                                             const Eigen::Ref<const Eigen::VectorXd>& dx) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < n_state_; ++i) largest = std::max(largest, std::abs(dx[i]) / scale_[i]);
+  if (!(largest > 0.0)) return 0.0;
+  const double eta = jacobian_step / largest;
+  xs_ = x + eta * dx;
+  probe_.evaluate(t, xs_, ev_);
+  const double vp = ev_.sites[site].sliding_velocity;
+  xs_ = x - eta * dx;
+  probe_.evaluate(t, xs_, ev_);
+  return (vp - ev_.sites[site].sliding_velocity) / (2.0 * eta);
 }
 
 void SaltationTangents::start(double t, const State& x, const std::vector<ContactMemory>& memory, Eigen::MatrixXd& y) {

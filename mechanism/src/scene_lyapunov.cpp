@@ -141,7 +141,16 @@ FiniteDifferenceLyapunov saltation_benettin(SceneTrajectory& reference, const Fi
   detail::BenettinAverages averages(k, options, out);
   SimulationObserver observer;
   SaltationTangents* current = nullptr;
-  observer.step = [&](const StepRecord& step) { current->step(step, y); };
+  // A touching Coulomb site stepped without a held direction: simulate() fell back to sign(v) at
+  // each stage because the contact stuck, a sliding mode with no saltation matrix.
+  double stuck_at = std::numeric_limits<double>::quiet_NaN();
+  observer.step = [&](const StepRecord& step) {
+    for (std::size_t i = 0; i < sys.site_count(); ++i)
+      if (sys.holds_sliding_direction(i) && (*step.memory)[i].touching && (*step.memory)[i].sliding_direction == 0 &&
+          std::isnan(stuck_at))
+        stuck_at = step.t0;
+    current->step(step, y);
+  };
   for (std::size_t it = 0; it < averages.total(); ++it) {
     current = &tangents[reference.phase()];
     current->start(0.0, reference.state(), reference.contact_memory(), y);
@@ -149,6 +158,13 @@ FiniteDifferenceLyapunov saltation_benettin(SceneTrajectory& reference, const Fi
       out.status = FiniteDifferenceLyapunov::Status::trajectory_failed;
       out.message = "the reference trajectory could not be advanced at iteration " + std::to_string(it) + ": " +
                     reference.failure();
+      break;
+    }
+    if (!std::isnan(stuck_at)) {
+      out.status = FiniteDifferenceLyapunov::Status::trajectory_failed;
+      out.message = "a Coulomb contact stuck at t = " + std::to_string(stuck_at) + " s into iteration " +
+                    std::to_string(it) + " (its sliding velocity reversed twice within one step, a sliding mode): "
+                    "Coulomb's law has no saltation matrix there; use --method benettin";
       break;
     }
     for (int j = 0; j < k; ++j) q.col(j) = sys.phase_point(y.col(j).head(n_state)).cwiseQuotient(scale);

@@ -89,7 +89,11 @@ class HybridLoop {
     energy0_ = ev_.kinetic_energy + ev_.potential_energy;
     kinetic_max_ = ev_.kinetic_energy;
     penetration_prev_.resize(sys_.site_count());
-    for (std::size_t i = 0; i < sys_.site_count(); ++i) penetration_prev_[i] = ev_.sites[i].penetration;
+    sliding_prev_.resize(sys_.site_count());
+    for (std::size_t i = 0; i < sys_.site_count(); ++i) {
+      penetration_prev_[i] = ev_.sites[i].penetration;
+      sliding_prev_[i] = ev_.sites[i].sliding_velocity;
+    }
     if (locate_) sys_.switching_functions(ev_, switch_prev_);
     emit_due(0.0, x, true);
     State x0 = x;
@@ -134,8 +138,50 @@ class HybridLoop {
     return found && tc - t0 > margin && t1 - tc > margin;
   }
 
-  // After an accepted step from t0 to t1 (x is the state at t1, evaluate_end called there).
-  void after_step(double t0, double t1, State& x) {
+  // After evaluate_end, on the RK4 grid: the earliest time in (t0, t1] at which a site that holds a
+  // sliding direction (SliderCrank::holds_sliding_direction) sees its sliding velocity reverse,
+  // located on the step's dense output, which the held direction keeps smooth. `done[i]`: site i
+  // reversed earlier in this grid step; a second reversal there is a sliding mode (the contact
+  // sticks: with either direction held the velocity is driven back through zero), returned as
+  // `sticks` with no time. Unlike find_switch there is no margin: a reversal is located however
+  // close to an end of the step it lies, so the state at t1 stays a continuous function of the
+  // state at t0 (the Lyapunov map's requirement, scene_lyapunov.hpp).
+  enum class Reversal { none, located, sticks };
+  Reversal find_reversal(double t0, double t1, const std::vector<char>& done, double& tr, std::size_t& site) {
+    Reversal out = Reversal::none;
+    tr = t1;
+    const auto& memory = sys_.memory();
+    for (std::size_t i = 0; i < sys_.site_count(); ++i) {
+      const int d = memory[i].sliding_direction;
+      if (!sys_.holds_sliding_direction(i) || d == 0 || !memory[i].touching) continue;
+      const double g1 = d * ev_.sites[i].sliding_velocity;
+      if (!(g1 < 0.0)) continue;
+      const double g0 = d * sliding_prev_[i];
+      if (done[i] || !(g0 > 0.0)) {  // reversed already in this step, or back across zero at once
+        site = i;
+        return Reversal::sticks;
+      }
+      auto g = [&](double t) {
+        stepper_.interpolate(t, scratch_);
+        sys_.evaluate(t, scratch_, probe_);
+        return d * probe_.sites[i].sliding_velocity;
+      };
+      // To the last bits of t: the crossing time's error moves the state by (f+ - f-) times it,
+      // and the map's derivative across the reversal (Mueller's saltation) assumes none.
+      const double tol = 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t0), std::abs(t1));
+      const double ti = locate_crossing(g, t0, t1, g0, g1, std::max(tol, 1e-300));
+      if (ti < tr || out == Reversal::none) {
+        tr = ti;
+        site = i;
+      }
+      out = Reversal::located;
+    }
+    return out;
+  }
+
+  // After an accepted step from t0 to t1 (x is the state at t1, evaluate_end called there);
+  // `reversal`: the site whose sliding direction the caller reverses at t1 (find_reversal), or -1.
+  void after_step(double t0, double t1, State& x, std::ptrdiff_t reversal = -1) {
     emit_due(t1, x, false);
     if (locate_) switch_prev_.swap(switch_now_);  // evaluate_end's, at this step end
     const int n = sys_.coordinate_count();
@@ -156,6 +202,7 @@ class HybridLoop {
         onset = true;
       }
       penetration_prev_[i] = now;
+      sliding_prev_[i] = ev_.sites[i].sliding_velocity;
     }
     if (obs_.step) {
       StepRecord r;
@@ -167,6 +214,7 @@ class HybridLoop {
       r.memory = &sys_.memory();
       r.onset_time = &onset_time_;
       r.onset_rate = &onset_rate_;
+      r.reversal = reversal;
       obs_.step(r);
     }
     if (rec_) rec_->forget();
@@ -261,6 +309,7 @@ class HybridLoop {
   double energy0_ = 0, kinetic_max_ = 0;
   double balance_prev_ = 0;  // the energy balance at the last step end (0 at the start)
   std::vector<double> penetration_prev_, onset_rate_, onset_time_;
+  std::vector<double> sliding_prev_;  // each site's sliding velocity at the last step end
   State x_start_;  // the step's start, kept only for observer.step
   // Switching functions at the last accepted step end, at the step end being checked, at a probe.
   std::vector<double> switch_prev_, switch_now_, switch_probe_;
@@ -346,6 +395,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     // ends on t_end itself: total h can round below it (2 T + T at 5000 rpm is 0.036000000000000004
     // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution.
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
+    std::vector<char> reversed(system.site_count(), 0);  // sites whose direction reversed in this grid step
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {
         sum.status = SimulationStatus::step_limit;
@@ -355,16 +405,47 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
       const double t1 = k == total ? t_end : std::min(static_cast<double>(k) * h, t_end);
       // The grid step [t, t1], in pieces when contacts switch inside it: each piece ends at the
       // first switch located in what is left (a piece shorter than a thousandth of the step is
-      // not split again: the switch's error there is negligible and it could not end otherwise).
+      // not split again: the switch's error there is negligible and it could not end otherwise),
+      // or at the first reversal of a held sliding direction (find_reversal), which reverses it.
       bool finite = true;
+      std::fill(reversed.begin(), reversed.end(), 0);
       for (;;) {
         const double t0 = t;
         stepper.step(system, t, x, t1 - t0);
         t = t1;
         if (!(finite = x.allFinite())) break;
         loop.evaluate_end(t1, x);
-        double tc = t1;
-        if (loop.find_switch(t0, t1, 1e-3 * h, tc)) {
+        double tc = t1, tr = t1;
+        std::size_t site = 0;
+        const bool switched = loop.find_switch(t0, t1, 1e-3 * h, tc);
+        const auto reversal = loop.find_reversal(t0, t1, reversed, tr, site);
+        if (reversal == decltype(reversal)::sticks) {
+          // The contact sticks: take the piece again with Coulomb's sign(v) at each stage, as
+          // dopri5 does; the step's end sets a direction again.
+          stepper.interpolate(t0, x);
+          t = t0;
+          system.set_sliding_direction(site, 0);
+          stepper.invalidate();
+          ++sum.unlocated_reversals;
+          continue;
+        }
+        if (reversal == decltype(reversal)::located && (!switched || tr <= tc)) {
+          const int direction = system.memory()[site].sliding_direction;
+          stepper.interpolate(t0, x);
+          t = t0;
+          stepper.step(system, t, x, tr - t0);
+          t = tr;
+          if (!(finite = x.allFinite())) break;
+          loop.evaluate_end(tr, x);
+          ++sum.steps;
+          ++sum.located_reversals;
+          loop.after_step(t0, tr, x, static_cast<std::ptrdiff_t>(site));
+          system.set_sliding_direction(site, -direction);
+          reversed[site] = 1;
+          stepper.invalidate();
+          continue;
+        }
+        if (switched) {
           stepper.interpolate(t0, x);  // the piece's start: the dense output is exact at its ends
           t = t0;
           stepper.step(system, t, x, tc - t0);

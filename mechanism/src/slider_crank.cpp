@@ -101,6 +101,7 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     c.validate();
     site.chi = hysteresis_factor(c.law, c.restitution);
     if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
+    site.holds_direction = f.law == FrictionLaw::coulomb && s.integrator.method == IntegratorMethod::rk4;
   }
   exponential_bristles_ = bristles_ > 0 && s.integrator.bristles == BristleUpdate::exponential;
   memory_.assign(sites_.size(), ContactMemory{});
@@ -124,6 +125,11 @@ namespace {
 struct FrictionResult {
   double force = 0.0, z = 0.0, z_rate = 0.0;
 };
+// The velocity the friction law is given: the held direction where the site holds one (Coulomb's
+// law on the RK4 grid, SliderCrank::holds_sliding_direction; the law reads only its sign), else v.
+inline double law_velocity(bool holds_direction, const ContactMemory& memory, double v) {
+  return holds_direction && memory.sliding_direction != 0 ? static_cast<double>(memory.sliding_direction) : v;
+}
 inline FrictionResult site_friction(const FrictionLawParameters& p, double floor, double normal, double v, double z,
                                     double elapsed) {
   if (!(normal > 0.0)) return {0.0, z, 0.0};
@@ -334,7 +340,8 @@ void SliderCrank::slider_contacts(const double pose[3], const double rate[3], co
                                  : detail::normal_force_kernel(site.chi, tj.contact.exponent, tj.contact.velocity_floor,
                                                                se.stiffness, depth, depth_rate, impact);
     se.sliding_velocity = vx;
-    const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force, vx,
+    const FrictionResult f = site_friction(tj.friction, tj.bristle_time_floor, se.normal_force,
+                                           law_velocity(site.holds_direction, mem, vx),
                                            site.state >= 0 ? x[site.state] : 0.0, out.bristle_elapsed);
     se.friction_force = f.force;
     se.deflection = f.z;
@@ -527,7 +534,8 @@ void SliderCrank::compute_jets(double t, const State& x, Result& out) const {
                                                   jr.stiffness, se.penetration, se.penetration_rate, impact);
     se.sliding_velocity = vt;
     const FrictionResult f = site_friction(revolute(jr).friction, revolute(jr).bristle_time_floor, se.normal_force,
-                                           vt, site.state >= 0 ? x[site.state] : 0.0, out.bristle_elapsed);
+                                           law_velocity(site.holds_direction, mem, vt),
+                                           site.state >= 0 ? x[site.state] : 0.0, out.bristle_elapsed);
     se.friction_force = f.force;
     se.deflection = f.z;
     se.deflection_rate = f.z_rate;
@@ -751,6 +759,9 @@ bool SliderCrank::commit(double t, const Evaluation& at_end, const std::vector<d
         x[sites_[i].state] = se.deflection;
         latched = true;
       }
+      // Coulomb on the RK4 grid: the direction the next steps hold, where none is held yet.
+      if (sites_[i].holds_direction && m.sliding_direction == 0 && se.sliding_velocity != 0.0)
+        m.sliding_direction = se.sliding_velocity > 0.0 ? 1 : -1;
       if (!m.touching) {
         m.touching = true;
         const double at_onset = i < onset_rate.size() ? onset_rate[i] : std::numeric_limits<double>::quiet_NaN();

@@ -17,8 +17,13 @@
 //     g_i the penetration, dx_c the tangent at t_c (the step's Hermite dense output), g_i'' along it;
 //     the state's rows jump by nothing (the force is zero at zero penetration on either side);
 //   onset where the located rate was not positive (commit() latches the end's rate): dp_i = grad(g_i') dx;
-//   a site open at the step's end: its bristle row is zeroed (commit() resets z to 0), dp_i = 0.
-// Only RK4 runs with integrated bristles and without Coulomb's law are handled (saltation_unsupported).
+//   a site open at the step's end: its bristle row is zeroed (commit() resets z to 0), dp_i = 0;
+//   a Coulomb site whose held sliding direction reverses at the step's end (the step ended on that
+//     zero of its sliding velocity v, StepRecord::reversal): dx+ = dx + (f+ - f-) grad(v) dx / v',
+//     f- and f+ the right-hand sides with the old and the new direction, v' along f-.
+// Only RK4 runs with integrated bristles are handled (saltation_unsupported). A Coulomb contact
+// that sticks (SimulationSummary::unlocated_reversals) has no saltation matrix: scene_lyapunov
+// stops the saltation method there.
 
 #include <Eigen/Core>
 
@@ -71,6 +76,10 @@ class SaltationTangents {
   // d/dv of a site's penetration and penetration rate at (t, x) (evaluate() by central differences).
   void site_derivatives(double t, const State& x, std::size_t site, const Eigen::Ref<const Eigen::VectorXd>& dx,
                         double& dg, double& dg_rate);
+  // d/dv of a site's sliding velocity at (t, x), the same way.
+  double sliding_derivative(double t, const State& x, std::size_t site, const Eigen::Ref<const Eigen::VectorXd>& dx);
+  // The jump at a held sliding direction's reversal (StepRecord::reversal), after commit's.
+  void reverse(const StepRecord& step, Eigen::MatrixXd& y);
   double step_along(const Eigen::Ref<const Eigen::VectorXd>& v, const std::vector<ContactMemory>& memory) const;
 
   SliderCrank probe_;

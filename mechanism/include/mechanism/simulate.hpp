@@ -51,6 +51,10 @@ struct SimulationSummary {
   // Steps ended early at a contact switch located inside them (integrator.locate_switches), each
   // followed by the rest of the step: the extra steps, counted in `steps` too.
   std::size_t located_switches = 0;
+  // RK4 with Coulomb's law: steps ended where a held sliding direction reverses (counted in `steps`
+  // too), and pieces taken again with sign(v) at each stage because a contact stuck (its velocity
+  // reversed twice within one grid step: a sliding mode, where the held direction has no meaning).
+  std::size_t located_reversals = 0, unlocated_reversals = 0;
   // max over step ends of |E(t) - E(0) - W_drive(t) - W_contact(t)| (J), E = kinetic + gravity;
   // and the same divided by the largest kinetic energy seen, a scale-free measure.
   double energy_balance_error = 0.0;
@@ -75,6 +79,9 @@ struct StepRecord {
   // rate was not positive (a graze: commit() latches the step end's rate).
   const std::vector<double>* onset_time = nullptr;
   const std::vector<double>* onset_rate = nullptr;
+  // The site whose held sliding direction reverses at t1, after commit() (the step ended at the
+  // reversal, SliderCrank::holds_sliding_direction), or -1.
+  std::ptrdiff_t reversal = -1;
 };
 
 struct SimulationObserver {

@@ -55,6 +55,10 @@ enum class SiteKind { slider_face_upper, slider_face_lower, slider_corner, journ
 struct ContactMemory {
   bool touching = false;         // penetrating at the end of the last accepted step
   double impact_velocity = 0.0;  // penetration rate latched at onset (m/s)
+  // Coulomb's law on the RK4 grid (SliderCrank::holds_sliding_direction): the sign of the sliding
+  // velocity the friction force opposes throughout the step, +1 or -1; 0 (before the first step in
+  // contact ends, or after a reversal that could not be located) falls back to sign(v) at each stage.
+  int sliding_direction = 0;
 };
 
 // One contact site's state at an evaluation.
@@ -164,6 +168,15 @@ class SliderCrank {
   // its steps on these zeros (integrator.locate_switches, simulate.cpp).
   void switching_functions(const Evaluation& ev, std::vector<double>& g) const;
 
+  // Whether site i's friction is Coulomb's law on the RK4 grid. Its force jumps by 2 mu F_N where the
+  // sliding velocity reverses, and a fixed step that straddles the jump is neither accurate nor a
+  // differentiable map of its start; so such a site opposes the direction held in its memory
+  // (commit() sets it from the step end's velocity when the site has none), and simulate() ends
+  // the step where the velocity reverses and reverses the direction there (set_sliding_direction).
+  // Under dopri5 the step-size control resolves the jump, and every stage uses sign(v).
+  bool holds_sliding_direction(std::size_t i) const { return sites_[i].holds_direction; }
+  void set_sliding_direction(std::size_t i, int direction) { memory_[i].sliding_direction = direction; }
+
   const std::vector<ContactMemory>& memory() const { return memory_; }
   // Replaces the memory (one entry per site, as memory() returns): how a trajectory that is
   // continued by another SliderCrank of the same joints (a later crank phase) keeps its contacts.
@@ -177,6 +190,7 @@ class SliderCrank {
     int corner = -1;    // for slider corners: 0 top-left, 1 top-right, 2 bottom-left, 3 bottom-right
     int state = -1;     // index of the bristle deflection in the state (LuGre), else -1
     double chi = 0.0;   // hysteresis factor of its normal law (checked once, in the constructor)
+    bool holds_direction = false;  // Coulomb's law on the RK4 grid (holds_sliding_direction)
   };
   // At most four slider sites (corners) and three journals.
   static constexpr std::size_t max_sites = 7;
