@@ -431,19 +431,22 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
         }
         if (reversal == decltype(reversal)::located && (!switched || tr <= tc)) {
           const int direction = system.memory()[site].sliding_direction;
-          stepper.interpolate(t0, x);
-          t = t0;
-          stepper.step(system, t, x, tr - t0);
-          t = tr;
-          if (!(finite = x.allFinite())) break;
-          loop.evaluate_end(tr, x);
+          if (tr < t1) {  // (located at t1 itself, the piece is the step just taken)
+            stepper.interpolate(t0, x);
+            t = t0;
+            stepper.step(system, t, x, tr - t0);
+            t = tr;
+            if (!(finite = x.allFinite())) break;
+            loop.evaluate_end(tr, x);
+          }
           ++sum.steps;
           ++sum.located_reversals;
           loop.after_step(t0, tr, x, static_cast<std::ptrdiff_t>(site));
           system.set_sliding_direction(site, -direction);
           reversed[site] = 1;
           stepper.invalidate();
-          continue;
+          if (tr < t1) continue;
+          break;
         }
         if (switched) {
           stepper.interpolate(t0, x);  // the piece's start: the dense output is exact at its ends
