@@ -101,7 +101,9 @@ SliderCrank::SliderCrank(const Scene& scene) : scene_(scene) {
     c.validate();
     site.chi = hysteresis_factor(c.law, c.restitution);
     if (f.has_state()) site.state = 2 * n_ + 2 + bristles_++;
-    site.holds_direction = f.law == FrictionLaw::coulomb && s.integrator.method == IntegratorMethod::rk4;
+    // (With mu_k = 0 the law has no jump to locate.)
+    site.holds_direction = f.law == FrictionLaw::coulomb && f.kinetic_coefficient > 0.0 &&
+                           s.integrator.method == IntegratorMethod::rk4;
   }
   exponential_bristles_ = bristles_ > 0 && s.integrator.bristles == BristleUpdate::exponential;
   memory_.assign(sites_.size(), ContactMemory{});

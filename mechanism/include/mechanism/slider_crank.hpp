@@ -168,9 +168,9 @@ class SliderCrank {
   // its steps on these zeros (integrator.locate_switches, simulate.cpp).
   void switching_functions(const Evaluation& ev, std::vector<double>& g) const;
 
-  // Whether site i's friction is Coulomb's law on the RK4 grid. Its force jumps by 2 mu F_N where the
-  // sliding velocity reverses, and a fixed step that straddles the jump is neither accurate nor a
-  // differentiable map of its start; so such a site opposes the direction held in its memory
+  // Whether site i's friction is Coulomb's law (mu_k > 0) on the RK4 grid. Its force jumps by
+  // 2 mu F_N where the sliding velocity reverses, and a fixed step that straddles the jump is
+  // neither accurate nor a differentiable map of its start; so such a site opposes the direction held in its memory
   // (commit() sets it from the step end's velocity when the site has none), and simulate() ends
   // the step where the velocity reverses and reverses the direction there (set_sliding_direction).
   // Under dopri5 the step-size control resolves the jump, and every stage uses sign(v).

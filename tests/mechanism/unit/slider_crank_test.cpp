@@ -236,6 +236,43 @@ TEST(SliderCrank, TheFourSliderConfigurations) {
   EXPECT_GT(jammed.sites[1].normal_force, 0.0);
 }
 
+// Coulomb's law on RK4's grid opposes the direction held in the contact's memory, not the sign of
+// the sliding velocity at each stage (slider_crank.hpp, holds_sliding_direction): the force of a
+// site sliding one way with the other direction held has the held direction's sign, mu_k F_N in
+// size. Only Coulomb with mu_k > 0 under RK4 holds a direction.
+TEST(SliderCrank, CoulombOnRk4OpposesTheHeldDirection) {
+  EXPECT_FALSE(SliderCrank(read_scene("", {"joint.slider.friction.law=lugre_absolute"})).holds_sliding_direction(0));
+  EXPECT_FALSE(SliderCrank(read_scene("", {"joint.slider.friction.law=coulomb", "integrator.method=dopri5"}))
+                   .holds_sliding_direction(0));
+  EXPECT_FALSE(SliderCrank(read_scene("", {"joint.slider.friction.law=coulomb", "joint.slider.friction.kinetic_coefficient=0"}))
+                   .holds_sliding_direction(0));
+  const Scene s = read_scene("", {"joint.slider.friction.law=coulomb"});
+  SliderCrank sys(s);
+  ASSERT_TRUE(sys.holds_sliding_direction(1));
+  // Pressed into the lower face at t = 1.3 ms, the crank 39 degrees past its dead centre (the slider
+  // centre's height is L2 sin(omega t) + L3 sin(conrod angle)).
+  const double t = 1.3e-3, y = -(s.slider_guide.clearance + 2e-5);
+  State x = sys.initial_state();
+  x[0] = std::asin((y - s.crank.length * std::sin(sys.omega() * t)) / s.conrod.length);
+  x[1] = 0.0;
+  Evaluation free_sign;
+  sys.evaluate(t, x, free_sign);  // no direction held yet: sign(v)
+  const SiteEvaluation& lower = free_sign.sites[1];
+  ASSERT_GT(lower.normal_force, 0.0);
+  ASSERT_NE(lower.sliding_velocity, 0.0);
+  const double mu = s.slider_guide.friction.kinetic_coefficient;
+  EXPECT_NEAR(lower.friction_force, -std::copysign(mu * lower.normal_force, lower.sliding_velocity),
+              1e-12 * lower.normal_force);
+  for (int held : {1, -1}) {
+    sys.set_sliding_direction(1, held);
+    Evaluation ev;
+    sys.evaluate(t, x, ev);
+    EXPECT_EQ(ev.sites[1].sliding_velocity, lower.sliding_velocity);
+    EXPECT_NEAR(ev.sites[1].friction_force, -held * mu * ev.sites[1].normal_force, 1e-12 * ev.sites[1].normal_force)
+        << "held " << held;
+  }
+}
+
 TEST(SliderCrank, FaceCornerAndLineModelsAgreeForAFlatUniformPenetration) {
   // A level slider pressed uniformly into the lower surface: the face model (one force at the
   // centroid, stiffness of the full contact length), the corner model (two corners, half the
