@@ -170,10 +170,11 @@ class SliderCrank {
 
   // Whether site i's friction is Coulomb's law (mu_k > 0) on the RK4 grid. Its force jumps by
   // 2 mu F_N where the sliding velocity reverses, and a fixed step that straddles the jump is
-  // neither accurate nor a differentiable map of its start; so such a site opposes the direction held in its memory
-  // (commit() sets it from the step end's velocity when the site has none), and simulate() ends
-  // the step where the velocity reverses and reverses the direction there (set_sliding_direction).
-  // Under dopri5 the step-size control resolves the jump, and every stage uses sign(v).
+  // neither accurate nor a differentiable map of its start; so such a site opposes the direction
+  // held in its memory (commit() sets it from the step end's velocity when the site has none), and
+  // simulate() ends the step where the velocity reverses and reverses the direction there
+  // (set_sliding_direction). Under dopri5 the step-size control resolves the jump, and every stage
+  // uses sign(v).
   bool holds_sliding_direction(std::size_t i) const { return sites_[i].holds_direction; }
   void set_sliding_direction(std::size_t i, int direction) { memory_[i].sliding_direction = direction; }
 
