@@ -396,6 +396,17 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
     // s, 36000 h is 0.036 s), and the run then stopped short of its last revolution.
     const auto total = static_cast<std::size_t>(std::ceil(t_end / h - 1e-9));
     std::vector<char> reversed(system.site_count(), 0);  // sites whose direction reversed in this grid step
+    // The piece [t0, te] taken again from its start (the dense output is exact at its ends), te
+    // inside the step just taken; false when the state became non-finite.
+    const auto retake_to = [&](double t0, double te) {
+      stepper.interpolate(t0, x);
+      t = t0;
+      stepper.step(system, t, x, te - t0);
+      t = te;
+      if (!x.allFinite()) return false;
+      loop.evaluate_end(te, x);
+      return true;
+    };
     for (std::size_t k = 1; k <= total; ++k) {
       if (static_cast<double>(k) > scene.integrator.max_steps) {
         sum.status = SimulationStatus::step_limit;
@@ -431,14 +442,8 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
         }
         if (reversal == decltype(reversal)::located && (!switched || tr <= tc)) {
           const int direction = system.memory()[site].sliding_direction;
-          if (tr < t1) {  // (located at t1 itself, the piece is the step just taken)
-            stepper.interpolate(t0, x);
-            t = t0;
-            stepper.step(system, t, x, tr - t0);
-            t = tr;
-            if (!(finite = x.allFinite())) break;
-            loop.evaluate_end(tr, x);
-          }
+          // (Located at t1 itself, the piece is the step just taken.)
+          if (tr < t1 && !(finite = retake_to(t0, tr))) break;
           ++sum.steps;
           ++sum.located_reversals;
           loop.after_step(t0, tr, x, static_cast<std::ptrdiff_t>(site));
@@ -449,12 +454,7 @@ SimulationSummary simulate(SliderCrank& system, const State& start, const Simula
           break;
         }
         if (switched) {
-          stepper.interpolate(t0, x);  // the piece's start: the dense output is exact at its ends
-          t = t0;
-          stepper.step(system, t, x, tc - t0);
-          t = tc;
-          if (!(finite = x.allFinite())) break;
-          loop.evaluate_end(tc, x);
+          if (!(finite = retake_to(t0, tc))) break;
           ++sum.steps;
           ++sum.located_switches;
           loop.after_step(t0, tc, x);

@@ -223,13 +223,19 @@ TEST(SceneLyapunov, KaplanYorkeDimension) {
 // (measured: 0.01 and 0.02 standard errors). With it locked the interval maps are less linear at
 // the finite differences' scale in a few per cent of the intervals, and the two stay 0.3 and 0.9
 // standard errors apart (docs/validation/mechanism/lyapunov-saltation.md).
+// The comparisons of the saltation method with Benettin's: lambda_1 and lambda_2 over 10 periods.
+SceneLyapunovOptions two_exponents_over_ten_periods() {
+  SceneLyapunovOptions o;
+  o.periods = 10;
+  o.transient_periods = 2;
+  o.exponents = 2;
+  return o;
+}
+
 TEST(SceneLyapunov, SaltationAgreesWithBenettinOnTheSeedScene) {
   for (const char* rotation : {"free", "locked"}) {
     const Scene scene = read_scene("", {std::string("joint.slider.rotation=") + rotation});
-    SceneLyapunovOptions o;
-    o.periods = 10;
-    o.transient_periods = 2;
-    o.exponents = 2;
+    SceneLyapunovOptions o = two_exponents_over_ten_periods();
     const SceneLyapunov b = scene_lyapunov(scene, o);
     o.method = LyapunovMethod::saltation;
     const SceneLyapunov s = scene_lyapunov(scene, o);
@@ -270,10 +276,7 @@ TEST(SceneLyapunov, SaltationAgreesWithBenettinWithCoulombFriction) {
     const SimulationSummary run = simulate(sys);
     ASSERT_GT(run.located_reversals, 0u) << rotation;
     const Scene scene = read_scene("", keys);
-    SceneLyapunovOptions o;
-    o.periods = 10;
-    o.transient_periods = 2;
-    o.exponents = 2;
+    SceneLyapunovOptions o = two_exponents_over_ten_periods();
     const SceneLyapunov b = scene_lyapunov(scene, o);
     o.method = LyapunovMethod::saltation;
     const SceneLyapunov s = scene_lyapunov(scene, o);
