@@ -49,6 +49,12 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
                          "--fast chooses the reference subset itself: it cannot be combined with --reference-points or -N "
                          "(got --reference-points " + std::to_string(params.sums.reference_points) + ", -N " +
                              std::to_string(params.sums.pairs_per_radius) + ")");
+    // With a budget and the halves check, each round's two subsets are the record's halves
+    // (adaptive_d2.hpp): the check comes with the rounds instead of two more counts. Without a
+    // budget the rounds draw from the whole record, as validated (docs/validation/fast-d2-zoo.md):
+    // halves that differ by more than the 0.02 target (Lorenz x at 10^5: 2.072 and 2.045) would
+    // never let them settle.
+    params.adaptive.halves = params.halves && params.adaptive.budget != 0;
     fast = adaptive_correlation_dimension(x, params.sums, params.dimension, params.adaptive);
   }
   CorrelationSumResult sums = fast ? std::move(fast->sums) : correlation_sum(x, params.sums);
@@ -56,10 +62,12 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   // The same sums over each half of the record (same radii): a saturated plateau must be reproduced.
   CorrelationSumOptions halves = params.sums;
   halves.progress = params.halves_progress;  // each half from 0 to 1 (and where a caller may stop them)
-  // After --fast, each half gets the budget the fast run settled on (exact if it fell back), so
-  // the check costs about what the final D2 did, not half an exact job.
-  if (fast && !fast->exact) halves.reference_points = fast->reference_points;
-  if (params.halves) check_record_halves(d2, x, halves, params.dimension);
+  // After --fast, the rounds' subsets were the halves (half the final budget each), or each half
+  // is counted with the budget the rounds chose, so the check costs about what the final D2 did;
+  // after a fast run that fell back to exact counts, the halves are counted exactly too.
+  if (fast && fast->halves) halves.reference_points = fast->reference_points / 2;
+  if (fast && !fast->exact && !fast->halves) halves.reference_points = fast->reference_points;
+  if (params.halves && !(fast && fast->halves)) check_record_halves(d2, x, halves, params.dimension);
   // The same sums at twice the delay (same radii): D2 must not depend on the embedding.
   if (params.delay_check) check_delay_variant(d2, x, params.sums, params.dimension);
 
@@ -154,6 +162,7 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
                  {"reference_points", fast->exact ? nlohmann::ordered_json("exact") : nlohmann::ordered_json(fast->reference_points)},
                  {"exact", fast->exact},
                  {"settled", fast->settled},
+                 {"halves", fast->halves},
                  {"explanation", fast->explanation},
                  {"rounds", rounds}};
   }

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "chaos/automatic_analysis.hpp"
 #include "chaos/error.hpp"
 
 namespace chaos {
@@ -149,45 +150,42 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     out.explanation = why.str();
     return out;
   }
-  // One search structure for every round's subset.
-  const CorrelationSumSubsets subsets(x, sums);
-  CorrelationSumResult total = subsets.count(0, counted);
-  CorrelationDimensionResult total_d2 = correlation_dimension(total, dimension);
+  // One search structure for every round's subsets: the whole record's, or one per half.
+  std::optional<CorrelationSumSubsets> whole, first, second;
+  if (options.halves) {
+    const auto [x1, x2] = record_halves(x);
+    first.emplace(x1, sums);
+    second.emplace(x2, sums);
+  } else {
+    whole.emplace(x, sums);
+  }
+  // Subset a: the first T reference points (of the first half); b: the next T (of the second half).
+  CorrelationSumResult a = options.halves ? first->count(0, counted) : whole->count(0, counted);
+  CorrelationSumResult b = options.halves ? second->count(0, counted) : whole->count(counted, counted);
+  CorrelationDimensionResult a_d2 = correlation_dimension(a, dimension);
   for (;;) {
-    if (counted > points / 16) {  // the next round would count more than an eighth of the points
-      // Unsettled: the counts so far answer, rough, with what their subsets read (subsets_answer).
-      out.sums = std::move(total);
-      out.d2 = std::move(total_d2);
-      out.reference_points = counted;
-      why << "the subsets did not agree within " << options.target << " on one unambiguous plateau and scaling "
-          << "region, precisely enough, that leaving out any group of reference points keeps, up to " << counted / 2
-          << " reference points each (the next round would count more than an eighth of the " << points
-          << " points); D2 from all " << counted << " of them, rough (exact counts: without --fast)";
-      break;
-    }
-    const CorrelationSumResult other = subsets.count(counted, counted);
-    const CorrelationDimensionResult other_d2 = correlation_dimension(other, dimension);
-    CorrelationSumResult merged = merge(std::move(total), other);
+    const CorrelationDimensionResult b_d2 = correlation_dimension(b, dimension);
+    CorrelationSumResult merged = merge(a, b);
     CorrelationDimensionResult merged_d2 = correlation_dimension(merged, dimension);
     AdaptiveD2Round round;
     round.reference_points = counted;
-    round.status_a = total_d2.status;
-    round.status_b = other_d2.status;
+    round.status_a = a_d2.status;
+    round.status_b = b_d2.status;
     round.status_merged = merged_d2.status;
-    round.d2_a = total_d2.d2;
-    round.d2_b = other_d2.d2;
+    round.d2_a = a_d2.d2;
+    round.d2_b = b_d2.d2;
     round.d2_merged = merged_d2.d2;
-    round.region_a = total_d2.scaling_region;
-    round.region_b = other_d2.scaling_region;
+    round.region_a = a_d2.scaling_region;
+    round.region_b = b_d2.scaling_region;
     round.region_merged = merged_d2.scaling_region;
     round.standard_error = merged_d2.d2_standard_error;
-    round.agreed = total_d2.d2 && other_d2.d2 && merged_d2.d2 && std::abs(*total_d2.d2 - *other_d2.d2) <= options.target &&
-                   overlap(merged_d2.scaling_region, total_d2.scaling_region) &&
-                   overlap(merged_d2.scaling_region, other_d2.scaling_region);
+    round.agreed = a_d2.d2 && b_d2.d2 && merged_d2.d2 && std::abs(*a_d2.d2 - *b_d2.d2) <= options.target &&
+                   overlap(merged_d2.scaling_region, a_d2.scaling_region) &&
+                   overlap(merged_d2.scaling_region, b_d2.scaling_region);
     if (round.agreed) {
       const Interval& region = *merged_d2.scaling_region;
-      round.region_shift = std::max(region_distance(merged.radius, region, *total_d2.scaling_region),
-                                    region_distance(merged.radius, region, *other_d2.scaling_region));
+      round.region_shift = std::max(region_distance(merged.radius, region, *a_d2.scaling_region),
+                                    region_distance(merged.radius, region, *b_d2.scaling_region));
     }
     round.same_region = round.agreed && *round.region_shift <= options.region_slack;
     round.precise = round.standard_error && options.confidence * *round.standard_error <= options.target;
@@ -197,23 +195,52 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
       round.stable = !round.competing;
     }
     out.rounds.push_back(round);
-    total = std::move(merged);
-    total_d2 = std::move(merged_d2);
-    counted *= 2;
-    if (round.stable) {
-      out.settled = true;
-      out.sums = std::move(total);
-      out.d2 = std::move(total_d2);
-      out.reference_points = counted;
-      why << "two disjoint subsets of " << round.reference_points << " reference points agree (D2 " << *round.d2_a
-          << " and " << *round.d2_b << ", within " << options.target << ", on scaling regions within "
-          << options.region_slack << (options.region_slack == 1 ? " radius" : " radii")
-          << " of the merged one at both ends), the merged D2's standard error " << *round.standard_error
-          << " is at most " << options.target << " / " << options.confidence
-          << ", leaving out any group of them keeps the plateau, and no other plateau reads another D2; D2 from all "
-          << counted << " of them";
+    // Another round would count 4T in all: more than an eighth of the points, or beyond the budget
+    // (T > points / 32, not 32 T > points: no wrap-around).
+    const bool eighth = counted > points / 32, over_budget = options.budget != 0 && counted > options.budget / 4;
+    if (round.stable || eighth || over_budget) {
+      out.settled = round.stable;
+      out.reference_points = 2 * counted;
+      if (options.halves) {
+        out.halves = true;
+        if (merged_d2.status == D2Status::saturated)
+          require_reproduced_by_halves(merged_d2, a_d2, b_d2, dimension);
+      }
+      out.sums = std::move(merged);
+      out.d2 = std::move(merged_d2);
+      const char* const source = options.halves ? " reference points, one subset from each half of the record,"
+                                                : " reference points";
+      if (round.stable)
+        why << "two disjoint subsets of " << counted << source << " agree (D2 " << *round.d2_a << " and "
+            << *round.d2_b << ", within " << options.target << ", on scaling regions within " << options.region_slack
+            << (options.region_slack == 1 ? " radius" : " radii")
+            << " of the merged one at both ends), the merged D2's standard error " << *round.standard_error
+            << " is at most " << options.target << " / " << options.confidence
+            << ", leaving out any group of them keeps the plateau, and no other plateau reads another D2; D2 from all "
+            << 2 * counted << " of them";
+      else  // unsettled: the counts so far answer, rough, with what their subsets read (subsets_answer)
+        why << "two disjoint subsets of up to " << counted << source << " did not agree within " << options.target
+            << " on one unambiguous plateau and scaling region, precisely enough, that leaving out any group of "
+            << "reference points keeps (another round would count "
+            << (eighth ? "more than an eighth of the " + std::to_string(points) + " points"
+                       : std::to_string(4 * counted) + " reference points, beyond the budget of " +
+                             std::to_string(options.budget))
+            << "); D2 from all " << 2 * counted
+            << " of them, rough (a larger --fast-budget, or exact counts without --fast)";
       break;
     }
+    // The next round: a and b twice as large, both halves growing, or the merged counts against the
+    // next 2T points of the whole record.
+    if (options.halves) {
+      a = merge(std::move(a), first->count(counted, counted));
+      b = merge(std::move(b), second->count(counted, counted));
+      a_d2 = correlation_dimension(a, dimension);
+    } else {
+      a = std::move(merged);
+      a_d2 = std::move(merged_d2);
+      b = whole->count(2 * counted, 2 * counted);
+    }
+    counted *= 2;
   }
   out.explanation = why.str();
   return out;

@@ -74,7 +74,8 @@ knobs() {
   measure "$case-threads2" 0 "$data" "$@" --threads 2
   for cap in 1000 10000 100000 1000000; do measure "$case-N$cap" 0 "$data" "$@" -N "$cap"; done
   for refs in 1000 10000 30000; do measure "$case-R$refs" 0 "$data" "$@" --reference-points "$refs"; done
-  measure "$case-fast" 0 "$data" "$@" --fast
+  measure "$case-quick" 0 "$data" "$@" --fast
+  measure "$case-fast" 0 "$data" "$@" --fast --fast-budget 0
   row "$case" exact "$case-exact" "$case-exact" "exact (no cap, 1 thread)"
   row "$case" threads "$case-threads2" "$case-exact" "exact, \`--threads 2\`"
   for cap in 1000 10000 100000 1000000; do row "$case" cap "$case-N$cap" "$case-exact" "pair cap \`-N $cap\`"; done
@@ -83,7 +84,8 @@ knobs() {
   done
   local budget
   budget=$(jq -r 'if .fast.exact then "fell back to the exact counts" else "\(.fast.reference_points) reference points" end' "$work/$case-fast.json")
-  row "$case" fast "$case-fast" "$case-exact" "\`--fast\` ($budget)"
+  row "$case" quick "$case-quick" "$case-exact" "\`--fast\` (one round of 2 x 200 reference points)"
+  row "$case" fast "$case-fast" "$case-exact" "\`--fast --fast-budget 0\` ($budget)"
 }
 
 # seeds CASE DATA ARGS...: a fixed subset of 1000 reference points and --fast over seeds 1-5 (one
@@ -100,11 +102,11 @@ seeds() {
       if [[ $kind == subset ]]; then
         /usr/bin/time -f '%e' -o "$work/time" "$chaos" d2 "$data" "$@" --reference-points 1000 --seed "$s" --json > "$work/$id.json"
       else
-        /usr/bin/time -f '%e' -o "$work/time" "$chaos" d2 "$data" "$@" --fast --seed "$s" --json > "$work/$id.json"
+        /usr/bin/time -f '%e' -o "$work/time" "$chaos" d2 "$data" "$@" --fast --fast-budget 0 --seed "$s" --json > "$work/$id.json"
       fi
       seconds=$(cat "$work/time")
       # shellcheck disable=SC2016  # Markdown code spans: the backticks are literal
-      jq -r --arg setting "$([[ $kind == subset ]] && echo '`--reference-points 1000`' || echo '`--fast`')" \
+      jq -r --arg setting "$([[ $kind == subset ]] && echo '`--reference-points 1000`' || echo '`--fast --fast-budget 0`')" \
         --arg seed "$s" --arg seconds "$seconds" --argjson exact "$exact" '
         [$setting, $seed, $seconds, .status,
          (if .d2 == null then "-" else (.d2 * 10000 | round / 10000 | tostring) end),

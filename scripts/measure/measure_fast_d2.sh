@@ -48,7 +48,8 @@ case_rows() {  # name tau m w -> $work/rows.name
   for start in $starts; do
     for seed in $seeds; do
       json="$work/$name.$start.$seed.json"
-      timed "$json" "$work/$name.fast.t" "${args[@]}" --fast --fast-start "$start" --seed "$seed"
+      # --fast-budget 0: the rounds double until they settle (the command's default budget is one round)
+      timed "$json" "$work/$name.fast.t" "${args[@]}" --fast --fast-start "$start" --fast-budget 0 --seed "$seed"
       jq -r --arg name "$name" --arg tau "$tau" --arg m "$m" --arg w "$w" --arg start "$start" --arg seed "$seed" \
         --arg xd2 "$exact_d2" --arg xst "$exact_status" --arg xt "$exact_t" --arg t "$(cat "$work/$name.fast.t")" \
         --arg target "$target" '

@@ -147,8 +147,15 @@ f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 4 --fast --json | jq -c '[.fast.exact,
 f=$("$CHAOS" d2 "$work/lorenz.dat" -d 17 -t 100 -M 5 --fast --fast-start 50 --json | jq -c '
   [(.fast.rounds | length > 0), (.fast.exact or (.fast.reference_points == 2 * .fast.rounds[-1].reference_points)),
    (.fast.exact or .fast.rounds[-1].stable or (.fast.settled | not) and .estimate.status != "confident"), (.fast.exact or (.d2_standard_error != null) or (.status != "saturated")),
-   (.parameters.halves_reference_points == (if .fast.exact then 0 else .fast.reference_points end))]')
-[[ $f == '[true,true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f (the halves get the fast budget)"
+   (.parameters.halves_reference_points == (if .fast.exact then 0 else .fast.reference_points / 2 end)),
+   (.fast.exact or (.fast.halves and (if .first_half then .first_half.status == .fast.rounds[-1].status_a
+                                       else .fast.rounds[-1].status_merged != "saturated" end)))]')
+[[ $f == '[true,true,true,true,true,true]' ]] && pass || fail "d2 --fast --fast-start 50 on Lorenz gave $f (the rounds' subsets are the halves, half the budget each)"
+# Without a budget the rounds draw from the whole record and each half is counted after them with
+# the budget they chose (the form validated in docs/validation/fast-d2-zoo.md).
+f=$("$CHAOS" d2 "$work/lorenz.dat" -d 17 -t 100 -M 5 --fast --fast-start 50 --fast-budget 0 --json | jq -c '
+  [.fast.halves, (.fast.exact or (.parameters.halves_reference_points == .fast.reference_points))]')
+[[ $f == '[false,true]' ]] && pass || fail "d2 --fast --fast-budget 0 on Lorenz gave $f (subsets of the whole record, the halves after)"
 expect_error 3 "cannot be combined with --reference-points or -N \\(got --reference-points 100, -N 0\\)" -- d2 --fast --reference-points 100 "$work/henon.dat"
 expect_error 3 "target agreement must be positive" -- d2 --fast --fast-target 0 "$work/lorenz.dat"
 f=$("$CHAOS" d2 "$work/henon.dat" -d 1 -M 3 --fast --fast-start 4611686018427387904 --json | jq -c '[.fast.exact, (.fast.rounds | length)]')

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,12 +38,10 @@ chaos::CorrelationSumOptions henon_options() {
   return o;
 }
 
-void expect_promise_kept(const std::vector<double>& x, chaos::CorrelationSumOptions o, std::size_t start,
+void expect_promise_kept(const std::vector<double>& x, chaos::CorrelationSumOptions o, const chaos::AdaptiveD2Options& fast,
                          const std::string& what) {
   const auto exact = chaos::correlation_dimension(chaos::correlation_sum(x, o));
   ASSERT_TRUE(exact.d2.has_value()) << what << ": the exact counts must saturate for this check";
-  chaos::AdaptiveD2Options fast;
-  fast.initial_reference_points = start;
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
     o.seed = seed;
     const auto r = chaos::adaptive_correlation_dimension(x, o, {}, fast);
@@ -92,9 +91,64 @@ chaos::CorrelationSumOptions zoo_options(const std::vector<double>& x, std::size
   return o;
 }
 
+chaos::AdaptiveD2Options first_round(std::size_t start) {
+  chaos::AdaptiveD2Options fast;
+  fast.initial_reference_points = start;
+  return fast;
+}
+
 TEST(AdaptiveD2, AcceptedBudgetsLandWithinTheTargetOfTheExactD2) {
-  expect_promise_kept(chaos::lorenz(20'000).components[0], lorenz_options(), 250, "Lorenz x");
-  expect_promise_kept(chaos::henon(20'000).components[0], henon_options(), 250, "Henon x");
+  expect_promise_kept(chaos::lorenz(20'000).components[0], lorenz_options(), first_round(250), "Lorenz x");
+  expect_promise_kept(chaos::henon(20'000).components[0], henon_options(), first_round(250), "Henon x");
+}
+
+// `chaos d2 --fast`'s quick look (commands.hpp: one round of 2 x 200 points, one subset from each
+// half): unsettled, it answers rough with an interval that holds the exact counts' D2 of the whole
+// record, the same promise as the adaptive rounds.
+TEST(AdaptiveD2, TheQuickLookOnTheHalvesHoldsTheExactD2) {
+  chaos::AdaptiveD2Options quick;
+  quick.initial_reference_points = 200;
+  quick.budget = 400;
+  quick.halves = true;
+  expect_promise_kept(chaos::lorenz(20'000).components[0], lorenz_options(), quick, "Lorenz x");
+  expect_promise_kept(chaos::henon(20'000).components[0], henon_options(), quick, "Henon x");
+}
+
+// On the halves, subset a is the first half's own sums and b the second's (CorrelationSumSubsets
+// counts what correlation_sum counts with the same offset and number of reference points), the
+// final D2 carries their halves verdict, and the rounds stop where another would pass the budget.
+TEST(AdaptiveD2, OnTheHalvesEachSubsetIsItsHalfsSumsWithinTheBudget) {
+  const auto x = chaos::lorenz(20'000).components[0];
+  const auto o = lorenz_options();
+  chaos::AdaptiveD2Options fast;
+  fast.initial_reference_points = 100;
+  fast.budget = 500;  // rounds of 2 x 100 and 2 x 200 points; a third (800 in all) would pass it
+  fast.halves = true;
+  const auto r = chaos::adaptive_correlation_dimension(x, o, {}, fast);
+  ASSERT_FALSE(r.exact);
+  EXPECT_TRUE(r.halves);
+  ASSERT_FALSE(r.settled) << r.explanation;  // 2.5 standard errors of 400 points do not fit in 0.02
+  ASSERT_EQ(r.rounds.size(), 2u) << r.explanation;
+  EXPECT_EQ(r.reference_points, 400u);
+  EXPECT_EQ(r.sums.points, 400u);
+  EXPECT_NE(r.explanation.find("beyond the budget of 500"), std::string::npos) << r.explanation;
+  const std::span<const double> all(x);
+  for (std::size_t k = 0; k < 2; ++k) {
+    auto sub = o;
+    sub.reference_points = r.rounds[k].reference_points;
+    const auto first = chaos::correlation_dimension(chaos::correlation_sum(all.first(x.size() / 2), sub));
+    const auto second = chaos::correlation_dimension(chaos::correlation_sum(all.subspan(x.size() / 2), sub));
+    EXPECT_EQ(r.rounds[k].d2_a, first.d2) << "round " << k;
+    EXPECT_EQ(r.rounds[k].d2_b, second.d2) << "round " << k;
+    EXPECT_EQ(r.rounds[k].status_a, first.status) << "round " << k;
+    EXPECT_EQ(r.rounds[k].status_b, second.status) << "round " << k;
+  }
+  // The halves verdict (require_reproduced_by_halves) on the merged counts, from the last round.
+  ASSERT_EQ(r.rounds.back().status_merged, chaos::D2Status::saturated) << r.explanation;
+  EXPECT_EQ(r.d2.first_half_status, r.rounds.back().status_a);
+  EXPECT_EQ(r.d2.second_half_status, r.rounds.back().status_b);
+  EXPECT_EQ(r.d2.first_half_d2, r.rounds.back().d2_a);
+  EXPECT_EQ(r.d2.second_half_d2, r.rounds.back().d2_b);
 }
 
 // Two systems --fast was not built on, with the zoo's choices. Without the region and precision
@@ -103,9 +157,9 @@ TEST(AdaptiveD2, AcceptedBudgetsLandWithinTheTargetOfTheExactD2) {
 // failure at N = 10^5 on seven runs of 135).
 TEST(AdaptiveD2, PromiseHoldsOutOfSample) {
   const auto chen = chaos::zoo_trajectory(chaos::zoo_system("chen"), 20'000).components[0];
-  expect_promise_kept(chen, zoo_options(chen, 10, 26, 7), 250, "Chen x");
+  expect_promise_kept(chen, zoo_options(chen, 10, 26, 7), first_round(250), "Chen x");
   const auto rossler = chaos::zoo_trajectory(chaos::zoo_system("rossler"), 20'000).components[0];
-  expect_promise_kept(rossler, zoo_options(rossler, 15, 29, 6), 250, "Rossler x");
+  expect_promise_kept(rossler, zoo_options(rossler, 15, 29, 6), first_round(250), "Rossler x");
 }
 
 TEST(AdaptiveD2, ShortSeriesGoStraightToTheExactCounts) {

@@ -33,12 +33,16 @@
 // The second and third conditions came from `scripts/measure/measure_fast_d2.sh`: without them, on the
 // zoo's chaotic series at N = 10^5 (three seeds, first rounds of 250 points), 7 of 62 accepted
 // budgets lay 0.020-0.041 from the exact D2; with them, none of 32 at the default first round
-// (docs/validation/fast-d2-zoo.md). When the next round would count more than an eighth of the points, the
-// rounds stop and the merged counts answer, rough (subsets_answer): counting exactly then would cost
-// the whole exact job on top of the rounds (Henon, N = 10^5: 1.3 times the exact job), and the
-// user asked for speed; the exact D2 is one flag away (no --fast). Where the first round alone
-// would count more than an eighth of the points (N below about 8000), the exact counts are used:
-// they are cheap there.
+// (docs/validation/fast-d2-zoo.md). When the next round would count more than an eighth of the points, or
+// more than the budget, the rounds stop and the merged counts answer, rough (subsets_answer):
+// counting exactly then would cost the whole exact job on top of the rounds (Henon, N = 10^5: 1.3
+// times the exact job), and the user asked for speed; the exact D2 is one flag away (no --fast).
+// Where the first round alone would count more than an eighth of the points (N below about 8000),
+// the exact counts are used: they are cheap there.
+// With `halves`, subset a comes from the record's first half and b from its second, each counted
+// against its own half's points: a round is then also the halves check of the final D2, which
+// otherwise costs two more counts of the final budget (Lorenz x, N = 10^5: 2 x 200 points take
+// 0.13-0.16 s in all, 400 points of the whole record with the halves counted after 0.28-0.33 s).
 
 #include <cstddef>
 #include <optional>
@@ -56,6 +60,14 @@ namespace chaos {
 struct AdaptiveD2Options {
   double target = 0.02;                     // two disjoint subsets' D2 must agree within this
   std::size_t initial_reference_points = 500;  // T of the first round (each subset)
+  // Reference points the rounds may count in all (both subsets of every round): no round after the
+  // first goes beyond it. 0: up to an eighth of the points.
+  std::size_t budget = 0;
+  // Draw subset a from the record's first half and b from its second, each counted against its own
+  // half's points (the exact halves check's sums, on a subset): the rounds' agreement is then also
+  // the halves check, and the final D2 goes through require_reproduced_by_halves with a and b, at
+  // no extra count. false: both subsets from the whole record.
+  bool halves = false;
   std::size_t region_slack = 1;             // radii a subset's scaling region may end from the merged one's
   double confidence = 2.5;                  // the merged D2's standard error times this is at most the target
   void validate() const;
@@ -84,6 +96,7 @@ struct AdaptiveD2Result {
   std::size_t reference_points = 0;  // reference points behind `sums`; 0 when the counts are exact
   bool exact = false;    // the first round would already count more than an eighth of the points: exact counts
   bool settled = false;  // a round was accepted; otherwise (and not exact) the last round's merged counts
+  bool halves = false;   // the subsets were the record's halves, and d2 has their verdict (not exact)
   std::vector<AdaptiveD2Round> rounds;
   std::string explanation;           // how the budget was chosen, one sentence
 };

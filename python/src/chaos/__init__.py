@@ -261,11 +261,14 @@ def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
     or ``none``) and ``reason`` (docs/reference/statuses.md); the detailed ``status`` is its
     explanation.
 
-    ``fast=True`` (``--fast``) chooses the reference subset from the data: it doubles from
-    ``fast_start`` points until two disjoint subsets agree on one unambiguous plateau within
-    ``fast_target``; where they do not within an eighth of the points, the counts so far answer
-    ``rough`` (``fast["settled"]`` is False); the result's ``fast`` key gives the budget and
-    the rounds (docs/reference/correlation_dimension.md). With a subset or a cap the result also has
+    ``fast=True`` (``--fast``) is a quick look: two disjoint subsets of ``fast_start`` = 200
+    reference points, one from each half of the record (with ``halves``), give a ``rough`` D2 with
+    an interval that spans what they show. ``fast_budget`` (400 reference points in all) lets more
+    rounds run; with ``fast_budget=0`` the subsets (drawn from the whole record, the halves counted
+    after) double until they agree on one unambiguous plateau within ``fast_target``, or the counts
+    so far answer ``rough`` from an eighth of the points
+    (``fast["settled"]`` is False); the result's ``fast`` key gives the budget and the rounds
+    (docs/reference/correlation_dimension.md). With a subset or a cap the result also has
     local_slope_error, d2_standard_error and slopes_too_uncertain (jackknife over groups of
     reference points).
 
@@ -283,7 +286,8 @@ def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
 
     ``halves=True`` (the default, as in ``chaos analyze``) counts the same sums over each half of the
     record: a saturated D2 that both halves do not reproduce gets status ``not_reproduced`` and no
-    value (after ``fast=True`` each half gets the budget the fast run chose). ``halves=False`` gives the
+    value (with ``fast=True`` the quick look's two subsets are the halves; with ``fast_budget=0`` each
+    half gets the budget the rounds chose). ``halves=False`` gives the
     plain estimate.
     """
     values, file, column, dt = _series(x, dt, column, skip, length)
