@@ -152,16 +152,22 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
   }
   // One search structure for every round's subsets: the whole record's, or one per half.
   std::optional<CorrelationSumSubsets> whole, first, second;
-  if (options.halves) {
+  bool halves = options.halves;
+  if (halves) {
     const auto [x1, x2] = record_halves(x);
-    first.emplace(x1, sums);
-    second.emplace(x2, sums);
-  } else {
-    whole.emplace(x, sums);
+    try {
+      first.emplace(x1, sums);
+      second.emplace(x2, sums);
+    } catch (const InvalidInput&) {
+      // A half too short to embed (or constant): the subsets come from the whole record, and
+      // out.halves stays false, so a caller's halves check (check_record_halves) says why.
+      halves = false;
+    }
   }
+  if (!halves) whole.emplace(x, sums);
   // Subset a: the first T reference points (of the first half); b: the next T (of the second half).
-  CorrelationSumResult a = options.halves ? first->count(0, counted) : whole->count(0, counted);
-  CorrelationSumResult b = options.halves ? second->count(0, counted) : whole->count(counted, counted);
+  CorrelationSumResult a = halves ? first->count(0, counted) : whole->count(0, counted);
+  CorrelationSumResult b = halves ? second->count(0, counted) : whole->count(counted, counted);
   CorrelationDimensionResult a_d2 = correlation_dimension(a, dimension);
   for (;;) {
     const CorrelationDimensionResult b_d2 = correlation_dimension(b, dimension);
@@ -201,14 +207,14 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     if (round.stable || eighth || over_budget) {
       out.settled = round.stable;
       out.reference_points = 2 * counted;
-      if (options.halves) {
+      if (halves) {
         out.halves = true;
         if (merged_d2.status == D2Status::saturated)
           require_reproduced_by_halves(merged_d2, a_d2, b_d2, dimension);
       }
       out.sums = std::move(merged);
       out.d2 = std::move(merged_d2);
-      const char* const source = options.halves ? " reference points, one subset from each half of the record,"
+      const char* const source = halves ? " reference points, one subset from each half of the record,"
                                                 : " reference points";
       if (round.stable)
         why << "two disjoint subsets of " << counted << source << " agree (D2 " << *round.d2_a << " and "
@@ -231,7 +237,7 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     }
     // The next round: a and b twice as large, both halves growing, or the merged counts against the
     // next 2T points of the whole record.
-    if (options.halves) {
+    if (halves) {
       a = merge(std::move(a), first->count(counted, counted));
       b = merge(std::move(b), second->count(counted, counted));
       a_d2 = correlation_dimension(a, dimension);

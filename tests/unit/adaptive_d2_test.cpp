@@ -162,6 +162,27 @@ TEST(AdaptiveD2, PromiseHoldsOutOfSample) {
   expect_promise_kept(rossler, zoo_options(rossler, 15, 29, 6), first_round(250), "Rossler x");
 }
 
+// A half too short to embed (N = 8000, tau = 400, m up to 10: each half of 4000 samples needs
+// 9 * 400 + w + 2 = 4002): the subsets come from the whole record and the result says so, where
+// counting the halves would have refused the whole run (check_record_halves then reports the half).
+TEST(AdaptiveD2, HalvesTooShortToEmbedFallBackToTheWholeRecord) {
+  const auto x = chaos::lorenz(8'000).components[0];
+  chaos::CorrelationSumOptions o = lorenz_options();
+  o.delay = 400;
+  o.theiler = 400;
+  o.max_dimension = 10;
+  chaos::AdaptiveD2Options fast;
+  fast.initial_reference_points = 100;
+  fast.budget = 200;
+  fast.halves = true;
+  const auto r = chaos::adaptive_correlation_dimension(x, o, {}, fast);
+  EXPECT_FALSE(r.exact);
+  EXPECT_FALSE(r.halves);
+  ASSERT_EQ(r.rounds.size(), 1u);
+  EXPECT_EQ(r.reference_points, 200u);
+  EXPECT_EQ(r.explanation.find("each half"), std::string::npos) << r.explanation;
+}
+
 TEST(AdaptiveD2, ShortSeriesGoStraightToTheExactCounts) {
   // The default first round (2 x 500 points) fits in an eighth of the embedded points only from
   // P = 8000 on: at N = 8000 (P = 7915) the exact counts are used at once.

@@ -66,7 +66,8 @@ struct AdaptiveD2Options {
   // Draw subset a from the record's first half and b from its second, each counted against its own
   // half's points (the exact halves check's sums, on a subset): the rounds' agreement is then also
   // the halves check, and the final D2 goes through require_reproduced_by_halves with a and b, at
-  // no extra count. false: both subsets from the whole record.
+  // no extra count. false, or a half too short to embed (AdaptiveD2Result::halves then says
+  // false): both subsets from the whole record.
   bool halves = false;
   std::size_t region_slack = 1;             // radii a subset's scaling region may end from the merged one's
   double confidence = 2.5;                  // the merged D2's standard error times this is at most the target
