@@ -112,22 +112,21 @@ void SaltationTangents::rk4_step(double t0, double h, const State& x0, const std
   }
 }
 
-void SaltationTangents::site_derivatives(double t, const State& x, std::size_t site,
-                                         const Eigen::Ref<const Eigen::VectorXd>& dx, double& dg, double& dg_rate) {
+SaltationTangents::SiteDerivatives SaltationTangents::site_derivatives(double t, const State& x, std::size_t site,
+                                                                      const Eigen::Ref<const Eigen::VectorXd>& dx) {
   double largest = 0.0;
   for (Eigen::Index i = 0; i < n_state_; ++i) largest = std::max(largest, std::abs(dx[i]) / scale_[i]);
-  if (!(largest > 0.0)) {
-    dg = dg_rate = 0.0;
-    return;
-  }
+  if (!(largest > 0.0)) return {};
   const double eta = jacobian_step / largest;
   xs_ = x + eta * dx;
   probe_.evaluate(t, xs_, ev_);
-  const double gp = ev_.sites[site].penetration, rp = ev_.sites[site].penetration_rate;
+  const SiteEvaluation plus = ev_.sites[site];  // nine doubles: a copy before the next evaluate()
   xs_ = x - eta * dx;
   probe_.evaluate(t, xs_, ev_);
-  dg = (gp - ev_.sites[site].penetration) / (2.0 * eta);
-  dg_rate = (rp - ev_.sites[site].penetration_rate) / (2.0 * eta);
+  const SiteEvaluation& minus = ev_.sites[site];
+  return {(plus.penetration - minus.penetration) / (2.0 * eta),
+          (plus.penetration_rate - minus.penetration_rate) / (2.0 * eta),
+          (plus.sliding_velocity - minus.sliding_velocity) / (2.0 * eta)};
 }
 
 void SaltationTangents::commit(const StepRecord& step, const Eigen::MatrixXd& y0, const Eigen::MatrixXd& dF0,
@@ -142,14 +141,13 @@ void SaltationTangents::commit(const StepRecord& step, const Eigen::MatrixXd& y0
   std::vector<std::pair<std::size_t, Eigen::VectorXd>> latched;
   State f0, f1;
   Eigen::MatrixXd dF1;
-  Eigen::VectorXd dg(k), dg_rate(k);
   for (std::size_t i = 0; i < sites_; ++i) {
     if (!(end.sites[i].penetration > 0.0) || memory[i].touching) continue;
     Eigen::VectorXd row(k);
     const double tc = (*step.onset_time)[i];
     if (!std::isfinite(tc)) {
       // commit() latches the step end's rate: dp = grad(g') dx there.
-      for (Eigen::Index j = 0; j < k; ++j) site_derivatives(step.t1, x1, i, y.col(j).head(n_state_), dg[j], row[j]);
+      for (Eigen::Index j = 0; j < k; ++j) row[j] = site_derivatives(step.t1, x1, i, y.col(j).head(n_state_)).penetration_rate;
       latched.emplace_back(i, std::move(row));
       continue;
     }
@@ -180,10 +178,9 @@ void SaltationTangents::commit(const StepRecord& step, const Eigen::MatrixXd& y0
     for (Eigen::Index j = 0; j < k; ++j) {
       const Eigen::VectorXd dxc =
           hermite(s, h, y0.col(j).head(n_state_), y.col(j).head(n_state_), dF0.col(j), dF1.col(j));
-      double dgc, drc;
-      site_derivatives(tc, xc, i, dxc, dgc, drc);
+      const SiteDerivatives d = site_derivatives(tc, xc, i, dxc);
       // Müller's correction: the onset time moves by -dg / g', and the latched rate with it.
-      row[j] = drc - (g_accel / g_rate) * dgc;
+      row[j] = d.penetration_rate - (g_accel / g_rate) * d.penetration;
     }
     latched.emplace_back(i, std::move(row));
   }
@@ -221,23 +218,9 @@ void SaltationTangents::reverse(const StepRecord& step, Eigen::MatrixXd& y) {
   if (!(std::abs(rate) > 0.0)) return;  // a tangential graze: no transversal crossing to correct
   const Eigen::VectorXd jump = (f_plus - f_minus) / rate;
   for (Eigen::Index j = 0; j < y.cols(); ++j) {
-    const double dv = sliding_derivative(t1, x1, i, y.col(j).head(n_state_));
+    const double dv = site_derivatives(t1, x1, i, y.col(j).head(n_state_)).sliding_velocity;
     y.col(j).head(n_state_) += dv * jump;
   }
-}
-
-double SaltationTangents::sliding_derivative(double t, const State& x, std::size_t site,
-                                             const Eigen::Ref<const Eigen::VectorXd>& dx) {
-  double largest = 0.0;
-  for (Eigen::Index i = 0; i < n_state_; ++i) largest = std::max(largest, std::abs(dx[i]) / scale_[i]);
-  if (!(largest > 0.0)) return 0.0;
-  const double eta = jacobian_step / largest;
-  xs_ = x + eta * dx;
-  probe_.evaluate(t, xs_, ev_);
-  const double vp = ev_.sites[site].sliding_velocity;
-  xs_ = x - eta * dx;
-  probe_.evaluate(t, xs_, ev_);
-  return (vp - ev_.sites[site].sliding_velocity) / (2.0 * eta);
 }
 
 void SaltationTangents::start(double t, const State& x, const std::vector<ContactMemory>& memory, Eigen::MatrixXd& y) {
@@ -247,11 +230,8 @@ void SaltationTangents::start(double t, const State& x, const std::vector<Contac
   for (std::size_t i = 0; i < sites_; ++i)
     if (ev_.sites[i].penetration > 0.0 && !memory[i].touching) onsets.push_back(i);
   for (std::size_t i : onsets)
-    for (Eigen::Index j = 0; j < y.cols(); ++j) {
-      double dg, dr;
-      site_derivatives(t, x, i, y.col(j).head(n_state_), dg, dr);
-      y(n_state_ + static_cast<Eigen::Index>(i), j) = dr;
-    }
+    for (Eigen::Index j = 0; j < y.cols(); ++j)
+      y(n_state_ + static_cast<Eigen::Index>(i), j) = site_derivatives(t, x, i, y.col(j).head(n_state_)).penetration_rate;
 }
 
 void SaltationTangents::step(const StepRecord& step, Eigen::MatrixXd& y) {

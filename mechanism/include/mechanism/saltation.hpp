@@ -73,11 +73,13 @@ class SaltationTangents {
   static constexpr double jacobian_step = 1e-6;
 
  private:
-  // d/dv of a site's penetration and penetration rate at (t, x) (evaluate() by central differences).
-  void site_derivatives(double t, const State& x, std::size_t site, const Eigen::Ref<const Eigen::VectorXd>& dx,
-                        double& dg, double& dg_rate);
-  // d/dv of a site's sliding velocity at (t, x), the same way.
-  double sliding_derivative(double t, const State& x, std::size_t site, const Eigen::Ref<const Eigen::VectorXd>& dx);
+  // The derivatives along dx of a site's penetration, penetration rate and sliding velocity at
+  // (t, x): evaluate() by central differences, all zero for dx = 0.
+  struct SiteDerivatives {
+    double penetration = 0.0, penetration_rate = 0.0, sliding_velocity = 0.0;
+  };
+  SiteDerivatives site_derivatives(double t, const State& x, std::size_t site,
+                                   const Eigen::Ref<const Eigen::VectorXd>& dx);
   // The jump at a held sliding direction's reversal (StepRecord::reversal), after commit's.
   void reverse(const StepRecord& step, Eigen::MatrixXd& y);
   double step_along(const Eigen::Ref<const Eigen::VectorXd>& v, const std::vector<ContactMemory>& memory) const;
