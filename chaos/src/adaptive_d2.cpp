@@ -274,7 +274,8 @@ Estimate subsets_answer(const AdaptiveD2Result& fast, const CorrelationDimension
       e.include(*e.value + 2.0 * *last.standard_error);
     }
     e.downgrade("from " + std::to_string(fast.reference_points) +
-                " reference points whose subsets did not settle (exact counts: without --fast)");
+                " reference points whose subsets did not settle (more of them: --fast-budget; exact counts: without "
+                "--fast)");
   }
   return with_d2_floor(std::move(e));
 }
