@@ -110,15 +110,17 @@ const ParameterTable<D2Params>& d2_parameters() {
        field(&D2Params::sums, &Sums::reference_points)},
       {"seed", "--seed", "seed of the reference order and subset", field(&D2Params::sums, &Sums::seed)},
       {"fast", "--fast",
-       "count subsets of reference points: two disjoint ones of --fast-start points (one from each half of the "
-       "record, unless --no-halves), doubling within --fast-budget until they agree on D2 within --fast-target; "
-       "unsettled, the counts answer rough (the default budget is one round, a quick look)",
+       "count subsets of reference points: two disjoint ones of --fast-start points, doubling within --fast-budget "
+       "until they agree on D2 within --fast-target, else the counts answer rough; the default budget is one round, "
+       "a quick look whose two subsets are the record's halves (the halves check)",
        field(&D2Params::fast)},
       {"fast_target", "--fast-target", "--fast: agreement of two disjoint subsets' D2",
        field(&D2Params::adaptive, &AdaptiveD2Options::target)},
       {"fast_start", "--fast-start", "--fast: reference points in each subset of the first round",
        field(&D2Params::adaptive, &AdaptiveD2Options::initial_reference_points)},
-      {"fast_budget", "--fast-budget", "--fast: reference points the rounds after the first may bring the total to (0: an eighth of the points)",
+      {"fast_budget", "--fast-budget",
+       "--fast: reference points the rounds may count together (the first round always runs; 0: up to an eighth of "
+       "the points)",
        field(&D2Params::adaptive, &AdaptiveD2Options::budget)},
       {"threads", "--threads", threads_help, field(&D2Params::sums, &Sums::threads)},
       {"tolerance", "--tolerance", "relative flatness of the local slopes in the region",
