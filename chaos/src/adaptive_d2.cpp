@@ -165,7 +165,8 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
     }
   }
   if (!halves) whole.emplace(x, sums);
-  // Subset a: the first T reference points (of the first half); b: the next T (of the second half).
+  // Subset a: the first T reference points of the whole record, or of the first half; b: the next T
+  // of the whole record, or the first T of the second half.
   CorrelationSumResult a = halves ? first->count(0, counted) : whole->count(0, counted);
   CorrelationSumResult b = halves ? second->count(0, counted) : whole->count(counted, counted);
   CorrelationDimensionResult a_d2 = correlation_dimension(a, dimension);
@@ -215,7 +216,7 @@ AdaptiveD2Result adaptive_correlation_dimension(std::span<const double> x, Corre
       out.sums = std::move(merged);
       out.d2 = std::move(merged_d2);
       const char* const source = halves ? " reference points, one subset from each half of the record,"
-                                                : " reference points";
+                                        : " reference points";
       if (round.stable)
         why << "two disjoint subsets of " << counted << source << " agree (D2 " << *round.d2_a << " and "
             << *round.d2_b << ", within " << options.target << ", on scaling regions within " << options.region_slack
