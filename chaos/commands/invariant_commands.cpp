@@ -65,8 +65,10 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   // After --fast, the rounds' subsets were the halves (half the final budget each), or each half
   // is counted with the budget the rounds chose, so the check costs about what the final D2 did;
   // after a fast run that fell back to exact counts, the halves are counted exactly too.
-  if (fast && fast->halves) halves.reference_points = fast->reference_points / 2;
-  if (fast && !fast->exact && !fast->halves) halves.reference_points = fast->reference_points;
+  if (fast && fast->halves)
+    halves.reference_points = fast->reference_points / 2;
+  else if (fast && !fast->exact)
+    halves.reference_points = fast->reference_points;
   if (params.halves && !(fast && fast->halves)) check_record_halves(d2, x, halves, params.dimension);
   // The same sums at twice the delay (same radii): D2 must not depend on the embedding.
   if (params.delay_check) check_delay_variant(d2, x, params.sums, params.dimension);
