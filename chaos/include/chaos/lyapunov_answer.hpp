@@ -13,10 +13,10 @@
 //     disagree), rough: a divergence curve with no exponential stretch is evidence against a sharp
 //     value.
 //   - none where no estimator gives a value.
-// The interval is then widened to at least 10% of the value either side (confident), 20% (rough)
-// or 30% (local maps alone), and a rough one spans the local maps' variants too: the spread over
-// the estimators' choices misses their systematic error, which these floors cover on the zoo
-// (docs/reference/lyapunov.md, "Answers and their intervals").
+// The interval is then widened to at least 10% of the value either side (confident) or 40% (rough),
+// and a rough one spans the local maps' variants too: the spread over the estimators' choices misses
+// their systematic error, which these floors cover on the zoo, where at least 90% of the rough
+// intervals hold lambda_1 (docs/reference/lyapunov.md, "Answers and their intervals").
 
 #include <optional>
 #include <string>
