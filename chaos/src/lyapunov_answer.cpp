@@ -30,10 +30,11 @@ void widen(Estimate& e, double floor) {
   e.include(*e.value * (1.0 + floor));
 }
 
-// A rough answer's interval also spans the local maps' variants, where the maps ran.
-void include_map_variants(Estimate& e, const LocalMapResult* maps) {
-  if (!maps || (maps->status != LocalMapStatus::consistent && maps->status != LocalMapStatus::inconsistent)) return;
-  for (const auto& v : maps->variants) e.include(v.lambda);
+// A rough answer's interval spans the local maps' variants, where the maps ran, and the rough floor.
+void widen_rough(Estimate& e, const LocalMapResult* maps) {
+  if (maps && (maps->status == LocalMapStatus::consistent || maps->status == LocalMapStatus::inconsistent))
+    for (const auto& v : maps->variants) e.include(v.lambda);
+  widen(e, rough_floor);
 }
 
 void include_interval(Estimate& e, const std::optional<Interval>& i) {
@@ -105,16 +106,14 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
     e.reason = one_confident ? span + ", more than 10%"
                              : "neither estimator is confident (Rosenstein: " + r->reason + "; Kantz: " + k->reason +
                                    "); " + span;
-    include_map_variants(e, local_maps);
-    widen(e, rough_floor);
+    widen_rough(e, local_maps);
     return answer;
   }
   if (r || k) {
     answer.source = r ? "Rosenstein" : "Kantz";
     e = r ? *r : *k;
     e.downgrade(std::string("only ") + answer.source + " gives a value");
-    include_map_variants(e, local_maps);
-    widen(e, rough_floor);
+    widen_rough(e, local_maps);
     return answer;
   }
   if (local_maps && (local_maps->status == LocalMapStatus::consistent || local_maps->status == LocalMapStatus::inconsistent) &&
@@ -122,8 +121,7 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
     answer.source = "local maps";
     e.status = EstimateStatus::rough;
     e.value = maps_consistent ? *local_maps->lambda : local_maps->base.lambda;
-    include_map_variants(e, local_maps);
-    widen(e, rough_floor);
+    widen_rough(e, local_maps);
     e.reason = "only the local maps give a value (" + std::string(to_string(local_maps->status)) +
                "); the divergence curves have no rising straight stretch";
     return answer;
