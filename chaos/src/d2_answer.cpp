@@ -60,11 +60,22 @@ Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimen
                                      std::to_string(used.back())) +
                  (d2.scaling_region ? " over " + radii_text(*d2.scaling_region) : std::string()) +
                  (checks.empty() ? std::string() : " (reproduced: " + checks + ")");
+      // D2 is the small-scale limit: another plateau below the one read says the slope still changes
+      // towards that limit; one above it reads the attractor's larger-scale shape and is only reported.
+      const auto rival = [&](const D2Plateau& other) {
+        return std::abs(other.slope - *d2.d2) > d2_confident_half_width;
+      };
+      const auto above = [&](const D2Plateau& other) {
+        return d2.scaling_region && other.radii.low >= d2.scaling_region->high;
+      };
       for (const auto& other : d2.other_plateaus)
-        if (std::abs(other.slope - *d2.d2) > d2_confident_half_width) {
+        if (rival(other) && above(other))
+          e.reason += "; at larger scales, " + radii_text(other.radii) + ", the slopes read " + text(other.slope);
+      for (const auto& other : d2.other_plateaus)
+        if (rival(other) && !above(other)) {
           e.include(other.slope);
           e.downgrade("another plateau of the same dimensions reads " + text(other.slope) + " at " +
-                      radii_text(other.radii) + ": the value depends on which scales are read");
+                      radii_text(other.radii) + ", below the one read: the value depends on which scales are read");
         }
       if (e.interval && 0.5 * (e.interval->high - e.interval->low) > d2_confident_half_width)
         e.downgrade("the interval is wider than +-" + text(d2_confident_half_width));

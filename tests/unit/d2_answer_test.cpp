@@ -82,6 +82,18 @@ TEST(D2Answer, AWideIntervalAnotherPlateauOrTheEckmannRuelleLimitMakeItRough) {
   EXPECT_TRUE(holds(e, 1.12)) << "the interval spans the other reading";
   EXPECT_NE(e.reason.find("another plateau"), std::string::npos) << e.reason;
 
+  // The same reading at larger scales than the region [0.1, 1] is the attractor's larger-scale shape,
+  // not a rival for the small-scale limit: reported in the reason, no downgrade, no wider interval.
+  CorrelationDimensionResult large = saturated(1.23, Interval{1.2, 1.26});
+  large.other_plateaus = {D2Plateau{Interval{1.5, 4.0}, 1.05, Interval{1.03, 1.07}}};
+  const Estimate l = chaos::d2_answer(large);
+  EXPECT_EQ(l.status, EstimateStatus::confident) << l.reason;
+  EXPECT_FALSE(holds(l, 1.05)) << "the interval is the plateau's own, at least +-0.1";
+  EXPECT_NE(l.reason.find("at larger scales"), std::string::npos) << l.reason;
+  // Overlapping the region's upper end is not "above": it still withdraws confidence.
+  large.other_plateaus = {D2Plateau{Interval{0.9, 4.0}, 1.05, Interval{1.03, 1.07}}};
+  EXPECT_EQ(chaos::d2_answer(large).status, EstimateStatus::rough);
+
   CorrelationDimensionResult near = saturated(1.23, Interval{1.2, 1.26});
   near.other_plateaus = {D2Plateau{Interval{0.005, 0.015}, 1.18, Interval{1.16, 1.2}}};  // within 0.1: not a rival
   EXPECT_EQ(chaos::d2_answer(near).status, EstimateStatus::confident);

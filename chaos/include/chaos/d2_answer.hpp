@@ -5,9 +5,11 @@
 //                    over the plateau (d2_interval), the halves' D2 and the other delay's D2 where
 //                    those checks ran, and two jackknife standard errors where the counts are a
 //                    subset. Confident when its half-width is at most 0.1; rough when it is wider,
-//                    when another plateau of the same dimensions reads more than 0.1 away (the
-//                    interval then spans it: which scales are read changes the value), or when the
-//                    value exceeds the Eckmann-Ruelle limit 2 log10 N.
+//                    when another plateau of the same dimensions at smaller scales reads more than
+//                    0.1 away (the interval then spans it: the slope still changes towards the
+//                    small-scale limit), or when the value exceeds the Eckmann-Ruelle limit
+//                    2 log10 N. A plateau wholly above the one read only enters the reason: it reads
+//                    the attractor's larger-scale shape, not its D2.
 //   not_reproduced   the plateau's slope, rough; the interval spans it and the halves' (or the other
 //                    delay's) D2: the records disagree, and the interval says by how much.
 //   scale_dependent  the plateau at the smaller scales (D2 is the small-scale limit), rough; the
