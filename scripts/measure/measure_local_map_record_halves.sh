@@ -46,9 +46,9 @@ export -f case_row
 {
   # docs/notes/zoo-length.md: system | N | tau | m | w | D2 | band | verdict | Rosenstein | v | Kantz | v | local maps | v | lambda_1
   awk -F'|' '$14 ~ / consistent/ && $4 + 0 > 1 { gsub(/ /, "", $2); print $2, $3 + 0, $4 + 0, $5 + 0, $6 + 0, $16 + 0 }' docs/notes/zoo-length.md
-  # docs/validation/zoo.md: system | N | tau | m | w | D2 | band | Rosenstein | Kantz | local maps | lambda_1 | ...
-  awk -F'|' '/^## Chaotic systems, automatic choices/ { on = 1 } /^## Controls/ { on = 0 }
-    on && $3 + 0 == 100000 && $11 ~ / consistent/ && $4 + 0 > 1 { gsub(/ /, "", $2); print $2, 100000, $4 + 0, $5 + 0, $6 + 0, $12 + 0 }' docs/validation/zoo.md
+  # docs/validation/zoo.md at N = 10^5 (a consistent local-map cell reads "VALUE [LOW, HIGH] consistent ...")
+  zoo_columns "system	N	tau	m	w	lambda local maps	lambda_1 eq." |
+    awk '$2 == 100000 && $6 ~ /\]consistent/ && $3 + 0 > 1 { print $1, 100000, $3 + 0, $4 + 0, $5 + 0, $7 + 0 }'
 } > "$work/cases"
 start=$(date +%s)
 # One series per system (zoo_series writes $work/NAME.dat and prints the sampling step), made here

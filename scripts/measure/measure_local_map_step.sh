@@ -34,11 +34,8 @@ case_rows() {  # name tau m w lambda_1: six Markdown rows
 export -f case_rows
 
 # Rows of zoo.md's automatic choices at N = 10^5 whose local-map lambda_1 is inconsistent:
-# system | N | tau | m | w | D2 | band | Rosenstein | Kantz | local maps | lambda_1 | ...
-awk -F'|' '/^## Chaotic systems, automatic choices/ { on = 1 } /^## Controls/ { on = 0 }
-  on && $3 + 0 == 100000 && $11 ~ /inconsistent/ {
-    for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
-    print $2, $4, $5, $6, $12 + 0 }' docs/validation/zoo.md | zoo_only > "$work/cases"
+zoo_columns "system	N	tau	m	w	lambda local maps	lambda_1 eq." |
+  awk '$2 == 100000 && $6 ~ /inconsistent/ { print $1, $3, $4, $5, $7 + 0 }' | zoo_only > "$work/cases"
 start=$(date +%s)
 xargs -P "$jobs" -L 1 bash -c 'case_rows "$@"' _ < "$work/cases"
 echo "Made by \`scripts/measure/measure_local_map_step.sh\` (commit $(git rev-parse --short HEAD), $(zoo_machine), $(( $(date +%s) - start )) s)."

@@ -25,10 +25,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # name N tau m w lambda_1, from the chaotic rows that the pipeline analysed (m > 0)
-awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-  on && $5 + 0 > 0 && $3 ~ /^ *[0-9]+ *$/ {
-    for (i = 2; i <= 11; ++i) gsub(/ /, "", $i)
-    print $2, $3, $4, $5, $6, $11 }' docs/validation/zoo.md > "$work/systems"
+source scripts/measure/zoo_columns.sh
+zoo_columns "system	N	tau	m	w	lambda_1 eq." | awk '$4 + 0 > 0' > "$work/systems"
 [[ -s $work/systems ]] || { echo "no automatic-choice rows found in docs/validation/zoo.md" >&2; exit 3; }
 
 series() {  # name -> $work/name.dat, and the sampling interval on stdout (empty for maps)

@@ -26,10 +26,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # name tau m w lambda_1, from the chaotic rows at N = 10^5 that the pipeline analysed (m > 0)
-awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-  on && $3 ~ /^ *100000 *$/ && $5 + 0 > 0 {
-    gsub(/ /, "", $2); gsub(/ /, "", $4); gsub(/ /, "", $5); gsub(/ /, "", $6); gsub(/ /, "", $11)
-    print $2, $4, $5, $6, $11 }' docs/validation/zoo.md > "$work/systems"
+source scripts/measure/zoo_columns.sh
+zoo_columns "system	N	tau	m	w	lambda_1 eq." | awk '$2 == 100000 && $4 + 0 > 0 { print $1, $3, $4, $5, $6 }' > "$work/systems"
 [[ -s $work/systems ]] || { echo "no automatic-choice rows found in docs/validation/zoo.md" >&2; exit 3; }
 
 measure() {  # name tau m w lambda_1

@@ -32,12 +32,16 @@ MIN_PAIRS = 2000       # a slope between two radii needs this many pairs at the 
 
 def zoo_rows(path):
     """(system, w, D2 cell, band, D_KY) of the saturated automatic rows at N = 10^5."""
-    rows = []
+    rows, column, width = [], None, 0
     with open(path) as f:
         for line in f:
             cells = [c.strip() for c in line.split('|')]
-            if len(cells) > 12 and cells[2] == '100000' and ' saturated' in cells[6]:
-                rows.append((cells[1], int(cells[5]), cells[6], cells[7], cells[12]))
+            if len(cells) > 2 and cells[1] == 'system' and 'D_KY eq.' in cells:  # columns by their names
+                column, width = {name: i for i, name in enumerate(cells)}, len(cells)
+            elif column and len(cells) == width and cells[2] == '100000' and \
+                    ' saturated' in cells[column['D2']]:
+                rows.append((cells[1], int(cells[column['w']]), cells[column['D2']], cells[column['D2 band']],
+                             cells[column['D_KY eq.']]))
     return rows
 
 

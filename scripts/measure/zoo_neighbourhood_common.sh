@@ -6,6 +6,7 @@
 #
 # Sets chaos (the command), jobs (JOBS, default 2) and work (a scratch directory, removed on exit),
 # and defines:
+#   zoo_columns     (scripts/measure/zoo_columns.sh) columns of docs/validation/zoo.md by their names
 #   zoo_systems     one line "name tau w d2_low d2_high lambda_1" per automatic-choice row of
 #                   docs/validation/zoo.md at N = 10^5 that got an embedding dimension, in the file's order
 #   zoo_series N    the case's series (N = 10^5) into $work/N.dat; prints its sampling step (empty
@@ -40,6 +41,8 @@
 #                   OUT = IN + sigma * NOISE sample by sample, sigma = std(IN) / 10^(SNR / 20)
 #                   (population std, as chaos::add_noise; NOISE holds unit-variance values)
 
+source scripts/measure/zoo_columns.sh
+
 zoo_build=${1:-build}
 chaos="$PWD/$zoo_build/chaos/chaos"
 [[ -x $chaos ]] || { echo "build the chaos command first: cmake --build $zoo_build --target chaos_cli" >&2; exit 2; }
@@ -50,11 +53,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 zoo_systems() {
-  awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-    on && $5 + 0 > 0 && $3 + 0 == 100000 {
-      for (i = 2; i <= 12; ++i) gsub(/ /, "", $i)
-      band = $8; gsub(/[][]/, "", band); split(band, b, ",")
-      print $2, $4, $6, b[1], b[2], $12 + 0 }' docs/validation/zoo.md
+  zoo_columns "system	N	tau	w	D2 band	lambda_1 eq.	m" | awk '$2 == 100000 && $7 + 0 > 0 {
+      band = $5; gsub(/[][]/, "", band); split(band, b, ",")
+      print $1, $3, $4, b[1], b[2], $6 + 0 }'
 }
 
 zoo_series() {
@@ -82,14 +83,11 @@ zoo_verdicts='
 # zoo_choices: one line "name tau m w" per automatic-choice row of docs/validation/zoo.md at N = 10^5 that got an
 # embedding dimension (the delay, Cao's m and the Theiler window the zoo used), in the file's order.
 zoo_choices() {
-  awk -F'|' '/^## Chaotic systems, automatic choices/ {on = 1; next} /^## / {on = 0}
-    on && $5 + 0 > 0 && $3 + 0 == 100000 { for (i = 2; i <= 6; ++i) gsub(/ /, "", $i); print $2, $4, $5, $6 }' docs/validation/zoo.md
+  zoo_columns "system	N	tau	m	w" | awk '$2 == 100000 && $4 + 0 > 0 { print $1, $3, $4, $5 }'
 }
 
 zoo_saturated_cases() {
-  # system | N | tau | m | w | D2 status | band | ...
-  awk -F'|' '$3 == " 100000 " && $7 ~ / saturated/ {
-    for (i = 2; i <= 8; ++i) gsub(/^ +| +$/, "", $i); gsub(/ /, "", $8); print $2, $4, $5, $6, $8 }' docs/validation/zoo.md | zoo_only
+  zoo_columns "system	N	tau	m	w	D2 band	D2" | awk '$2 == 100000 && $7 ~ /\]saturated$/ { print $1, $3, $4, $5, $6 }' | zoo_only
 }
 
 # zoo_only: the lines of standard input whose first word is a system ONLY (name,name; empty: all) selects.
