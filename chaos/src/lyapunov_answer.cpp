@@ -30,9 +30,14 @@ void widen(Estimate& e, double floor) {
   e.include(*e.value * (1.0 + floor));
 }
 
+// The local maps ran to the end and their variants have values, agreeing or not.
+bool maps_ran(const LocalMapResult* maps) {
+  return maps && (maps->status == LocalMapStatus::consistent || maps->status == LocalMapStatus::inconsistent);
+}
+
 // A rough answer's interval spans the local maps' variants, where the maps ran, and the rough floor.
 void widen_rough(Estimate& e, const LocalMapResult* maps) {
-  if (maps && (maps->status == LocalMapStatus::consistent || maps->status == LocalMapStatus::inconsistent))
+  if (maps_ran(maps))
     for (const auto& v : maps->variants) e.include(v.lambda);
   widen(e, rough_floor);
 }
@@ -116,8 +121,7 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
     widen_rough(e, local_maps);
     return answer;
   }
-  if (local_maps && (local_maps->status == LocalMapStatus::consistent || local_maps->status == LocalMapStatus::inconsistent) &&
-      local_maps->base.maps > 0 && local_maps->base.lambda > 0.0) {
+  if (maps_ran(local_maps) && local_maps->base.maps > 0 && local_maps->base.lambda > 0.0) {
     answer.source = "local maps";
     e.status = EstimateStatus::rough;
     e.value = maps_consistent ? *local_maps->lambda : local_maps->base.lambda;
