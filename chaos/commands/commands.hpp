@@ -455,7 +455,9 @@ struct ZooRun {
   double wall_seconds = 0.0;           // this run's; cases read from a checkpoint keep their own times
   std::size_t resumed = 0;             // cases read from the checkpoint, not run
   std::size_t wrong = 0;               // confident estimates outside their band, over every row
-  std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;  // coverage at the automatic choices
+  // Coverage at the automatic choices: chaotic systems whose D2 answer and whose lambda_1 answer
+  // are confident and in band.
+  std::size_t chaotic = 0, d2_covered = 0, lambda_covered = 0;
   std::string markdown;                // the report `chaos zoo` writes (docs/validation/zoo.md)
   nlohmann::ordered_json json;         // the same as data: parameters, counts, one entry per row
 };

@@ -191,8 +191,7 @@ ZooRun run_zoo(const ZooParams& params,
       }
       ++chaotic;
       d2_covered += base.d2_answer.verdict == ZooVerdict::in_band;
-      lambda_covered += base.rosenstein.verdict == ZooVerdict::in_band || base.kantz.verdict == ZooVerdict::in_band ||
-                        base.local_maps.verdict == ZooVerdict::in_band;
+      lambda_covered += base.lyapunov.verdict == ZooVerdict::in_band;
     } else {
       control_d2[c.kind].add(base.d2.verdict);
       control_d2[c.kind].add(base.d2_answer.verdict);
@@ -237,8 +236,9 @@ ZooRun run_zoo(const ZooParams& params,
   if (chaotic > 0)
     md << "- Coverage with the automatic choices at N = " << (params.fast ? "10^4" : "10^5") << ": D2 confident and in band for **"
        << d2_covered << " of " << chaotic << "** chaotic systems (the D2 answer; " << num(100.0 * static_cast<double>(d2_covered) / static_cast<double>(chaotic), Precision::coarse)
-       << "%); lambda_1 (Rosenstein, Kantz or local maps) for **" << lambda_covered << " of " << chaotic << "** ("
-       << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), Precision::coarse) << "%). The issue's goal is 90% for each.\n";
+       << "%); lambda_1 confident and in band for **" << lambda_covered << " of " << chaotic << "** (the lambda_1 answer; "
+       << num(100.0 * static_cast<double>(lambda_covered) / static_cast<double>(chaotic), Precision::coarse)
+       << "%). The goals are 90% for D2 and 85% for lambda_1.\n";
   const auto answer_text = [](const AnswerTally& t, const std::string& reference) {
     std::ostringstream a;
     a << t.confident << " confident of " << t.rows << ", " << t.in_band << " of them in band; the interval holds "

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "chaos/automatic_analysis.hpp"
@@ -183,15 +184,54 @@ TEST(CombineLyapunov, ThreeAgreeingEstimatorsAreConfidentAboutTheCentreOfTheirSp
   EXPECT_DOUBLE_EQ(*a.estimate.value, 1.0);
   EXPECT_DOUBLE_EQ(a.estimate.interval->low, 0.9);
   EXPECT_DOUBLE_EQ(a.estimate.interval->high, 1.1);
-  // 8% from the centre is beyond the agreement: rough, as before, spanning the fits' intervals.
+  // 8% from the centre is beyond the agreement: no longer the centre of three, but the consistent
+  // maps' own answer (next test).
   maps.lambda = 1.10;  // span [0.94, 1.10]: centre 1.02, half-width 7.8%
   const auto wide = chaos::combine_lyapunov(&r, &k, &maps);
-  EXPECT_EQ(wide.estimate.status, EstimateStatus::rough);
-  EXPECT_LE(wide.estimate.interval->low, 0.80);
-  // Local maps that are not consistent are no third estimator.
+  EXPECT_EQ(wide.estimate.status, EstimateStatus::confident);
+  EXPECT_EQ(wide.source, "local maps");
+  EXPECT_DOUBLE_EQ(*wide.estimate.value, 1.10);
+  // Local maps that are not consistent are no third estimator: rough, spanning the fits' intervals.
   maps.lambda = 1.06;
   maps.status = chaos::LocalMapStatus::inconsistent;
-  EXPECT_EQ(chaos::combine_lyapunov(&r, &k, &maps).estimate.status, EstimateStatus::rough);
+  const auto rough = chaos::combine_lyapunov(&r, &k, &maps);
+  EXPECT_EQ(rough.estimate.status, EstimateStatus::rough);
+  EXPECT_LE(rough.estimate.interval->low, 0.80);
+}
+
+// Consistent local maps answer on their own (lyapunov_answer.hpp): their value, confident, the
+// interval spanning their variants' range and at least 10% either side, whatever the curves give
+// beside them: disagreeing with each other, one alone, or none.
+TEST(CombineLyapunov, ConsistentLocalMapsAnswerOnTheirOwn) {
+  chaos::LocalMapResult maps;
+  maps.status = chaos::LocalMapStatus::consistent;
+  maps.lambda = 2.0;
+  maps.lambda_interval = chaos::Interval{1.96, 2.04};
+  const auto r = with_answer(EstimateStatus::rough, 1.2, 1.0, 1.4);
+  const auto k = with_answer(EstimateStatus::rough, 2.6, 2.3, 2.9);
+  const auto none = with_answer(EstimateStatus::none, std::nullopt, 0, 0);
+  for (const auto& [rosenstein, kantz] : {std::pair{&r, &k}, std::pair{&r, &none}, std::pair{&none, &none}}) {
+    const auto a = chaos::combine_lyapunov(rosenstein, kantz, &maps);
+    EXPECT_EQ(a.estimate.status, EstimateStatus::confident) << a.estimate.reason;
+    EXPECT_EQ(a.source, "local maps");
+    EXPECT_DOUBLE_EQ(*a.estimate.value, 2.0);
+    EXPECT_DOUBLE_EQ(a.estimate.interval->low, 1.8);  // the variants' [1.96, 2.04] widened to 10%
+    EXPECT_DOUBLE_EQ(a.estimate.interval->high, 2.2);
+  }
+  // A range of the variants wider than 10% stays the interval.
+  maps.lambda_interval = chaos::Interval{1.75, 2.1};
+  const auto wide = chaos::combine_lyapunov(&none, &none, &maps);
+  EXPECT_DOUBLE_EQ(wide.estimate.interval->low, 1.75);
+  EXPECT_DOUBLE_EQ(wide.estimate.interval->high, 2.2);
+  // Inconsistent maps alone: their base estimate, rough.
+  maps.status = chaos::LocalMapStatus::inconsistent;
+  maps.lambda.reset();
+  maps.lambda_interval.reset();
+  maps.base.lambda = 1.9;
+  maps.base.maps = 100;
+  const auto rough = chaos::combine_lyapunov(&none, &none, &maps);
+  EXPECT_EQ(rough.estimate.status, EstimateStatus::rough);
+  EXPECT_DOUBLE_EQ(*rough.estimate.value, 1.9);
 }
 
 chaos::AutomaticAnalysis lyapunov_only(const std::vector<double>& x, std::optional<double> dt) {

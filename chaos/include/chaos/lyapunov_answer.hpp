@@ -8,10 +8,11 @@
 //     span is at most 10% of the value either side. Otherwise, where the local maps are consistent
 //     and the three values lie within 7% of the centre of their span, that centre, confident: three
 //     estimators with different systematic errors agree.
-//   - Where only one gives a value, that value, rough (the other estimator does not confirm it).
-//   - Where neither does, the local maps' value (or their base estimate where their variants
-//     disagree), rough: a divergence curve with no exponential stretch is evidence against a sharp
-//     value.
+//   - Otherwise, wherever the local maps are consistent (their variants agree), their value,
+//     confident, the interval spanning their variants: the curves are checked against the maps,
+//     and on the zoo's grid every consistent local-map value lay within 10% of lambda_1.
+//   - Where only one curve gives a value, that value, rough (the other estimator does not confirm it).
+//   - Where neither does, the base estimate of inconsistent local maps, rough.
 //   - none where no estimator gives a value.
 // The interval is then widened to at least 10% of the value either side (confident) or 40% (rough),
 // and a rough one spans the local maps' variants too: the spread over the estimators' choices misses

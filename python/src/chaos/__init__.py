@@ -661,7 +661,8 @@ def zoo(only=None, *, progress=None, **params):
     stops after the cases being run.
 
     Result keys: parameters, wrong (confident estimates outside their band: the command exits 4
-    when there is one), chaotic, d2_covered, lambda_covered (coverage at the automatic choices),
+    when there is one), chaotic, d2_covered, lambda_covered (the chaotic systems whose D2 answer, and whose lambda_1
+    answer, is confident and in band at the automatic choices),
     wall_seconds (this run's), resumed (cases read from the checkpoint), rows (one mapping per row: case, kind, n, automatic, delay, dimension, theiler,
     theiler_factor, d2 / rosenstein / kantz / local_maps as value, interval, status, verdict and dimension
     (the m the estimate used where it is not the row's: the pipeline's local maps at m + 1), note,
