@@ -153,7 +153,7 @@ void run(LyapunovArgs& args) {
 void register_lyapunov(CLI::App& app) {
   auto args = std::make_shared<LyapunovArgs>();
   CLI::App* command =
-      app.add_subcommand("lyapunov", "largest Lyapunov exponent from a series (Rosenstein 1993 or Kantz 1994)");
+      app.add_subcommand("lyapunov", "largest Lyapunov exponent from a series: one answer with its interval from Rosenstein's and Kantz's divergence curves and local linear maps (with the default checks); --method picks the curve shown");
   add_input_options(*command, args->input);
   add_options(*command, args->params, lyapunov_parameters());
   add_plot_option(*command, args->plot, "draw the divergence curve with the fitted region to FILE.png or FILE.svg");
