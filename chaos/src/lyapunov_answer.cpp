@@ -143,20 +143,18 @@ LyapunovAnswer combine_lyapunov(const Estimate* rosenstein, const Estimate* kant
     widen_rough(e, local_maps);
     return answer;
   }
-  if (r || k) {
-    const std::string name = r ? "Rosenstein" : "Kantz";
-    if (maps_consistent) {
-      answer_from_consistent_maps(answer, *local_maps, "only " + name + " gives a value, " + curve_value(r ? *r : *k));
-      return answer;
-    }
-    answer.source = name;
-    e = r ? *r : *k;
-    e.downgrade("only " + name + " gives a value");
-    widen_rough(e, local_maps);
+  if (maps_consistent) {
+    answer_from_consistent_maps(answer, *local_maps,
+                                r   ? "only Rosenstein gives a value, " + curve_value(*r)
+                                : k ? "only Kantz gives a value, " + curve_value(*k)
+                                    : "they have no rising straight stretch");
     return answer;
   }
-  if (maps_consistent) {
-    answer_from_consistent_maps(answer, *local_maps, "they have no rising straight stretch");
+  if (r || k) {
+    answer.source = r ? "Rosenstein" : "Kantz";
+    e = r ? *r : *k;
+    e.downgrade(std::string("only ") + answer.source + " gives a value");
+    widen_rough(e, local_maps);
     return answer;
   }
   if (maps_ran(local_maps) && local_maps->base.maps > 0 && local_maps->base.lambda > 0.0) {
