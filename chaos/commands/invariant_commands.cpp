@@ -128,6 +128,12 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
     j["noise_floor"] = {{"radius", *d2.noise_floor}, {"slopes", d2.noise_floor_slopes}};
   else
     j["noise_floor"] = nullptr;
+  if (d2.smallest_scales)
+    j["smallest_scales"] = {{"radii", interval_json(d2.smallest_scales->radii)},
+                            {"slope", d2.smallest_scales->slope},
+                            {"slopes", interval_json(d2.smallest_scales->slopes)}};
+  else
+    j["smallest_scales"] = nullptr;
   if (d2.steepest_lower_dimension)
     j["steepest_lower"] = {{"dimension", *d2.steepest_lower_dimension}, {"slope", *d2.steepest_lower_slope}};
   else

@@ -77,6 +77,17 @@ Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimen
           e.downgrade("another plateau of the same dimensions reads " + text(other.slope) + " at " +
                       radii_text(other.radii) + ", below the one read: the value depends on which scales are read");
         }
+      // The same at the smallest well-counted scales, where the slopes may still move without
+      // settling into a plateau: every slope there more than the confident half-width away, on one
+      // side, says the plateau is not yet the small-scale limit.
+      if (const auto& s = d2.smallest_scales;
+          s && (s->slopes.low > *d2.d2 + d2_confident_half_width || s->slopes.high < *d2.d2 - d2_confident_half_width)) {
+        e.include(s->slopes.low);
+        e.include(s->slopes.high);
+        e.downgrade("at the smallest well-counted scales, " + radii_text(s->radii) + ", the slopes read " +
+                    text(s->slopes.low) + " to " + text(s->slopes.high) +
+                    ": the slope still changes below the plateau, towards the small-scale limit that D2 is");
+      }
       if (e.interval && 0.5 * (e.interval->high - e.interval->low) > d2_confident_half_width)
         e.downgrade("the interval is wider than +-" + text(d2_confident_half_width));
       if (d2.exceeds_eckmann_ruelle)

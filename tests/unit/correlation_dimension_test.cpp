@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -474,6 +475,82 @@ TEST(CorrelationDimension, APlateauBoundedBelowByNoiseIsNotD2) {
   chaos::CorrelationDimensionOptions bad;
   bad.noise_fill_fraction = 0.0;
   EXPECT_THROW(chaos::correlation_dimension(noisy_power_law(6, 0.05, 1000000000000), bad), chaos::InvalidInput);
+}
+
+// Slope 2 for every m >= 3 at eps >= 0.1; below, the slope rises by `rise` per decade of eps towards
+// eps = 0.01, too steeply for a second plateau (5 radii span more than the 5% band): the slope still
+// moves below the plateau without settling. m = 1, 2 read m. C is continuous at 0.1.
+chaos::CorrelationSumResult rising_below(double rise, std::uint64_t pairs_total) {
+  chaos::CorrelationSumResult s;
+  s.radius = chaos::log_radii(0.01, 1.0, 30);
+  s.points = 100000;
+  for (std::size_t m = 1; m <= 6; ++m) {
+    std::vector<double> c;
+    for (const double r : s.radius) {
+      if (m < 3) {
+        c.push_back(std::pow(r / 2.0, static_cast<double>(m)));
+        continue;
+      }
+      // ln C = 2 ln(r / 2) above 0.1; below, d ln C / d ln r = 2 + rise * ln(0.1 / r) / ln 10.
+      const double u = std::log(std::min(r, 0.1) / 0.1);  // <= 0
+      c.push_back(std::pow(std::min(r, 0.1) / 2.0, 2.0) * std::pow(std::max(r, 0.1) / 0.1, 2.0) *
+                  std::exp(-0.5 * rise / std::log(10.0) * u * u));
+    }
+    add_dimension(s, static_cast<std::size_t>(m), std::move(c), pairs_total);
+  }
+  return s;
+}
+
+TEST(CorrelationDimension, TheSmallestWellCountedScalesBelowThePlateauAreReported) {
+  // Step 7. A rise of 1.5 per decade below eps = 0.1: the plateau of m = 4..6 reads 2 over [0.1, 1],
+  // and the lowest three radii (as many as a plateau's local slopes need: 5 points, half-width 1)
+  // read about 2 + 1.5 * (1 - 0.07) = 3.4 and up (the analytic slope at 0.01, 0.0117, 0.0137).
+  const auto r = chaos::correlation_dimension(rising_below(1.5, 1000000000000));
+  ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
+  EXPECT_NEAR(*r.d2, 2.0, 0.05);
+  ASSERT_TRUE(r.smallest_scales.has_value());
+  EXPECT_NEAR(r.smallest_scales->radii.low, 0.01, 1e-12);
+  EXPECT_NEAR(r.smallest_scales->radii.high, r.radius[2], 1e-12);
+  EXPECT_GT(r.smallest_scales->slopes.low, 3.1);
+  EXPECT_LT(r.smallest_scales->slopes.high, 3.6);
+
+  // Fewer pairs: 10^8 examined, C(0.01) of about 10^-7.5 holds a few pairs, so the reported radii start
+  // where every saturating dimension has 10^4 of them, higher up and still below the plateau.
+  const auto fewer_sums = rising_below(1.5, 100000000);
+  const auto fewer = chaos::correlation_dimension(fewer_sums);
+  ASSERT_TRUE(fewer.smallest_scales.has_value()) << fewer.explanation;
+  const std::size_t first = static_cast<std::size_t>(
+      std::find(fewer.radius.begin(), fewer.radius.end(), fewer.smallest_scales->radii.low) - fewer.radius.begin());
+  ASSERT_LT(first, fewer.radius.size());
+  EXPECT_GT(first, 0u);
+  for (std::size_t d = 3; d < 6; ++d) {
+    EXPECT_GE(fewer_sums.pairs[d][first], 10000u);
+    EXPECT_LT(fewer_sums.pairs[d][first - 1], 10000u);
+  }
+
+  // A finite set of points below eps = 0.02 (counts that stop changing, slope 0): no dimension can be
+  // read there, so the reported radii start above it.
+  auto finite = rising_below(1.5, 1000000000000);
+  for (std::size_t d = 0; d < finite.dimension.size(); ++d) {
+    std::size_t k0 = 0;
+    while (finite.radius[k0] < 0.02) ++k0;
+    for (std::size_t k = 0; k < k0; ++k) {
+      finite.correlation_sum[d][k] = finite.correlation_sum[d][k0];
+      finite.pairs[d][k] = finite.pairs[d][k0];
+    }
+  }
+  const auto lattice = chaos::correlation_dimension(finite);
+  ASSERT_TRUE(lattice.finite_set_below.has_value()) << lattice.explanation;
+  ASSERT_TRUE(lattice.smallest_scales.has_value()) << lattice.explanation;
+  EXPECT_GT(lattice.smallest_scales->radii.low, *lattice.finite_set_below);
+  EXPECT_GT(lattice.smallest_scales->slopes.low, 2.5);  // the rise, not the lattice's 0
+
+  // Nothing below a plateau that spans the whole grid; nothing when the step is off.
+  const auto whole = chaos::correlation_dimension(power_law(6, [](std::size_t m) { return m < 3 ? double(m) : 2.3; }));
+  EXPECT_FALSE(whole.smallest_scales.has_value());
+  chaos::CorrelationDimensionOptions off;
+  off.small_scale_min_pairs = 0;
+  EXPECT_FALSE(chaos::correlation_dimension(rising_below(1.5, 1000000000000), off).smallest_scales.has_value());
 }
 
 TEST(CorrelationDimension, EckmannRuelleLimitIsReported) {

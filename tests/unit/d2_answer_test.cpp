@@ -107,6 +107,35 @@ TEST(D2Answer, AWideIntervalAnotherPlateauOrTheEckmannRuelleLimitMakeItRough) {
   EXPECT_EQ(chaos::d2_answer(high).status, EstimateStatus::rough);
 }
 
+TEST(D2Answer, SlopesStillMovingAtTheSmallestWellCountedScalesMakeItRough) {
+  // Every slope at the smallest well-counted scales more than 0.1 above the plateau: rough, and the
+  // interval reaches them.
+  CorrelationDimensionResult rising = saturated(1.61, Interval{1.59, 1.70});
+  rising.smallest_scales = D2Plateau{Interval{0.0037, 0.005}, 1.94, Interval{1.76, 2.04}};
+  const Estimate e = chaos::d2_answer(rising);
+  EXPECT_EQ(e.status, EstimateStatus::rough) << e.reason;
+  EXPECT_DOUBLE_EQ(*e.value, 1.61);
+  EXPECT_TRUE(holds(e, 2.04)) << "the interval reaches the smallest scales' slopes";
+  EXPECT_NE(e.reason.find("smallest well-counted scales"), std::string::npos) << e.reason;
+
+  // The same below the plateau.
+  CorrelationDimensionResult falling = saturated(2.0, Interval{1.95, 2.05});
+  falling.smallest_scales = D2Plateau{Interval{0.01, 0.02}, 1.8, Interval{1.75, 1.85}};
+  EXPECT_EQ(chaos::d2_answer(falling).status, EstimateStatus::rough);
+
+  // One slope within 0.1 of the plateau, or slopes on both sides of it: the slope has not clearly
+  // moved (lacunarity oscillates around one value), and the answer stays confident with its own
+  // interval.
+  CorrelationDimensionResult near = saturated(2.0, Interval{1.95, 2.05});
+  near.smallest_scales = D2Plateau{Interval{0.01, 0.02}, 2.2, Interval{2.08, 2.3}};
+  const Estimate n = chaos::d2_answer(near);
+  EXPECT_EQ(n.status, EstimateStatus::confident) << n.reason;
+  EXPECT_FALSE(holds(n, 2.3));
+  CorrelationDimensionResult both = saturated(2.0, Interval{1.95, 2.05});
+  both.smallest_scales = D2Plateau{Interval{0.01, 0.02}, 2.0, Interval{1.8, 2.2}};
+  EXPECT_EQ(chaos::d2_answer(both).status, EstimateStatus::confident);
+}
+
 TEST(D2Answer, AWithdrawnPlateauStillGivesARoughValueWithTheDisagreementInItsInterval) {
   CorrelationDimensionResult r;
   r.status = D2Status::not_reproduced;

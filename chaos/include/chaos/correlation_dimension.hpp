@@ -46,6 +46,13 @@
 //     Sprott F reads 2.46 over eps 0.15-0.61, the plateau at large scales that its clean record also
 //     shows beside the small-scale D2 of 2.05 (D_KY 2.19); Mackey-Glass at tau = 30 with 1% noise
 //     reads 2.40 where its clean record is scale_dependent (2.39 and 3.05; docs/notes/zoo-noise.md).
+//  7. The smallest well-counted scales (reported, judged by d2_answer): below a shared plateau and
+//     above any finite-set structure, the lowest radii where every saturating dimension has a local
+//     slope from at least small_scale_min_pairs pairs, as many as a plateau's slopes need. Where the
+//     slope still moves there without settling into a second plateau (step 4 needs one), the plateau
+//     is not yet the small-scale limit: Linz-Sprott x, N = 10^5, m = 2..4, w = 99, reads a plateau of
+//     1.61 at eps 0.036-0.20 where its slopes rise steadily to 1.8-2.0 at eps 0.004-0.005 (35 000
+//     pairs and more) and the state itself reads 1.95.
 // Scales (opt-in): max_region_fraction keeps regions at radii of at most that fraction of the
 // series' range (the max-norm diameter of the embedded set). Eckmann & Ruelle (Physica D 56, 185
 // (1992)) ask for radii small against the attractor's diameter and take a tenth of it for their
@@ -101,6 +108,11 @@ struct CorrelationDimensionOptions {
   // noise (infinity: no check).
   double noise_fill_fraction = 0.5;
   std::uint64_t min_pairs = 100;
+  // Step 7: the pairs every saturating dimension needs at a radius for it to count among the smallest
+  // well-counted scales below the plateau (0: not reported). The counting error of a local slope is
+  // about 4 / sqrt(pairs) for the default radii (a factor 1.15 apart): 0.04 at 10^4, well inside
+  // the 0.1 that d2_answer looks for.
+  std::uint64_t small_scale_min_pairs = 10000;
   // Regions are searched at radii <= max_region_fraction * range (CorrelationSumResult::range);
   // infinity (the default) searches every radius.
   double max_region_fraction = std::numeric_limits<double>::infinity();
@@ -168,6 +180,11 @@ struct CorrelationDimensionResult {
   // their local slopes there.
   std::optional<double> noise_floor;
   std::vector<double> noise_floor_slopes;
+  // Step 7, whenever a shared plateau was found: the lowest radii below it, above finite_set_below,
+  // where every saturating dimension has a usable local slope from at least small_scale_min_pairs
+  // pairs (as many consecutive radii as a plateau's local slopes need), with the mean and range of
+  // those slopes (nullopt: no such run below the plateau).
+  std::optional<D2Plateau> smallest_scales;
   // The halves check (require_reproduced_by_halves), when it ran: each half's status and D2.
   std::optional<D2Status> first_half_status, second_half_status;
   std::optional<double> first_half_d2, second_half_d2;

@@ -6,7 +6,9 @@
 //                    those checks ran, and two jackknife standard errors where the counts are a
 //                    subset. Confident when its half-width is at most 0.1; rough when it is wider,
 //                    when another plateau of the same dimensions at smaller scales reads more than
-//                    0.1 away (the interval then spans it: the slope still changes towards the
+//                    0.1 away, or when every slope at the smallest well-counted scales below the
+//                    plateau (step 7 of correlation_dimension.hpp) reads more than 0.1 away on one
+//                    side (the interval then spans them: the slope still changes towards the
 //                    small-scale limit), or when the value exceeds the Eckmann-Ruelle limit
 //                    2 log10 N. A plateau wholly above the one read only enters the reason: it reads
 //                    the attractor's larger-scale shape, not its D2.

@@ -278,7 +278,7 @@ def d2(x, *, progress=None, dt=None, column=1, skip=0, length=None, **params):
 
     Result keys: parameters, dimension, radius, correlation_sum (2-D), pairs (2-D), local_slope (2-D),
     d2_by_dimension, d2_by_dimension_interval, d2, d2_interval, d2_standard_error, scaling_region, plateaus,
-    other_plateaus, noise_floor, steepest_lower, saturated,
+    other_plateaus, noise_floor, smallest_scales, steepest_lower, saturated,
     status, explanation, takens_theiler, takens_theiler_error, eckmann_ruelle_limit,
     exceeds_eckmann_ruelle (and first_half, second_half with ``halves=True``; delay_variant with
     ``delay_check=True``, which requires a saturated D2 to be reproduced at twice the delay within
