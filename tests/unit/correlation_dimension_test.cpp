@@ -504,7 +504,7 @@ chaos::CorrelationSumResult rising_below(double rise, std::uint64_t pairs_total)
 TEST(CorrelationDimension, TheSmallestWellCountedScalesBelowThePlateauAreReported) {
   // Step 7. A rise of 1.5 per decade below eps = 0.1: the plateau of m = 4..6 reads 2 over [0.1, 1],
   // and the lowest three radii (as many as a plateau's local slopes need: 5 points, half-width 1)
-  // read about 2 + 1.5 * (1 - 0.07) = 3.4 and up (the analytic slope at 0.01, 0.0117, 0.0137).
+  // read 2 + 1.5 log10(0.1 / eps), analytically 3.5, 3.4 and 3.3 at eps = 0.01, 0.0117 and 0.0137.
   const auto r = chaos::correlation_dimension(rising_below(1.5, 1000000000000));
   ASSERT_EQ(r.status, chaos::D2Status::saturated) << r.explanation;
   EXPECT_NEAR(*r.d2, 2.0, 0.05);
@@ -514,8 +514,9 @@ TEST(CorrelationDimension, TheSmallestWellCountedScalesBelowThePlateauAreReporte
   EXPECT_GT(r.smallest_scales->slopes.low, 3.1);
   EXPECT_LT(r.smallest_scales->slopes.high, 3.6);
 
-  // Fewer pairs: 10^8 examined, C(0.01) of about 10^-7.5 holds a few pairs, so the reported radii start
-  // where every saturating dimension has 10^4 of them, higher up and still below the plateau.
+  // Fewer pairs: 10^8 examined, C(0.01) = 2.5e-5 exp(-0.326 ln(10)^2), about 4.5e-6, holds some 450
+  // pairs, so the reported radii start where every saturating dimension has 10^4 of them, higher up
+  // and still below the plateau.
   const auto fewer_sums = rising_below(1.5, 100000000);
   const auto fewer = chaos::correlation_dimension(fewer_sums);
   ASSERT_TRUE(fewer.smallest_scales.has_value()) << fewer.explanation;
