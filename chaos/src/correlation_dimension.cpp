@@ -309,6 +309,10 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     const bool projection_contradicts =
         shared && out.steepest_lower_slope &&
         *out.steepest_lower_slope > shared->slope + options.projection_tolerance * std::abs(shared->slope);
+    // Steps 6 and 7 read runs of radii as long as a plateau's local slopes need: min_points less the
+    // half-width on each side.
+    const std::size_t hw = options.region.half_width;
+    const std::size_t needed = options.region.min_points > 2 * hw ? options.region.min_points - 2 * hw : 1;
     // Step 6: noise below the plateau. At a radius where every saturating dimension m reads a usable
     // local slope more than noise_fill_fraction of the way from the plateau's slope to m, and not
     // above m (1 + tolerance), the dimensions fill their space as noise does; pairs entering in
@@ -316,8 +320,6 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     // count. The regime must hold over consecutive radii whose local slopes span min_points radii,
     // the evidence a plateau needs. noise_floor: the largest radius at which such a run is long enough.
     if (shared && std::isfinite(options.noise_fill_fraction)) {
-      const std::size_t hw = options.region.half_width;
-      const std::size_t needed = options.region.min_points > 2 * hw ? options.region.min_points - 2 * hw : 1;
       std::size_t run = 0;
       for (std::size_t k = 0; k < shared->first; ++k) {
         std::vector<double> slopes;
@@ -342,8 +344,6 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
     // local slopes need, each of them so counted (else nothing is reported); their slopes say whether
     // the slope still moves towards the small-scale limit.
     if (shared && options.small_scale_min_pairs > 0) {
-      const std::size_t hw = options.region.half_width;
-      const std::size_t needed = options.region.min_points > 2 * hw ? options.region.min_points - 2 * hw : 1;
       const auto well_counted = [&](std::size_t k) {
         // (Where the data are a finite set of points no dimension can be read.)
         if (out.finite_set_below && sums.radius[k] <= *out.finite_set_below) return false;
