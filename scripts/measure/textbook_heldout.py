@@ -14,6 +14,7 @@ Usage: scripts/measure/textbook_heldout.py CHAOS_BINARY [--seeds K] [--jobs J]
 Needs numpy and scipy (Debian: python3-numpy, python3-scipy). Seeds 101 .. 100 + K (default 12).
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -85,6 +86,7 @@ def main():
     tasks = [(case, seed) for case in CASES for seed in range(101, 101 + seeds)]
     with ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(one, tasks))
+    shutil.rmtree(work)
     print("system\tN\tseed\tlambda_1\tlow\thigh\tstatus\tconfident within the band")
     tally = {}
     for ((name, n, dt, reference, band), seed), (value, low, high, status) in results:

@@ -19,6 +19,7 @@ Usage: scripts/measure/transformed_linear.py CHAOS_BINARY [--seeds K] [--jobs J]
 Needs numpy and scipy. Seeds 1 .. K (default 5); lengths 5000 and 20000.
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -90,6 +91,7 @@ def main():
 
     with ThreadPoolExecutor(jobs) as pool:
         results = list(pool.map(one, tasks))
+    shutil.rmtree(work)
     print("series\tN\tseed\tdeterminism\tnonlinearity\tD2\tD2 status\tlambda_1 status\tas expected")
     tally = {}
     for (kind, n, seed), r in results:
