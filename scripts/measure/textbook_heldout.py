@@ -12,81 +12,33 @@ holds it.
 
 Usage: scripts/measure/textbook_heldout.py CHAOS_BINARY [--seeds K] [--jobs J]
 Needs numpy and scipy (Debian: python3-numpy, python3-scipy). Seeds 101 .. 100 + K (default 12).
+The records and the parsing of `chaos analyze` are outside_records.py's.
 """
-import os
-import shutil
-import subprocess
 import sys
-import tempfile
-from concurrent.futures import ThreadPoolExecutor
 
-import numpy as np
-from scipy.integrate import solve_ivp
+from outside_records import analyze_lines, answer, record, run_parallel, seeds_and_jobs
 
 # name, N, dt (None for a map), literature lambda_1, the bar's relative band
 CASES = [("lorenz", 20000, 0.01, 0.9056, 0.10), ("lorenz", 100000, 0.01, 0.9056, 0.10),
          ("rossler", 20000, 0.1, 0.0714, 0.15), ("henon", 10000, None, 0.419, 0.05)]
 
 
-def record(name, n, seed):
-    rng = np.random.default_rng(seed)
-    if name == "henon":
-        x, y = rng.uniform(-0.1, 0.1, 2)
-        for _ in range(1000):
-            x, y = 1 - 1.4 * x * x + y, 0.3 * x
-        out = np.empty(n)
-        for k in range(n):
-            x, y = 1 - 1.4 * x * x + y, 0.3 * x
-            out[k] = x
-        return out
-    if name == "lorenz":
-        def f(t, s):
-            return [10 * (s[1] - s[0]), s[0] * (28 - s[2]) - s[1], s[0] * s[1] - 8 / 3 * s[2]]
-        dt, drop, start = 0.01, 100.0, rng.uniform(-10, 10, 3) + [0, 0, 20]
-    else:
-        def f(t, s):
-            return [-s[1] - s[2], s[0] + 0.2 * s[1], 0.2 + s[2] * (s[0] - 5.7)]
-        dt, drop, start = 0.1, 1000.0, np.append(rng.uniform(-5, 5, 2), 0.1)
-    t = drop + dt * np.arange(n)
-    return solve_ivp(f, (0, t[-1]), start, method="DOP853", rtol=1e-10, atol=1e-10, t_eval=t).y[0]
-
-
-def answer(chaos, path, dt):
-    cmd = [chaos, "analyze", path, "-q"] + (["--dt", str(dt)] if dt else [])
-    done = subprocess.run(cmd, capture_output=True, text=True)
-    for line in done.stdout.splitlines():
-        if line.startswith("largest_lyapunov_exponent\t"):
-            field = line.split("\t")[1]  # "V in [L, H] per ... (status)" or "none (none)"
-            status = field[field.rfind("(") + 1:field.rfind(")")]
-            if " in [" not in field:
-                return None, None, None, status
-            value = float(field.split(" in [")[0])
-            low, high = (float(v) for v in field.split(" in [")[1].split("]")[0].split(","))
-            return value, low, high, status
-    return None, None, None, "error: " + done.stderr.strip()[:120]
+def lambda_1(chaos, path, dt):
+    lines = analyze_lines(chaos, path, dt)
+    if "largest_lyapunov_exponent" not in lines:
+        return None, None, None, "error: " + lines.get("error", "no lambda_1 line")
+    return answer(lines["largest_lyapunov_exponent"])
 
 
 def main():
     args = sys.argv[1:]
     if not args:
         sys.exit(__doc__)
-    chaos, seeds, jobs = args[0], 12, 2
-    if "--seeds" in args:
-        seeds = int(args[args.index("--seeds") + 1])
-    if "--jobs" in args:
-        jobs = int(args[args.index("--jobs") + 1])
-    work = tempfile.mkdtemp(prefix="textbook-")
-
-    def one(task):
-        (name, n, dt, reference, band), seed = task
-        path = os.path.join(work, f"{name}-{n}-{seed}.txt")
-        np.savetxt(path, record(name, n, seed), fmt="%.17g")
-        return task, answer(chaos, path, dt)
-
+    chaos = args[0]
+    seeds, jobs = seeds_and_jobs(args, 12)
     tasks = [(case, seed) for case in CASES for seed in range(101, 101 + seeds)]
-    with ThreadPoolExecutor(jobs) as pool:
-        results = list(pool.map(one, tasks))
-    shutil.rmtree(work)
+    results = run_parallel(tasks, lambda task: (record(task[0][0], task[0][1], task[1]), task[0][2]),
+                           lambda path, dt: lambda_1(chaos, path, dt), jobs, "textbook-")
     print("system\tN\tseed\tlambda_1\tlow\thigh\tstatus\tconfident within the band")
     tally = {}
     for ((name, n, dt, reference, band), seed), (value, low, high, status) in results:

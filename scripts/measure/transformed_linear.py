@@ -16,17 +16,14 @@ Two kinds of record, each through `chaos analyze FILE` with its defaults:
     and two-to-one, which keeps D2).
 
 Usage: scripts/measure/transformed_linear.py CHAOS_BINARY [--seeds K] [--jobs J]
-Needs numpy and scipy. Seeds 1 .. K (default 5); lengths 5000 and 20000.
+Needs numpy and scipy. Seeds 1 .. K (default 5); lengths 5000 and 20000. The Lorenz record and the
+parsing of `chaos analyze` are outside_records.py's.
 """
-import os
-import shutil
-import subprocess
 import sys
-import tempfile
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
-from scipy.integrate import solve_ivp
+
+from outside_records import analyze_lines, answer, record, run_parallel, seeds_and_jobs
 
 LENGTHS = (5000, 20000)
 D2_BAND = (1.86, 2.18)
@@ -42,31 +39,22 @@ def ar_through_atan(n, seed):
     return np.arctan(x[1000:] / 80)
 
 
-def laser_intensity(n, seed):
-    rng = np.random.default_rng(seed)
-
-    def f(t, s):
-        return [10 * (s[1] - s[0]), s[0] * (28 - s[2]) - s[1], s[0] * s[1] - 8 / 3 * s[2]]
-    t = 100.0 + 0.01 * np.arange(n)
-    start = rng.uniform(-10, 10, 3) + [0, 0, 20]
-    return solve_ivp(f, (0, t[-1]), start, method="DOP853", rtol=1e-10, atol=1e-10, t_eval=t).y[0] ** 2
+def make(task):
+    kind, n, seed = task
+    if kind == "ar2_atan":
+        return ar_through_atan(n, seed), None
+    return record("lorenz", n, seed) ** 2, 0.01  # the laser-like intensity
 
 
 def analyze(chaos, path, dt):
-    cmd = [chaos, "analyze", path, "-q"] + (["--dt", str(dt)] if dt else [])
-    out = subprocess.run(cmd, capture_output=True, text=True).stdout
-    lines = {line.split("\t")[0]: line.split("\t")[1] for line in out.splitlines() if "\t" in line}
-
-    def status(field):  # "V in [L, H] ... (status)", "none (none)", "not run", "rejected (...)", ...
-        return field[field.rfind("(") + 1:field.rfind(")")] if "(" in field else field.split()[0]
-    d2 = lines.get("correlation_dimension", "missing")
-    d2_value = float(d2.split(" in [")[0]) if " in [" in d2 else None
+    lines = analyze_lines(chaos, path, dt)
+    d2_value, _, _, d2_status = answer(lines.get("correlation_dimension", "missing"))
     return {
         "determinism": lines.get("determinism", "missing").split(":")[0],
         "nonlinearity": lines.get("nonlinearity", "missing").split(" (")[0].split(":")[0].replace(" ", "_"),
         "d2": d2_value,
-        "d2_status": status(d2),
-        "lambda_status": status(lines.get("largest_lyapunov_exponent", "missing")),
+        "d2_status": d2_status,
+        "lambda_status": answer(lines.get("largest_lyapunov_exponent", "missing"))[3],
     }
 
 
@@ -74,24 +62,10 @@ def main():
     args = sys.argv[1:]
     if not args:
         sys.exit(__doc__)
-    chaos, seeds, jobs = args[0], 5, 2
-    if "--seeds" in args:
-        seeds = int(args[args.index("--seeds") + 1])
-    if "--jobs" in args:
-        jobs = int(args[args.index("--jobs") + 1])
-    work = tempfile.mkdtemp(prefix="transformed-")
+    chaos = args[0]
+    seeds, jobs = seeds_and_jobs(args, 5)
     tasks = [(kind, n, seed) for kind in ("ar2_atan", "laser") for n in LENGTHS for seed in range(1, seeds + 1)]
-
-    def one(task):
-        kind, n, seed = task
-        x = ar_through_atan(n, seed) if kind == "ar2_atan" else laser_intensity(n, seed)
-        path = os.path.join(work, f"{kind}-{n}-{seed}.txt")
-        np.savetxt(path, x, fmt="%.17g")
-        return task, analyze(chaos, path, None if kind == "ar2_atan" else 0.01)
-
-    with ThreadPoolExecutor(jobs) as pool:
-        results = list(pool.map(one, tasks))
-    shutil.rmtree(work)
+    results = run_parallel(tasks, make, lambda path, dt: analyze(chaos, path, dt), jobs, "transformed-")
     print("series\tN\tseed\tdeterminism\tnonlinearity\tD2\tD2 status\tlambda_1 status\tas expected")
     tally = {}
     for (kind, n, seed), r in results:
