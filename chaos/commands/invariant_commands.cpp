@@ -119,7 +119,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   const auto plateaus_json = [](const std::vector<D2Plateau>& list) {
     auto out = nlohmann::ordered_json::array();
     for (const auto& p : list)
-      out.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)}});
+      out.push_back({{"radii", interval_json(p.radii)}, {"slope", p.slope}, {"slopes", interval_json(p.slopes)},
+                     {"pairs", p.pairs}});
     return out;
   };
   j["plateaus"] = plateaus_json(d2.plateaus);
@@ -131,7 +132,8 @@ D2Run run_d2(const SeriesInput& in, D2Params params, const OutputOptions& output
   if (d2.smallest_scales)
     j["smallest_scales"] = {{"radii", interval_json(d2.smallest_scales->radii)},
                             {"slope", d2.smallest_scales->slope},
-                            {"slopes", interval_json(d2.smallest_scales->slopes)}};
+                            {"slopes", interval_json(d2.smallest_scales->slopes)},
+                            {"pairs", d2.smallest_scales->pairs}};
   else
     j["smallest_scales"] = nullptr;
   if (d2.steepest_lower_dimension)

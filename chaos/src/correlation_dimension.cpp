@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 #include "chaos/error.hpp"
@@ -26,6 +28,10 @@ void CorrelationDimensionOptions::validate() const {
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the largest scaling-region radius, as a fraction of the range, must be positive (got " +
                            std::to_string(max_region_fraction) + ")");
+  if (!(pair_counting_error >= 0.0) || !std::isfinite(pair_counting_error))
+    throw InvalidInput(ErrorCode::invalid_parameter,
+                       "the counting error of a local slope times sqrt(pairs) must be finite and not negative (got " +
+                           std::to_string(pair_counting_error) + ")");
   if (!(slope_error_fraction > 0.0))
     throw InvalidInput(ErrorCode::invalid_parameter,
                        "the largest local-slope error, as a fraction of the tolerance band, must be positive (got " +
@@ -212,6 +218,14 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
   std::vector<std::size_t> top;
   for (std::size_t d = dims; d-- > 0 && top.size() < options.saturation_dimensions;)
     if (out.d2_by_dimension[d]) top.insert(top.begin(), d);
+  // The fewest close pairs of the saturating dimensions over radii first..last: a stretch's slopes are
+  // read from at least that many (d2_answer weighs a reading below the plateau by its counting error).
+  const auto fewest_pairs = [&](std::size_t first, std::size_t last) {
+    std::uint64_t fewest = std::numeric_limits<std::uint64_t>::max();
+    for (const auto d : top)
+      for (std::size_t k = first; k <= last; ++k) fewest = std::min(fewest, sums.pairs[d][k]);
+    return fewest;
+  };
   std::ostringstream why;
   const auto list_d2 = [&] {
     std::ostringstream s;
@@ -259,7 +273,8 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
       }
     }
     const auto plateau = [&](const ScalingRegion& r) {
-      return D2Plateau{Interval{sums.radius[r.first], sums.radius[r.last]}, r.slope, Interval{r.slope_min, r.slope_max}};
+      return D2Plateau{Interval{sums.radius[r.first], sums.radius[r.last]}, r.slope, Interval{r.slope_min, r.slope_max},
+                       fewest_pairs(r.first, r.last)};
     };
     // Other readings of a saturated D2, reported, not judged: the plateau below that step 4 took for
     // the same scaling (within the allowances), and the best one above the region, before the slopes
@@ -365,7 +380,8 @@ CorrelationDimensionResult correlation_dimension(const CorrelationSumResult& sum
               hi = std::max(hi, *usable[d][k]);
             }
           out.smallest_scales = D2Plateau{Interval{sums.radius[first], sums.radius[first + needed - 1]},
-                                          sum / static_cast<double>(needed * top.size()), Interval{lo, hi}};
+                                          sum / static_cast<double>(needed * top.size()), Interval{lo, hi},
+                                          fewest_pairs(first, first + needed - 1)};
         }
       }
     }

@@ -62,9 +62,20 @@ Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimen
                  (checks.empty() ? std::string() : " (reproduced: " + checks + ")");
       // D2 is the small-scale limit: another plateau below the one read says the slope still changes
       // towards that limit; one above it reads the attractor's larger-scale shape and is only reported.
-      const auto rival = [&](const D2Plateau& other) {
-        return std::abs(other.slope - *d2.d2) > d2_confident_half_width;
+      // A reading disputes the value only beyond the confident half-width and beyond its own counting
+      // error: at small scales the pairs are few, and on a flow they come in correlated runs. (One
+      // error, not two: twice it also let pass a real rise on a short record, Lorenz-Stenflo at
+      // N = 10^4, and a confident value wrong by three half-widths is the worse mistake.)
+      const auto counting_error = [&](const D2Plateau& p) {
+        return p.pairs > 0 ? options.pair_counting_error / std::sqrt(static_cast<double>(p.pairs)) : 0.0;
       };
+      const auto margin = [&](const D2Plateau& p) { return std::max(d2_confident_half_width, counting_error(p)); };
+      const auto error_text = [&](const D2Plateau& p) {
+        return p.pairs > 0 ? " (counting error about " + text(counting_error(p)) + " from " + std::to_string(p.pairs) +
+                                 " pairs)"
+                           : std::string();
+      };
+      const auto rival = [&](const D2Plateau& other) { return std::abs(other.slope - *d2.d2) > margin(other); };
       const auto above = [&](const D2Plateau& other) {
         return d2.scaling_region && other.radii.low >= d2.scaling_region->high;
       };
@@ -75,17 +86,19 @@ Estimate d2_reading(const CorrelationDimensionResult& d2, const CorrelationDimen
         if (rival(other) && !above(other)) {
           e.include(other.slope);
           e.downgrade("another plateau of the same dimensions reads " + text(other.slope) + " at " +
-                      radii_text(other.radii) + ", below the one read: the value depends on which scales are read");
+                      radii_text(other.radii) + error_text(other) +
+                      ", below the one read: the value depends on which scales are read");
         }
       // The same at the smallest well-counted scales, where the slopes may still move without
       // settling into a plateau: every slope there more than the confident half-width away, on one
-      // side, says the plateau is not yet the small-scale limit.
+      // side, and their mean beyond the margin, says the plateau is not yet the small-scale limit.
       if (const auto& s = d2.smallest_scales;
-          s && (s->slopes.low > *d2.d2 + d2_confident_half_width || s->slopes.high < *d2.d2 - d2_confident_half_width)) {
+          s && (s->slopes.low > *d2.d2 + d2_confident_half_width || s->slopes.high < *d2.d2 - d2_confident_half_width) &&
+          std::abs(s->slope - *d2.d2) > margin(*s)) {
         e.include(s->slopes.low);
         e.include(s->slopes.high);
         e.downgrade("at the smallest well-counted scales, " + radii_text(s->radii) + ", the slopes read " +
-                    text(s->slopes.low) + " to " + text(s->slopes.high) +
+                    text(s->slopes.low) + " to " + text(s->slopes.high) + error_text(*s) +
                     ": the slope still changes below the plateau, towards the small-scale limit that D2 is");
       }
       if (e.interval && 0.5 * (e.interval->high - e.interval->low) > d2_confident_half_width)

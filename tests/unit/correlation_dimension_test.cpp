@@ -528,6 +528,12 @@ TEST(CorrelationDimension, TheSmallestWellCountedScalesBelowThePlateauAreReporte
     EXPECT_GE(fewer_sums.pairs[d][first], 10000u);
     EXPECT_LT(fewer_sums.pairs[d][first - 1], 10000u);
   }
+  // The reading carries the fewest pairs of its dimensions and radii (by brute force over them),
+  // from which d2_answer weighs it.
+  std::uint64_t fewest = std::numeric_limits<std::uint64_t>::max();
+  for (std::size_t d = 3; d < 6; ++d)
+    for (std::size_t k = first; k < first + 3; ++k) fewest = std::min(fewest, fewer_sums.pairs[d][k]);
+  EXPECT_EQ(fewer.smallest_scales->pairs, fewest);
 
   // A finite set of points below eps = 0.02 (counts that stop changing, slope 0): no dimension can be
   // read there, so the reported radii start above it.

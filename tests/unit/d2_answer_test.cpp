@@ -136,6 +136,49 @@ TEST(D2Answer, SlopesStillMovingAtTheSmallestWellCountedScalesMakeItRough) {
   EXPECT_EQ(chaos::d2_answer(both).status, EstimateStatus::confident);
 }
 
+TEST(D2Answer, AReadingBelowThePlateauDisputesItOnlyBeyondItsCountingError) {
+  // The counting error of a reading from p pairs is pair_counting_error / sqrt(p) (16.5 / sqrt(p) by
+  // default), and a reading disputes the value only beyond max(0.1, that error). The numbers are a
+  // held-out Lorenz x record's (N = 10^5): a plateau of 2.078, another one below at 2.222 read from
+  // 7211 pairs, counting error 16.5 / sqrt(7211) = 0.194, so 0.144 away is within its noise.
+  CorrelationDimensionResult few = saturated(2.078, Interval{2.03, 2.13});
+  few.other_plateaus = {D2Plateau{Interval{0.038, 0.117}, 2.222, Interval{2.139, 2.292}, 7211}};
+  const Estimate f = chaos::d2_answer(few);
+  EXPECT_EQ(f.status, EstimateStatus::confident) << f.reason;
+  // The same reading from 10^6 pairs (error 0.0165): beyond 0.1 and beyond its error.
+  CorrelationDimensionResult many = few;
+  many.other_plateaus[0].pairs = 1000000;
+  const Estimate m = chaos::d2_answer(many);
+  EXPECT_EQ(m.status, EstimateStatus::rough) << m.reason;
+  EXPECT_NE(m.reason.find("counting error about 0.0165"), std::string::npos) << m.reason;
+  // The boundary: 16.5 / sqrt(p) = 0.144 at p = 13 129; below it the reading is within its error,
+  // above it it is not.
+  many.other_plateaus[0].pairs = 13050;
+  EXPECT_EQ(chaos::d2_answer(many).status, EstimateStatus::confident);
+  many.other_plateaus[0].pairs = 13200;
+  EXPECT_EQ(chaos::d2_answer(many).status, EstimateStatus::rough);
+  // The factor is an option: 0 is the bare 0.1 rule.
+  chaos::CorrelationDimensionOptions bare;
+  bare.pair_counting_error = 0.0;
+  EXPECT_EQ(chaos::d2_answer(few, bare).status, EstimateStatus::rough);
+
+  // The smallest scales: every slope more than 0.1 to one side is not enough when their mean lies
+  // within the counting error. Slopes 1.80..1.88, mean 1.85, under a plateau of 2.0: from 10^4 pairs
+  // the error is 0.165 > 0.15 (confident); from 10^5 pairs it is 0.052 (rough).
+  CorrelationDimensionResult falling = saturated(2.0, Interval{1.95, 2.05});
+  falling.smallest_scales = D2Plateau{Interval{0.01, 0.02}, 1.85, Interval{1.80, 1.88}, 10000};
+  EXPECT_EQ(chaos::d2_answer(falling).status, EstimateStatus::confident);
+  falling.smallest_scales->pairs = 100000;
+  EXPECT_EQ(chaos::d2_answer(falling).status, EstimateStatus::rough);
+  // Linz-Sprott x (N = 10^5, m = 2..4, w = 99): 1.611 against slopes 1.761..2.037, mean 1.932, from
+  // 34555 pairs (error 0.089 < 0.321): still rough, the slope still moves.
+  CorrelationDimensionResult rising = saturated(1.611, Interval{1.59, 1.70});
+  rising.smallest_scales = D2Plateau{Interval{0.0037, 0.005}, 1.932, Interval{1.761, 2.037}, 34555};
+  const Estimate r = chaos::d2_answer(rising);
+  EXPECT_EQ(r.status, EstimateStatus::rough) << r.reason;
+  EXPECT_TRUE(holds(r, 2.037));
+}
+
 TEST(D2Answer, AWithdrawnPlateauStillGivesARoughValueWithTheDisagreementInItsInterval) {
   CorrelationDimensionResult r;
   r.status = D2Status::not_reproduced;

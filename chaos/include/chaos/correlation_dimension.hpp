@@ -109,10 +109,17 @@ struct CorrelationDimensionOptions {
   double noise_fill_fraction = 0.5;
   std::uint64_t min_pairs = 100;
   // Step 7: the pairs every saturating dimension needs at a radius for it to count among the smallest
-  // well-counted scales below the plateau (0: not reported). The counting error of a local slope is
-  // about 4 / sqrt(pairs) for the default radii (a factor 1.15 apart): 0.04 at 10^4, well inside
-  // the 0.1 that d2_answer looks for.
+  // well-counted scales below the plateau (0: not reported).
   std::uint64_t small_scale_min_pairs = 10000;
+  // The counting error of a local slope read from p close pairs is about pair_counting_error /
+  // sqrt(p). A reading below the plateau (another plateau, the smallest scales) disputes the D2 in
+  // d2_answer only where it lies more than that error away, and more than the confident half-width. The close pairs of a finely sampled flow are not independent (two strands of the
+  // orbit that pass near each other give a run of consecutive pairs): over twelve independent
+  // Lorenz x records (dt 0.01, N = 10^5, m = 4..6) the local slopes at one radius scatter by
+  // 13-18.5 / sqrt(pairs), 16.5 in root mean square, from 10^4 to 4 10^5 pairs, where independent
+  // pairs would give about 4 (scripts/measure/small_scale_slope_error.py;
+  // docs/reference/correlation_dimension.md, "Readings below the plateau").
+  double pair_counting_error = 16.5;
   // Regions are searched at radii <= max_region_fraction * range (CorrelationSumResult::range);
   // infinity (the default) searches every radius.
   double max_region_fraction = std::numeric_limits<double>::infinity();
@@ -131,6 +138,7 @@ struct D2Plateau {
   Interval radii;            // [low, high]
   double slope = 0.0;        // mean local slope over the stretch and the dimensions
   Interval slopes;           // their range
+  std::uint64_t pairs = 0;   // the fewest close pairs of those dimensions at any of its radii (0: not counted)
 };
 
 struct CorrelationDimensionResult {

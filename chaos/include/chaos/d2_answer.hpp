@@ -10,8 +10,11 @@
 //                    plateau (step 7 of correlation_dimension.hpp) reads more than 0.1 away on one
 //                    side (the interval then spans them: the slope still changes towards the
 //                    small-scale limit), or when the value exceeds the Eckmann-Ruelle limit
-//                    2 log10 N. A plateau wholly above the one read only enters the reason: it reads
-//                    the attractor's larger-scale shape, not its D2.
+//                    2 log10 N. A reading below the plateau counts only where its mean also lies
+//                    beyond its counting error (pair_counting_error / sqrt(pairs)): the few pairs at
+//                    small scales scatter the slopes of a flow by about 0.17 at 10^4 pairs. A
+//                    plateau wholly above the one read only enters the reason: it reads the
+//                    attractor's larger-scale shape, not its D2.
 //   not_reproduced   the plateau's slope, rough; the interval spans it and the halves' (or the other
 //                    delay's) D2: the records disagree, and the interval says by how much.
 //   scale_dependent  the plateau at the smaller scales (D2 is the small-scale limit), rough; the
