@@ -9,13 +9,15 @@ textbook_heldout.py and transformed_linear.py (imported from the scripts' own di
   are None where there is no value ("none (none)", "not run").
 - run_parallel(tasks, make, judge, jobs, prefix): for each task, make(task) gives (series, dt); the series
   is written to a temporary file and judge(path, dt) runs on it; the files are removed at the end.
-- seeds_and_jobs(args, seeds): the --seeds and --jobs options, with the script's default seed count.
+- command_line(usage, seeds): the chaos binary and the --seeds and --jobs options from sys.argv (the
+  script's default seed count; the usage text and exit when no binary is given).
 
 Needs numpy and scipy (Debian: python3-numpy, python3-scipy).
 """
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
@@ -83,10 +85,14 @@ def run_parallel(tasks, make, judge, jobs, prefix):
         shutil.rmtree(work)
 
 
-def seeds_and_jobs(args, seeds):
+def command_line(usage, seeds):
+    """(chaos binary, seeds, jobs) from sys.argv; exits with `usage` when the binary is missing."""
+    args = sys.argv[1:]
+    if not args:
+        sys.exit(usage)
     jobs = 2
     if "--seeds" in args:
         seeds = int(args[args.index("--seeds") + 1])
     if "--jobs" in args:
         jobs = int(args[args.index("--jobs") + 1])
-    return seeds, jobs
+    return args[0], seeds, jobs

@@ -22,21 +22,16 @@ Needs numpy and scipy. Seeds 101 .. 100 + K (default 12), the seeds of textbook_
 """
 import json
 import subprocess
-import sys
 
 import numpy as np
 
-from outside_records import record, run_parallel, seeds_and_jobs
+from outside_records import command_line, record, run_parallel
 
 N = 100000
 
 
 def main():
-    args = sys.argv[1:]
-    if not args:
-        sys.exit(__doc__)
-    chaos = args[0]
-    seeds, jobs = seeds_and_jobs(args, 12)
+    chaos, seeds, jobs = command_line(__doc__, 12)
     tasks = list(range(101, 101 + seeds))
 
     def judge(path, dt):

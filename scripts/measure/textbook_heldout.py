@@ -21,9 +21,8 @@ Usage: scripts/measure/textbook_heldout.py CHAOS_BINARY [--seeds K] [--jobs J]
 Needs numpy and scipy (Debian: python3-numpy, python3-scipy). Seeds 101 .. 100 + K (default 12).
 The records and the parsing of `chaos analyze` are outside_records.py's.
 """
-import sys
 
-from outside_records import analyze_lines, answer, record, run_parallel, seeds_and_jobs
+from outside_records import analyze_lines, answer, command_line, record, run_parallel
 
 # name, N, dt (None for a map), literature lambda_1, the bar's relative band
 CASES = [("lorenz", 20000, 0.01, 0.9056, 0.10), ("lorenz", 100000, 0.01, 0.9056, 0.10),
@@ -49,11 +48,7 @@ def answers(chaos, path, dt):
 
 
 def main():
-    args = sys.argv[1:]
-    if not args:
-        sys.exit(__doc__)
-    chaos = args[0]
-    seeds, jobs = seeds_and_jobs(args, 12)
+    chaos, seeds, jobs = command_line(__doc__, 12)
     tasks = [(case, seed) for case in CASES for seed in range(101, 101 + seeds)]
     results = run_parallel(tasks, lambda task: (record(task[0][0], task[0][1], task[1]), task[0][2]),
                            lambda path, dt: answers(chaos, path, dt), jobs, "textbook-")

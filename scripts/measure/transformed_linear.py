@@ -19,11 +19,10 @@ Usage: scripts/measure/transformed_linear.py CHAOS_BINARY [--seeds K] [--jobs J]
 Needs numpy and scipy. Seeds 1 .. K (default 5); lengths 5000 and 20000. The Lorenz record and the
 parsing of `chaos analyze` are outside_records.py's.
 """
-import sys
 
 import numpy as np
 
-from outside_records import analyze_lines, answer, record, run_parallel, seeds_and_jobs
+from outside_records import analyze_lines, answer, command_line, record, run_parallel
 
 LENGTHS = (5000, 20000)
 D2_BAND = (1.86, 2.18)
@@ -59,11 +58,7 @@ def analyze(chaos, path, dt):
 
 
 def main():
-    args = sys.argv[1:]
-    if not args:
-        sys.exit(__doc__)
-    chaos = args[0]
-    seeds, jobs = seeds_and_jobs(args, 5)
+    chaos, seeds, jobs = command_line(__doc__, 5)
     tasks = [(kind, n, seed) for kind in ("ar2_atan", "laser") for n in LENGTHS for seed in range(1, seeds + 1)]
     results = run_parallel(tasks, make, lambda path, dt: analyze(chaos, path, dt), jobs, "transformed-")
     print("series\tN\tseed\tdeterminism\tnonlinearity\tD2\tD2 status\tlambda_1 status\tas expected")
