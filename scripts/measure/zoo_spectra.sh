@@ -84,7 +84,7 @@ unit (flows) or per iteration (maps), descending. Columns:
 - **dysts**: dysts' own estimates of λ1 (our relative difference), D_KY and D2; "(other parameters)" where dysts uses
   different parameter values, so the numbers are not comparable.
 
-Computed in ${elapsed} s on this machine ($(nproc) cores, shared), $(date -u +%Y-%m-%d).
+Computed in ${elapsed} s on $(nproc) cores (shared), build $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown).
 
 | system | kind | exponents | D_KY | length | \|Δ\| 2×length | \|Δ\| h/2 | \|Σλ − identity\| | literature | dysts |
 |---|---|---|---|---|---|---|---|---|---|
