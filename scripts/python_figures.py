@@ -26,6 +26,7 @@ a = chaos.analyze(x, dt=dt, test_length=2048)
 print(a)
 print(f"delay {a.delay} ({a.delay_source}), theiler {a.theiler} ({a.theiler_source}), m = {a.embedding_dimension}")
 print(f"D2 = {a.d2} in {a.d2_interval} ({a.d2_status}); lambda = {a.lambda_} per time unit ({a.lambda_status})")
+print(f"D2 answer {a.d2_estimate}; lambda_1 answer {a.lambda_1}")
 a.plot()
 plt.gcf().savefig(os.path.join(out, "analyze.png"), dpi=90)
 
