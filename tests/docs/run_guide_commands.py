@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Runs the shell commands of the user's guide (docs/guide/*.md) as written, against the built
-commands, and fails if any exits non-zero.
+"""Runs the shell commands of the user's guide (README.md and docs/guide/*.md) as written, against
+the built commands, and fails if any exits non-zero or does not print the output a page shows.
 
     run_guide_commands.py REPO CHAOS MECHANISM STUDY
 
@@ -8,7 +8,11 @@ The commands of a page are the lines of its code blocks (docs/README.md, "Comman
 are tested", says the same for those who write the pages):
 
 - in a fenced block without a language (```), the lines that start with `$ ` (the prompt); the
-  lines after them are the output shown and are not checked;
+  lines after them, up to the next prompt, are the output shown, and each must be printed (on
+  standard output or error) by the command: a line as it stands, or, where it holds `...` (text
+  left out), a printed line holding its pieces in that order; a line that is only `...` stands for
+  lines left out. The comparison ignores blanks at the ends of lines, and a line of names (as `ls`
+  shows them in columns) also matches the same names printed one per line;
 - in an indented block (four blanks), every line;
 - a line ending in `\\` continues on the next; a `# comment` after a command stays (the shell drops
   it);
@@ -88,10 +92,52 @@ def blocks(text):
     return out
 
 
+def shown_output(body, k):
+    """The output a fenced block shows after the command ending on body[k]: the lines up to the
+    next prompt, without those that are only `...` and without blank ones."""
+    out = []
+    for later in body[k + 1:]:
+        if later.startswith("$ "):
+            break
+        if later.strip() and later.strip() != "...":
+            out.append(later.rstrip())
+    return out
+
+
+def missing_lines(shown, printed):
+    """The shown lines that no printed line matches (see the module's docstring)."""
+    printed = [p.rstrip() for p in printed]
+    whole = set(printed)
+    missing = []
+    for line in shown:
+        if "..." not in line:
+            words = line.split()
+            # `ls` prints names in columns on a terminal and one per line into a pipe.
+            listed = any(printed[i:i + len(words)] == words for i in range(len(printed)))
+            if line not in whole and line.strip() not in {p.strip() for p in printed} and not listed:
+                missing.append(line)
+            continue
+        pieces = [piece.strip() for piece in line.split("...") if piece.strip()]
+
+        def holds(p):
+            at = 0
+            for piece in pieces:
+                at = p.find(piece, at)
+                if at < 0:
+                    return False
+                at += len(piece)
+            return True
+
+        if not any(holds(p) for p in printed):
+            missing.append(line)
+    return missing
+
+
 def commands(kind, body, first):
-    """The commands of a block as (line number, command, shown exit), continuation lines joined.
-    The shown exit is the `exit N` line a fenced block prints after a command ending in
-    `echo "exit $?"` (command-line.md shows the exit codes so), checked against the run; else None."""
+    """The commands of a block as (line number, command, shown exit, shown output), continuation
+    lines joined. The shown exit is the `exit N` line a fenced block prints after a command ending
+    in `echo "exit $?"` (command-line.md shows the exit codes so), checked against the run; else
+    None. The shown output is what shown_output gives (fenced blocks; indented ones show none)."""
     out = []
     k = 0
     while k < len(body):
@@ -117,7 +163,7 @@ def commands(kind, body, first):
                 if re.fullmatch(r"exit \d+", later.strip()):
                     shown = later.strip()
                     break
-        out.append((number, text.strip(), shown))
+        out.append((number, text.strip(), shown, shown_output(body, k) if kind == "fenced" else []))
         k += 1
     return out
 
@@ -127,7 +173,7 @@ def main():
         sys.exit(__doc__)
     repo, chaos, mechanism, study = (Path(a).resolve() for a in sys.argv[1:])
     limit = float(os.environ.get("GUIDE_TEST_LIMIT", "60"))
-    pages = sorted((repo / "docs" / "guide").glob("*.md"))
+    pages = [repo / "README.md"] + sorted((repo / "docs" / "guide").glob("*.md"))
     if not pages:
         sys.exit(f"{repo}/docs/guide: no pages")
     failures = 0
@@ -148,10 +194,10 @@ def main():
             for first, kind, body, markers in blocks(page.read_text(encoding="utf-8")):
                 if any(k == "skip" for k, _ in markers):
                     continue
-                planned = [(first - 1, v, None) for k, v in markers if k == "before"]
-                instead = [(first - 1, v, None) for k, v in markers if k == "instead"]
+                planned = [(first - 1, v, None, []) for k, v in markers if k == "before"]
+                instead = [(first - 1, v, None, []) for k, v in markers if k == "instead"]
                 planned += instead if instead else commands(kind, body, first)
-                for number, command, shown in planned:
+                for number, command, shown, output in planned:
                     ran += 1
                     t0 = time.monotonic()
                     try:
@@ -162,6 +208,11 @@ def main():
                         printed = r.stdout.decode("utf-8", "replace").split("\n")
                         if code == 0 and shown and shown not in printed:
                             code, err = "0, but", f"the page shows '{shown}', the run printed: {' | '.join(printed)[-300:]}"
+                        elif code == 0 and output:
+                            missing = missing_lines(output, printed + err.split("\n"))
+                            if missing:
+                                code, err = "0, but", ("the run does not print these lines the page shows:\n  " +
+                                                      "\n  ".join(m[:200] for m in missing[:8]))
                     except subprocess.TimeoutExpired:
                         code, err = "timeout", f"ran past {limit:g} s (GUIDE_TEST_LIMIT)"
                     seconds = time.monotonic() - t0
