@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Runs the shell commands of the user's guide (README.md and docs/guide/*.md) as written, against
-the built commands, and fails if any exits non-zero or does not print the output a page shows.
+"""Runs the shell commands of the user's guide (README.md and docs/guide/*.md) and of the reference
+pages (docs/reference/, fenced blocks only) as written, against the built commands, and fails if any
+exits non-zero or does not print the output a page shows.
 
     run_guide_commands.py REPO CHAOS MECHANISM STUDY
 
@@ -173,7 +174,11 @@ def main():
         sys.exit(__doc__)
     repo, chaos, mechanism, study = (Path(a).resolve() for a in sys.argv[1:])
     limit = float(os.environ.get("GUIDE_TEST_LIMIT", "60"))
-    pages = [repo / "README.md"] + sorted((repo / "docs" / "guide").glob("*.md"))
+    guide = [repo / "README.md"] + sorted((repo / "docs" / "guide").glob("*.md"))
+    # The reference pages show commands in fenced blocks only; their indented blocks are code and
+    # formulas, not commands.
+    reference = sorted((repo / "docs" / "reference").rglob("*.md"))
+    pages = guide + reference
     if not pages:
         sys.exit(f"{repo}/docs/guide: no pages")
     failures = 0
@@ -186,13 +191,13 @@ def main():
             (bin_dir / name).symlink_to(target)
         env = dict(os.environ, PATH=f"{bin_dir}:{os.environ.get('PATH', '/usr/bin:/bin')}", LC_ALL="C")
         for page in pages:
-            work = Path(scratch) / page.stem
+            work = Path(scratch) / str(page.relative_to(repo)).replace("/", "_")
             work.mkdir()
             for name, target in (("chaos", chaos), ("mechanism", mechanism), ("study", study)):
                 (work / "build" / name).mkdir(parents=True)
                 (work / "build" / name / name).symlink_to(target)
             for first, kind, body, markers in blocks(page.read_text(encoding="utf-8")):
-                if any(k == "skip" for k, _ in markers):
+                if any(k == "skip" for k, _ in markers) or (page in reference and kind != "fenced"):
                     continue
                 planned = [(first - 1, v, None, []) for k, v in markers if k == "before"]
                 instead = [(first - 1, v, None, []) for k, v in markers if k == "instead"]
