@@ -12,8 +12,8 @@ are tested", says the same for those who write the pages):
   lines after them, up to the next prompt, are the output shown, and each must be printed (on
   standard output or error) by the command: a line as it stands, or, where it holds `...` (text
   left out), a printed line holding its pieces in that order; a line that is only `...` stands for
-  lines left out. The comparison ignores blanks at the ends of lines, and a line of names (as `ls`
-  shows them in columns) also matches the same names printed one per line;
+  lines left out. The comparison ignores blanks at either end of a line, and a line of names (as
+  `ls` shows them in columns) also matches the same names printed one per line;
 - in an indented block (four blanks), every line;
 - a line ending in `\\` continues on the next; a `# comment` after a command stays (the shell drops
   it);
@@ -107,7 +107,7 @@ def shown_output(body, k):
 
 def missing_lines(shown, printed):
     """The shown lines that no printed line matches (see the module's docstring)."""
-    printed = [p.rstrip() for p in printed]
+    printed = [p.strip() for p in printed]
     whole = set(printed)
     missing = []
     for line in shown:
@@ -115,7 +115,7 @@ def missing_lines(shown, printed):
             words = line.split()
             # `ls` prints names in columns on a terminal and one per line into a pipe.
             listed = any(printed[i:i + len(words)] == words for i in range(len(printed)))
-            if line not in whole and line.strip() not in {p.strip() for p in printed} and not listed:
+            if line.strip() not in whole and not listed:
                 missing.append(line)
             continue
         pieces = [piece.strip() for piece in line.split("...") if piece.strip()]
