@@ -105,20 +105,21 @@ def main():
                    "any_close": 0} for n in lengths}
     for (name, n), a in zip(tasks, answers):
         ref = refs[name]
+        close = lambda x: abs(x - ref) <= 0.1 * abs(ref)  # noqa: E731 (the zoo's 10% band)
         s = summary[n]
         s["systems"] += 1
         v, iv, st = a.get("value"), a.get("interval"), a.get("status")
         inside = iv is not None and iv[0] <= ref <= iv[1]
-        s["value_close"] += v is not None and abs(v - ref) <= 0.1 * abs(ref)
-        s["any_close"] += any(abs(e - ref) <= 0.1 * abs(ref) for e in a.get("evidence", []))
+        s["value_close"] += v is not None and close(v)
+        s["any_close"] += any(close(e) for e in a.get("evidence", []))
         if st in ("confident", "rough") and v is not None:
             s["stated"] += 1
             s["held"] += inside
         if st == "confident":
             s["confident"] += 1
-            s["good"] += abs(v - ref) <= 0.1 * abs(ref)
+            s["good"] += close(v)
             half = 0.5 * (iv[1] - iv[0]) if iv else 0.0
-            s["worst"] += abs(v - ref) > 2 * half and abs(v - ref) > 0.1 * abs(ref)
+            s["worst"] += abs(v - ref) > 2 * half and not close(v)
         fmt = lambda x: "-" if x is None else f"{x:.4g}"
         print(f"{name}\t{n}\t{ref:.4g}\t{fmt(v)}\t{fmt(iv[0] if iv else None)}\t{fmt(iv[1] if iv else None)}\t{st}\t"
               f"{'yes' if inside else 'no'}\t{a.get('reason', '')[:160]}")

@@ -15,10 +15,10 @@ between records, so radius k is compared across records.
 m = 3..5), to see whether a map's slopes scatter as a flow's do: the library's constant was measured
 on Lorenz x. --length sets N (default 10^5): shorter records count fewer pairs at the smallest radii.
 
-Prints, per radius: the mean radius, the median pair count of m = 6, the mean and the standard
-deviation over the records of the local slope averaged over m = 4..6, what independent pairs would
-give (4 / sqrt(pairs)), and the factor c = std * sqrt(pairs); then the root mean square of c over the
-small scales, the radii with at most 5*10^5 pairs, where the rule applies (above them the records'
+Prints, per radius: the mean radius, the median pair count of the highest dimension (m = 6; Henon 5),
+the mean and the standard deviation over the records of the local slope averaged over the saturating
+dimensions (m = 4..6; Henon 3..5), what independent pairs would give (4 / sqrt(pairs)), and the
+factor c = std * sqrt(pairs); then the root mean square of c over the small scales, the radii with at most 5*10^5 pairs, where the rule applies (above them the records'
 radii, which differ by up to 3%, and the slope's change with scale add to the spread).
 
 Usage: scripts/measure/small_scale_slope_error.py CHAOS_BINARY [--seeds K] [--jobs J] [--system lorenz|henon] [--length N]

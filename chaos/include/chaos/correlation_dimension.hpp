@@ -113,11 +113,13 @@ struct CorrelationDimensionOptions {
   std::uint64_t small_scale_min_pairs = 10000;
   // The counting error of a local slope read from p close pairs is about pair_counting_error /
   // sqrt(p). A reading below the plateau (another plateau, the smallest scales) disputes the D2 in
-  // d2_answer only where it lies more than that error away, and more than the confident half-width. The close pairs of a finely sampled flow are not independent (two strands of the
-  // orbit that pass near each other give a run of consecutive pairs): over twelve independent
-  // Lorenz x records (dt 0.01, N = 10^5, m = 4..6) the local slopes at one radius scatter by
-  // 13-18.5 / sqrt(pairs), 16.5 in root mean square, from 10^4 to 4 10^5 pairs, where independent
-  // pairs would give about 4 (scripts/measure/small_scale_slope_error.py;
+  // d2_answer only where it lies more than that error away, and more than the confident half-width.
+  // The close pairs of a finely sampled flow are not independent (two strands of the orbit that pass
+  // near each other give a run of consecutive pairs): over twelve independent Lorenz x records
+  // (dt 0.01, N = 10^5, m = 4..6) the local slopes at one radius scatter by 13-18.5 / sqrt(pairs),
+  // 16.5 in root mean square, from 10^4 to 4 10^5 pairs, where independent pairs would give about 4.
+  // A map's pairs are nearly independent (Henon x: 4.6), so there the constant errs large; the zoo's
+  // maps answer the same with either (scripts/measure/small_scale_slope_error.py;
   // docs/reference/correlation_dimension.md, "Readings below the plateau").
   double pair_counting_error = 16.5;
   // Regions are searched at radii <= max_region_fraction * range (CorrelationSumResult::range);
